@@ -1,0 +1,31 @@
+# odeskin_glsl_shader(TARGET name SOURCE file.comp SYMBOL c_name [DEPENDS headers...])
+#
+# Compiles a GLSL compute shader to SPIR-V at build time (never into the source tree), checks the
+# result with spirv-val, and wraps it as an INTERFACE target whose include directory holds
+# <name>.spv.h: `static const uint32_t c_name[]`, embedded in whatever links the target.
+function(odeskin_glsl_shader)
+  cmake_parse_arguments(ARG "" "TARGET;SOURCE;SYMBOL" "DEPENDS" ${ARGN})
+  get_filename_component(source "${ARG_SOURCE}" ABSOLUTE)
+  set(out_dir "${CMAKE_BINARY_DIR}/shaders")
+  set(header "${out_dir}/${ARG_TARGET}.spv.h")
+  set(spv "${out_dir}/${ARG_TARGET}.spv")
+  set(validate_cmd)
+  if(ODESKIN_SPIRV_VAL)
+    set(validate_cmd COMMAND "${ODESKIN_SPIRV_VAL}" --target-env vulkan1.1 "${spv}")
+  endif()
+  add_custom_command(
+    OUTPUT "${header}" "${spv}"
+    COMMAND "${CMAKE_COMMAND}" -E make_directory "${out_dir}"
+    COMMAND "${Vulkan_GLSLANG_VALIDATOR_EXECUTABLE}" -V --target-env vulkan1.1
+            -I${PROJECT_SOURCE_DIR}/engine/core -o "${spv}" "${source}"
+    ${validate_cmd}
+    COMMAND "${Vulkan_GLSLANG_VALIDATOR_EXECUTABLE}" -V --target-env vulkan1.1
+            -I${PROJECT_SOURCE_DIR}/engine/core --vn ${ARG_SYMBOL} -o "${header}" "${source}"
+    DEPENDS "${source}" ${ARG_DEPENDS}
+    COMMENT "GLSL -> SPIR-V ${ARG_TARGET}"
+    VERBATIM)
+  add_custom_target(${ARG_TARGET}_spirv DEPENDS "${header}")
+  add_library(${ARG_TARGET} INTERFACE)
+  add_dependencies(${ARG_TARGET} ${ARG_TARGET}_spirv)
+  target_include_directories(${ARG_TARGET} INTERFACE "${out_dir}")
+endfunction()

@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: MIT
+// GPU buffer layouts, binding numbers and push constants, read by both C++ (host/, engine fast path)
+// and GLSL (shaders/*.comp, via #include). Written in the subset both languages understand; the
+// C++ side checks sizes and offsets with static_asserts in gpu_layout.hpp. std430 rules apply:
+// every struct here is built from 4-byte scalars (no vec3) so C++ and GLSL agree without padding.
+#ifndef ODESKIN_GPU_LAYOUT_H
+#define ODESKIN_GPU_LAYOUT_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace odeskin::gpu {
+using uint = std::uint32_t;
+#endif
+
+// 64 threads: a multiple of every subgroup size we meet (lavapipe 8, NVIDIA 32, AMD 64).
+#define ODESKIN_WORKGROUP_SIZE 64
+
+// Marks a vertex that has no sparse remainder in the current segment.
+#define ODESKIN_NO_REMAINDER 0xFFFFFFFFu
+
+// Influence layouts (push constant `influence_layout`): 0 = compressed sparse rows
+// (influence_offsets[V+1] into influences[]), 4 or 8 = fixed slots per vertex (zero-weight padding).
+#define ODESKIN_INFLUENCES_SPARSE 0u
+
+// Where the residual is applied (push constant `residual_space`), PIPELINE.md sections 3 and 6.
+#define ODESKIN_RESIDUAL_BIND 0u
+#define ODESKIN_RESIDUAL_POSED 1u
+
+// Descriptor set 0 bindings of fourier_deform.comp and lbs_skin.comp.
+#define ODESKIN_BINDING_REST_POSITIONS 0     // Float4[V]: xyz rest position, w unused
+#define ODESKIN_BINDING_VERTEX_BINDINGS 1    // VertexBinding[V]
+#define ODESKIN_BINDING_SEGMENT_VERTICES 2   // SegmentVertex[S*V]
+#define ODESKIN_BINDING_REMAINDERS 3         // Float4[total remainders]
+#define ODESKIN_BINDING_CURVE_MATERIALS 4    // uint[C]
+#define ODESKIN_BINDING_COEFFICIENTS 5       // Float4[S*C*M], M = 2N+2 (see below)
+#define ODESKIN_BINDING_RATES 6              // Float4[S*C*M]
+#define ODESKIN_BINDING_INFLUENCE_OFFSETS 7  // uint[V+1] (sparse layout only)
+#define ODESKIN_BINDING_INFLUENCES 8         // Influence[...]
+#define ODESKIN_BINDING_BONES 9              // per frame: BoneMatrix[bone_count]
+#define ODESKIN_BINDING_MODE_BASIS 10        // per frame: ModeBasis[material_count * (N+1)]
+#define ODESKIN_BINDING_OUT_POSITIONS 11     // Float4[V]: deformed xyz, w = 1
+
+struct Float4 {
+  float x;
+  float y;
+  float z;
+  float w;
+};
+
+// Iso-parametric curve binding of one vertex: it evaluates (1 - w) series_a(v) + w series_b(v).
+struct VertexBinding {
+  uint curve_a;
+  uint curve_b;
+  float w;
+  float v;
+};
+
+// Per segment and vertex: the bind-space corrective r^s of the segment's start pose, and the index
+// of the vertex's sparse remainder in this segment (ODESKIN_NO_REMAINDER if none).
+struct SegmentVertex {
+  float base_x;
+  float base_y;
+  float base_z;
+  uint remainder_index;
+};
+
+struct Influence {
+  uint bone;
+  float weight;
+};
+
+// Rigid or affine bone transform, bind space -> posed space, as three rows of a 3x4 matrix.
+struct BoneMatrix {
+  Float4 row0;
+  Float4 row1;
+  Float4 row2;
+};
+
+// Time basis of one (material, mode n) pair at the frame's tau: a_n = gamma d_n + psi rate_n.
+struct ModeBasis {
+  float gamma;
+  float psi;
+};
+
+// Coefficient layout per curve, M = 2N + 2 entries: m = 0 constant, m = 2n-1 cos(2 pi n v),
+// m = 2n sin(2 pi n v) for n = 1..N (MATH.md 4.2 order), m = 2N+1 the open-curve trend v (MATH.md
+// 4.3; zero on closed curves). The trend and the constant follow mode n = 0.
+
+// Push constants (<= 128 bytes, the guaranteed minimum and lavapipe's limit).
+struct DeformPushConstants {
+  uint vertex_count;
+  uint modes;              // N
+  uint curve_count;        // C
+  uint material_count;
+  uint bone_count;
+  uint segment;            // s: selects segment_vertices[s*V..] and coefficients[s*C*M..]
+  uint remainder_base;     // first remainder of segment s in remainders[]
+  uint influence_layout;   // ODESKIN_INFLUENCES_SPARSE, 4 or 8
+  uint residual_space;     // ODESKIN_RESIDUAL_BIND or ODESKIN_RESIDUAL_POSED
+  uint use_rates;          // 0: rates buffer ignored
+  uint pad0;
+  uint pad1;
+};
+
+#ifdef __cplusplus
+}  // namespace odeskin::gpu
+#endif
+
+#endif  // ODESKIN_GPU_LAYOUT_H

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+// Plain value types shared by the CPU kernels and the offline code (double precision: the truth).
+#pragma once
+
+#include <cstdint>
+
+#include <glm/mat4x3.hpp>
+#include <glm/vec3.hpp>
+
+namespace odeskin {
+
+using Vec3 = glm::dvec3;
+
+// Affine bind-space -> posed-space bone transform: 3 rows x 4 columns, column-major like all of
+// GLM; apply as `bone * glm::dvec4(x, 1.0)`.
+using BoneTransform = glm::dmat4x3;
+
+// Iso-parametric curve binding of one vertex (PIPELINE.md 3): the vertex evaluates
+// (1 - w) series_{curve_a}(v) + w series_{curve_b}(v), w in [0, 1], v in [0, 1).
+struct CurveBinding {
+  std::uint32_t curve_a = 0;
+  std::uint32_t curve_b = 0;
+  double w = 0.0;
+  double v = 0.0;
+};
+
+// Time basis values of one (material, mode) pair for the current frame: a_n = gamma d_n + psi rate_n.
+struct ModeBasisValue {
+  double gamma = 0.0;
+  double psi = 0.0;
+};
+
+// Where the analytic residual lives (PIPELINE.md 3 and 6).
+enum class ResidualSpace {
+  kBind,   // added to the rest position before skinning, so it turns with the bones (default)
+  kPosed,  // the thesis's variant: added after skinning
+};
+
+}  // namespace odeskin

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+// Wavefront OBJ writing (reading comes with the pipeline issue). Writes go to a temporary file in
+// the destination folder that is renamed into place, so a failure never leaves a half-written file.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+
+#include "../core/status.hpp"
+#include "../core/types.hpp"
+
+namespace odeskin {
+
+// Polygon faces as compressed rows: face f has vertex indices [face_offsets[f], face_offsets[f+1]).
+struct FaceList {
+  std::vector<std::uint32_t> face_offsets{0};
+  std::vector<std::uint32_t> indices;  // 0-based
+  std::size_t faceCount() const { return face_offsets.size() - 1; }
+};
+
+// kInvalidArgument for an index >= positions.size() or a non-finite coordinate; kIoError naming
+// the path when the file cannot be written.
+Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces,
+                const std::string& comment = {});
+
+// Writes `content` to `path` through a temporary file and rename (kIoError naming the path).
+Status writeFileAtomically(const std::filesystem::path& path, const std::string& content);
+
+}  // namespace odeskin

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// Fast CPU path (float, multithreaded) of fourier_deform_job: the same mathematics in the order of
+// operations of shaders/fourier_deform.comp (cos/sin by the angle-addition recurrence, curve series
+// blended before skinning), so CPU-fast, GPU and reference agree within float32 tolerances.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "../core/status.hpp"
+#include "packed_deform.hpp"
+
+namespace odeskin {
+
+struct FourierDeformFastJob {
+  const PackedDeformData* data = nullptr;   // required
+  std::uint32_t segment = 0;                // < data->segment_count
+  std::span<const gpu::BoneMatrix> bones;   // data->bone_count, required: M_b(tau)
+  std::span<const gpu::ModeBasis> basis;    // data->material_count * (N+1), required
+  std::span<gpu::Float4> out_positions;     // data->vertex_count, required
+  unsigned threads = 0;                     // worker threads; 0 = all hardware threads
+
+  // kInvalidArgument naming the field whose size is wrong (sizes only: indices inside `data` are
+  // checked once by packDeformAsset, not per frame).
+  Status validate() const;
+  Status run() const;
+};
+
+// Plain LBS on the same packed data (no residual), the baseline of every speed ratio.
+struct LbsFastJob {
+  const PackedDeformData* data = nullptr;   // required (rest positions and influences)
+  std::span<const gpu::BoneMatrix> bones;   // data->bone_count
+  std::span<gpu::Float4> out_positions;     // data->vertex_count
+  unsigned threads = 0;
+
+  Status validate() const;
+  Status run() const;
+};
+
+}  // namespace odeskin

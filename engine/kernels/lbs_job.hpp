@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+// CPU reference kernel (double): linear blend skinning, out_i = sum_b w_ib M_b X_i
+// (Magnenat-Thalmann et al. 1988; thesis Eq 6.1). Mirrored by lbs_fast_job and shaders/lbs.comp.
+#pragma once
+
+#include <span>
+
+#include "../core/status.hpp"
+#include "../core/types.hpp"
+#include "influences.hpp"
+
+namespace odeskin {
+
+struct LbsJob {
+  std::span<const Vec3> rest_positions;  // V, required
+  InfluencesView influences;             // V rows, required
+  std::span<const BoneTransform> bones;  // B, required
+  std::span<Vec3> out_positions;         // V, required
+
+  // kInvalidArgument naming the field: sizes, bone index out of range.
+  Status validate() const;
+  Status run() const;
+};
+
+// The blended linear part A_i = sum_b w_ib R_b of vertex i (PIPELINE.md 2), as a 3x3 matrix.
+glm::dmat3 blendedLinearPart(const InfluencesView& influences, std::span<const BoneTransform> bones,
+                             std::size_t vertex);
+
+}  // namespace odeskin
