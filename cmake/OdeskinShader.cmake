@@ -1,14 +1,15 @@
-# odeskin_glsl_shader(TARGET name SOURCE file.comp SYMBOL c_name [DEPENDS headers...])
+# odeskin_glsl_shader(TARGET name SOURCE stem.comp SYMBOL c_name [DEPENDS headers...])
 #
 # Compiles a GLSL compute shader to SPIR-V at build time (never into the source tree), checks the
 # result with spirv-val, and wraps it as an INTERFACE target whose include directory holds
-# <name>.spv.h: `static const uint32_t c_name[]`, embedded in whatever links the target.
+# shaders/<stem>.spv.h: `const uint32_t c_name[]`, embedded in whatever links the target.
 function(odeskin_glsl_shader)
   cmake_parse_arguments(ARG "" "TARGET;SOURCE;SYMBOL" "DEPENDS" ${ARGN})
   get_filename_component(source "${ARG_SOURCE}" ABSOLUTE)
-  set(out_dir "${CMAKE_BINARY_DIR}/shaders")
-  set(header "${out_dir}/${ARG_TARGET}.spv.h")
-  set(spv "${out_dir}/${ARG_TARGET}.spv")
+  get_filename_component(stem "${ARG_SOURCE}" NAME_WE)
+  set(out_dir "${CMAKE_BINARY_DIR}/generated/shaders")
+  set(header "${out_dir}/${stem}.spv.h")
+  set(spv "${out_dir}/${stem}.spv")
   set(validate_cmd)
   if(ODESKIN_SPIRV_VAL)
     set(validate_cmd COMMAND "${ODESKIN_SPIRV_VAL}" --target-env vulkan1.1 "${spv}")
@@ -27,5 +28,5 @@ function(odeskin_glsl_shader)
   add_custom_target(${ARG_TARGET}_spirv DEPENDS "${header}")
   add_library(${ARG_TARGET} INTERFACE)
   add_dependencies(${ARG_TARGET} ${ARG_TARGET}_spirv)
-  target_include_directories(${ARG_TARGET} INTERFACE "${out_dir}")
+  target_include_directories(${ARG_TARGET} INTERFACE "${CMAKE_BINARY_DIR}/generated")
 endfunction()

@@ -4,8 +4,7 @@
 
 #include <cstdint>
 
-#include <glm/mat4x3.hpp>
-#include <glm/vec3.hpp>
+#include <glm/glm.hpp>
 
 namespace odeskin {
 

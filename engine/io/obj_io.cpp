@@ -1,1 +1,69 @@
 // SPDX-License-Identifier: MIT
+#include "obj_io.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <system_error>
+
+namespace odeskin {
+
+Status writeFileAtomically(const std::filesystem::path& path, const std::string& content) {
+  // The temporary lives beside the target so the rename stays on one file system (atomic).
+  std::random_device seed;
+  std::filesystem::path temp = path;
+  temp += ".tmp" + std::to_string(seed() % 1000000);
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) return ioError(path.string() + ": cannot create file");
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    out.flush();
+    if (!out) {
+      out.close();
+      std::error_code ignored;
+      std::filesystem::remove(temp, ignored);
+      return ioError(path.string() + ": write failed (disk full?)");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+    return ioError(path.string() + ": cannot rename into place: " + ec.message());
+  }
+  return okStatus();
+}
+
+Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces,
+                const std::string& comment) {
+  std::string text;
+  text.reserve(positions.size() * 40 + faces.indices.size() * 8 + 64);
+  if (!comment.empty()) text += "# " + comment + "\n";
+  char line[96];
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const Vec3& p = positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      return invalidArgument(path.string() + ": vertex " + std::to_string(i) + " is not finite");
+    }
+    // %.9g round-trips float32 exactly and keeps double output readable.
+    std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+    text += line;
+  }
+  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+    text += 'f';
+    for (std::uint32_t k = faces.face_offsets[f]; k < faces.face_offsets[f + 1]; ++k) {
+      if (faces.indices[k] >= positions.size()) {
+        return invalidArgument(path.string() + ": face " + std::to_string(f) + " references vertex " +
+                               std::to_string(faces.indices[k]) + " of " + std::to_string(positions.size()));
+      }
+      text += ' ';
+      text += std::to_string(faces.indices[k] + 1);
+    }
+    text += '\n';
+  }
+  return writeFileAtomically(path, text);
+}
+
+}  // namespace odeskin

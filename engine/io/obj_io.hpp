@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "../core/status.hpp"
 #include "../core/types.hpp"

@@ -1,1 +1,123 @@
 // SPDX-License-Identifier: MIT
+#include "fourier_deform_job.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace odeskin {
+namespace {
+
+constexpr int kMaxModes = 64;
+
+// S_c(v) = sum_m (gamma_n d_cm + psi_n rdot_cm) phi_m(v), harmonics by direct cos/sin (the
+// reference does not use the recurrence of the fast paths, so it checks them independently).
+Vec3 curveSeries(const FourierDeformJob& job, std::uint32_t curve, double v) {
+  const std::size_t m_count = coefficientsPerCurve(job.modes);
+  const std::size_t base = curve * m_count;
+  const std::size_t basis_base = job.curve_materials[curve] * static_cast<std::size_t>(job.modes + 1);
+  const bool with_rates = !job.rates.empty();
+  const ModeBasisValue& b0 = job.basis[basis_base];
+  Vec3 sum = b0.gamma * (job.coefficients[base] + v * job.coefficients[base + m_count - 1]);
+  if (with_rates) sum += b0.psi * (job.rates[base] + v * job.rates[base + m_count - 1]);
+  for (int n = 1; n <= job.modes; ++n) {
+    const double angle = 2.0 * std::numbers::pi * n * v;
+    const double c = std::cos(angle);
+    const double s = std::sin(angle);
+    const ModeBasisValue& bn = job.basis[basis_base + static_cast<std::size_t>(n)];
+    const std::size_t mc = base + 2 * static_cast<std::size_t>(n) - 1;
+    sum += bn.gamma * (c * job.coefficients[mc] + s * job.coefficients[mc + 1]);
+    if (with_rates) sum += bn.psi * (c * job.rates[mc] + s * job.rates[mc + 1]);
+  }
+  return sum;
+}
+
+Vec3 skin(const FourierDeformJob& job, std::size_t i, const Vec3& x) {
+  const glm::dvec4 h(x, 1.0);
+  Vec3 p(0.0);
+  for (std::uint32_t k = job.influences.offsets[i]; k < job.influences.offsets[i + 1]; ++k) {
+    p += job.influences.weights[k] * (job.bones[job.influences.bones[k]] * h);
+  }
+  return p;
+}
+
+Status sizeError(const char* field, std::size_t got, std::size_t expected) {
+  return invalidArgument(std::string("fourier deform: ") + field + " has " + std::to_string(got) +
+                         " entries, expected " + std::to_string(expected));
+}
+
+}  // namespace
+
+Status FourierDeformJob::validate() const {
+  if (modes < 1 || modes > kMaxModes) {
+    return outOfRange("fourier deform: modes N = " + std::to_string(modes) + " outside 1.." +
+                      std::to_string(kMaxModes));
+  }
+  const std::size_t vertex_count = rest_positions.size();
+  const std::size_t curve_count = curve_materials.size();
+  const std::size_t m_count = coefficientsPerCurve(modes);
+  if (bindings.size() != vertex_count) return sizeError("bindings", bindings.size(), vertex_count);
+  if (out_positions.size() != vertex_count) return sizeError("out_positions", out_positions.size(), vertex_count);
+  if (!base_residuals.empty() && base_residuals.size() != vertex_count) {
+    return sizeError("base_residuals", base_residuals.size(), vertex_count);
+  }
+  if (!remainder_indices.empty() && remainder_indices.size() != vertex_count) {
+    return sizeError("remainder_indices", remainder_indices.size(), vertex_count);
+  }
+  if (coefficients.size() != curve_count * m_count) {
+    return sizeError("coefficients", coefficients.size(), curve_count * m_count);
+  }
+  if (!rates.empty() && rates.size() != curve_count * m_count) return sizeError("rates", rates.size(), curve_count * m_count);
+  const std::size_t per_material = static_cast<std::size_t>(modes) + 1;
+  if (basis.empty() || basis.size() % per_material != 0) {
+    return invalidArgument("fourier deform: basis has " + std::to_string(basis.size()) +
+                           " entries, not a positive multiple of N+1 = " + std::to_string(per_material));
+  }
+  const std::size_t material_count = basis.size() / per_material;
+  for (const ModeBasisValue& b : basis) {
+    if (!std::isfinite(b.gamma) || !std::isfinite(b.psi)) return invalidArgument("fourier deform: non-finite basis value");
+  }
+  for (std::size_t c = 0; c < curve_count; ++c) {
+    if (curve_materials[c] >= material_count) {
+      return invalidArgument("fourier deform: curve " + std::to_string(c) + " uses material " +
+                             std::to_string(curve_materials[c]) + " of " + std::to_string(material_count));
+    }
+  }
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    const CurveBinding& b = bindings[i];
+    if (b.curve_a >= curve_count || b.curve_b >= curve_count) {
+      return invalidArgument("fourier deform: vertex " + std::to_string(i) + " is bound to a curve beyond " +
+                             std::to_string(curve_count));
+    }
+    if (!(b.w >= 0.0 && b.w <= 1.0) || !std::isfinite(b.v)) {
+      return invalidArgument("fourier deform: vertex " + std::to_string(i) + " has blend weight " +
+                             std::to_string(b.w) + " or parameter " + std::to_string(b.v) + " out of range");
+    }
+    if (!remainder_indices.empty() && remainder_indices[i] != kNoRemainder &&
+        remainder_indices[i] >= remainders.size()) {
+      return invalidArgument("fourier deform: vertex " + std::to_string(i) + " references remainder " +
+                             std::to_string(remainder_indices[i]) + " of " + std::to_string(remainders.size()));
+    }
+  }
+  return validateInfluences(influences, vertex_count, static_cast<std::uint32_t>(bones.size()));
+}
+
+Status FourierDeformJob::run() const {
+  ODESKIN_TRY(validate());
+  const std::size_t per_material = static_cast<std::size_t>(modes) + 1;
+  for (std::size_t i = 0; i < rest_positions.size(); ++i) {
+    const CurveBinding& b = bindings[i];
+    const Vec3 series_a = curveSeries(*this, b.curve_a, b.v);
+    const Vec3 series_b = b.curve_b == b.curve_a ? series_a : curveSeries(*this, b.curve_b, b.v);
+    Vec3 residual = (1.0 - b.w) * series_a + b.w * series_b;
+    if (!base_residuals.empty()) residual += base_residuals[i];
+    if (!remainder_indices.empty() && remainder_indices[i] != kNoRemainder) {
+      residual += basis[curve_materials[b.curve_a] * per_material].gamma * remainders[remainder_indices[i]];
+    }
+    out_positions[i] = residual_space == ResidualSpace::kBind ? skin(*this, i, rest_positions[i] + residual)
+                                                              : skin(*this, i, rest_positions[i]) + residual;
+  }
+  return okStatus();
+}
+
+}  // namespace odeskin

@@ -1,1 +1,40 @@
 // SPDX-License-Identifier: MIT
+#include "lbs_job.hpp"
+
+#include <string>
+
+namespace odeskin {
+
+Status LbsJob::validate() const {
+  const std::size_t vertex_count = rest_positions.size();
+  if (out_positions.size() != vertex_count) {
+    return invalidArgument("lbs: out_positions has " + std::to_string(out_positions.size()) + " entries for " +
+                           std::to_string(vertex_count) + " vertices");
+  }
+  if (bones.empty() && vertex_count > 0) return invalidArgument("lbs: bones is empty");
+  return validateInfluences(influences, vertex_count, static_cast<std::uint32_t>(bones.size()));
+}
+
+Status LbsJob::run() const {
+  ODESKIN_TRY(validate());
+  for (std::size_t i = 0; i < rest_positions.size(); ++i) {
+    const glm::dvec4 x(rest_positions[i], 1.0);
+    Vec3 p(0.0);
+    for (std::uint32_t k = influences.offsets[i]; k < influences.offsets[i + 1]; ++k) {
+      p += influences.weights[k] * (bones[influences.bones[k]] * x);
+    }
+    out_positions[i] = p;
+  }
+  return okStatus();
+}
+
+glm::dmat3 blendedLinearPart(const InfluencesView& influences, std::span<const BoneTransform> bones,
+                             std::size_t vertex) {
+  glm::dmat3 a(0.0);
+  for (std::uint32_t k = influences.offsets[vertex]; k < influences.offsets[vertex + 1]; ++k) {
+    a += influences.weights[k] * glm::dmat3(bones[influences.bones[k]]);
+  }
+  return a;
+}
+
+}  // namespace odeskin
