@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -33,6 +34,13 @@ struct ModeBasisValue {
 enum class ResidualSpace {
   kBind,   // added to the rest position before skinning, so it turns with the bones (default)
   kPosed,  // the thesis's variant: added after skinning
+};
+
+// Polygon faces as compressed rows: face f has vertex indices [face_offsets[f], face_offsets[f+1]).
+struct FaceList {
+  std::vector<std::uint32_t> face_offsets{0};
+  std::vector<std::uint32_t> indices;  // 0-based
+  std::size_t faceCount() const { return face_offsets.size() - 1; }
 };
 
 }  // namespace odeskin

@@ -14,13 +14,6 @@
 
 namespace odeskin {
 
-// Polygon faces as compressed rows: face f has vertex indices [face_offsets[f], face_offsets[f+1]).
-struct FaceList {
-  std::vector<std::uint32_t> face_offsets{0};
-  std::vector<std::uint32_t> indices;  // 0-based
-  std::size_t faceCount() const { return face_offsets.size() - 1; }
-};
-
 // kInvalidArgument for an index >= positions.size() or a non-finite coordinate; kIoError naming
 // the path when the file cannot be written.
 Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces,

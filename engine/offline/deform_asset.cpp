@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+#include "deform_asset.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "../kernels/fourier_deform_job.hpp"
+
+namespace odeskin {
+namespace {
+
+Status fieldSize(const std::string& field, std::size_t got, std::size_t expected) {
+  if (got == expected) return okStatus();
+  return invalidArgument("deform asset: " + field + " has " + std::to_string(got) + " entries, expected " +
+                         std::to_string(expected));
+}
+
+}  // namespace
+
+Status validateDeformAsset(const DeformAsset& a) {
+  if (a.modes < 1 || a.modes > 64) return outOfRange("deform asset: modes N = " + std::to_string(a.modes));
+  const std::size_t v_count = a.vertexCount();
+  const std::size_t c_count = a.curveCount();
+  const std::size_t m_count = coefficientsPerCurve(a.modes);
+  ODESKIN_TRY(fieldSize("bindings", a.bindings.size(), v_count));
+  ODESKIN_TRY(fieldSize("bone_pivots", a.bone_pivots.size(), a.bone_count));
+  if (a.materials.empty()) return invalidArgument("deform asset: no material");
+  if (a.key_poses.size() < 2) return invalidArgument("deform asset: needs at least 2 key poses");
+  ODESKIN_TRY(fieldSize("segments", a.segments.size(), a.key_poses.size() - 1));
+  for (std::size_t k = 0; k < a.key_poses.size(); ++k) {
+    ODESKIN_TRY(fieldSize("key pose " + std::to_string(k), a.key_poses[k].size(), a.bone_count));
+  }
+  for (std::size_t c = 0; c < c_count; ++c) {
+    if (a.curve_materials[c] >= a.materials.size()) {
+      return invalidArgument("deform asset: curve " + std::to_string(c) + " uses material " +
+                             std::to_string(a.curve_materials[c]) + " of " + std::to_string(a.materials.size()));
+    }
+  }
+  for (std::size_t i = 0; i < v_count; ++i) {
+    const CurveBinding& b = a.bindings[i];
+    if (b.curve_a >= c_count || b.curve_b >= c_count || !(b.w >= 0.0 && b.w <= 1.0) || !std::isfinite(b.v)) {
+      return invalidArgument("deform asset: vertex " + std::to_string(i) + " has an invalid curve binding");
+    }
+  }
+  for (std::size_t s = 0; s < a.segments.size(); ++s) {
+    const DeformSegment& seg = a.segments[s];
+    const std::string name = "segment " + std::to_string(s) + " ";
+    ODESKIN_TRY(fieldSize(name + "base_residuals", seg.base_residuals.size(), v_count));
+    ODESKIN_TRY(fieldSize(name + "coefficients", seg.coefficients.size(), c_count * m_count));
+    ODESKIN_TRY(fieldSize(name + "rates", seg.rates.size(), c_count * m_count));
+    ODESKIN_TRY(fieldSize(name + "remainder_indices", seg.remainder_indices.size(), v_count));
+    for (std::uint32_t r : seg.remainder_indices) {
+      if (r != kNoRemainder && r >= seg.remainders.size()) {
+        return invalidArgument("deform asset: " + name + "references remainder " + std::to_string(r) + " of " +
+                               std::to_string(seg.remainders.size()));
+      }
+    }
+  }
+  return validateInfluences(a.influences, v_count, a.bone_count);
+}
+
+Result<PackedDeformData> packDeformAsset(const DeformAsset& a, std::uint32_t influence_layout) {
+  ODESKIN_TRY(validateDeformAsset(a));
+  PackedDeformData p;
+  p.vertex_count = static_cast<std::uint32_t>(a.vertexCount());
+  p.modes = static_cast<std::uint32_t>(a.modes);
+  p.curve_count = static_cast<std::uint32_t>(a.curveCount());
+  p.material_count = static_cast<std::uint32_t>(a.materials.size());
+  p.bone_count = a.bone_count;
+  p.segment_count = static_cast<std::uint32_t>(a.segments.size());
+  p.residual_space = a.residual_space;
+  p.rest_positions.reserve(p.vertex_count);
+  for (const Vec3& x : a.rest_positions) p.rest_positions.push_back(toGpuFloat4(x, 1.0f));
+  for (const CurveBinding& b : a.bindings) {
+    p.bindings.push_back(gpu::VertexBinding{b.curve_a, b.curve_b, static_cast<float>(b.w), static_cast<float>(b.v)});
+  }
+  p.curve_materials = a.curve_materials;
+  bool any_rate = false;
+  for (const DeformSegment& seg : a.segments) {
+    p.remainder_base.push_back(static_cast<std::uint32_t>(p.remainders.size()));
+    for (std::size_t i = 0; i < a.vertexCount(); ++i) {
+      const Vec3& r = seg.base_residuals[i];
+      p.segment_vertices.push_back(gpu::SegmentVertex{static_cast<float>(r.x), static_cast<float>(r.y),
+                                                      static_cast<float>(r.z), seg.remainder_indices[i]});
+    }
+    for (const Vec3& e : seg.remainders) p.remainders.push_back(toGpuFloat4(e));
+    for (const Vec3& d : seg.coefficients) p.coefficients.push_back(toGpuFloat4(d));
+    for (const Vec3& r : seg.rates) {
+      p.rates.push_back(toGpuFloat4(r));
+      any_rate = any_rate || r != Vec3(0.0);
+    }
+  }
+  // An all-zero rate buffer would cost a second series per vertex for nothing.
+  if (!any_rate) p.rates.clear();
+  p.influence_layout = influence_layout;
+  if (influence_layout == ODESKIN_INFLUENCES_SPARSE) {
+    p.influence_offsets = a.influences.offsets;
+    for (std::size_t k = 0; k < a.influences.bones.size(); ++k) {
+      p.influences.push_back(gpu::Influence{a.influences.bones[k], static_cast<float>(a.influences.weights[k])});
+    }
+  } else {
+    ODESKIN_ASSIGN_OR_RETURN(FixedSlotInfluences fixed, toFixedSlots(a.influences, influence_layout));
+    for (std::size_t k = 0; k < fixed.bones.size(); ++k) {
+      p.influences.push_back(gpu::Influence{fixed.bones[k], fixed.weights[k]});
+    }
+  }
+  return p;
+}
+
+}  // namespace odeskin

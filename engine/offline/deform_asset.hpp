@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+// A fitted deformer: everything needed to play the analytic skin deformation between key poses
+// (PIPELINE.md 3-5), in double precision. packDeformAsset turns it into the float32 GPU layout.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "../core/result.hpp"
+#include "../core/types.hpp"
+#include "../kernels/influences.hpp"
+#include "../kernels/packed_deform.hpp"
+#include "material.hpp"
+#include "rigid_transform.hpp"
+
+namespace odeskin {
+
+// Segment s plays key pose s -> s+1.
+struct DeformSegment {
+  std::vector<Vec3> base_residuals;                // V: bind-space corrective r^s of key s
+  std::vector<Vec3> coefficients;                  // C * (2N+2): d^s (target Delta^s = r^{s+1} - r^s)
+  std::vector<Vec3> rates;                         // C * (2N+2): rdot^s, the rate carried into s
+  std::vector<std::uint32_t> remainder_indices;    // V: index into remainders or kNoRemainder
+  std::vector<Vec3> remainders;                    // sparse eps (PIPELINE.md 4), follow gamma_0
+};
+
+struct DeformAsset {
+  int modes = 0;                                   // N
+  ResidualSpace residual_space = ResidualSpace::kBind;
+  std::vector<Vec3> rest_positions;                // V: bind mesh X
+  FaceList faces;
+  std::vector<CurveBinding> bindings;              // V
+  std::vector<std::uint32_t> curve_materials;      // C
+  std::vector<Material> materials;                 // >= 1
+  Influences influences;                           // V rows
+  std::uint32_t bone_count = 0;                    // B
+  std::vector<Vec3> bone_pivots;                   // B: joint of each bone in bind space
+  std::vector<std::vector<RigidTransform>> key_poses;  // K x B
+  std::vector<DeformSegment> segments;             // K - 1
+
+  std::size_t vertexCount() const { return rest_positions.size(); }
+  std::size_t curveCount() const { return curve_materials.size(); }
+};
+
+// Checks every size and index of `asset` (kInvalidArgument naming the field and element).
+Status validateDeformAsset(const DeformAsset& asset);
+
+// Float32 GPU layout (gpu_layout.h). influence_layout: 0 keeps every influence in sparse rows; 4 or
+// 8 requests fixed slots (kInvalidArgument if a vertex has more; prune first).
+Result<PackedDeformData> packDeformAsset(const DeformAsset& asset, std::uint32_t influence_layout = 0);
+
+}  // namespace odeskin

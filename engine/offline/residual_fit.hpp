@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// From example poses to a DeformAsset (PIPELINE.md 2-4; thesis ch. 6 with MATH.md 4.4's shared-v fit):
+//   r_i^k = (A_i^k)^{-1} (P_{k,i} - L_k(X_i))        exact bind-space corrective of key k
+//   Delta^s = r^{s+1} - r^s, fitted per iso-curve by a Fourier series in v (N modes)
+//   eps_i = Delta_i^s - [(1-w) S_a(v) + w S_b(v)] kept sparsely where it exceeds the key tolerance
+//   rdot^s = gamma_n'(1) d^{s-1} + psi_n'(1) rdot^{s-1}  (rate continuity across keys, MATH.md 5.2)
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "../core/result.hpp"
+#include "deform_asset.hpp"
+
+namespace odeskin {
+
+// An iso-parametric curve: vertex indices in order along it. Each listed vertex must be bound to the
+// curve (binding curve_a == curve index, w == 0); its binding's v is the fitting parameter.
+struct IsoCurve {
+  std::vector<std::uint32_t> vertices;
+  bool closed = true;
+};
+
+struct FitInput {
+  std::vector<Vec3> rest_positions;                  // V: bind mesh X
+  FaceList faces;
+  std::vector<std::vector<Vec3>> poses;              // K x V example poses
+  Influences influences;
+  std::uint32_t bone_count = 0;
+  std::vector<Vec3> bone_pivots;                     // B
+  std::vector<std::vector<RigidTransform>> key_poses;  // K x B, bind -> pose k
+  std::vector<IsoCurve> curves;                      // C
+  std::vector<CurveBinding> bindings;                // V
+};
+
+struct FitOptions {
+  int modes = 9;
+  ResidualSpace residual_space = ResidualSpace::kBind;
+  std::vector<Material> materials;                   // empty: one static material
+  std::vector<std::uint32_t> curve_materials;        // C, or empty: every curve uses material 0
+  // Key poses are reproduced within key_tolerance x (longest bounding-box side of the pose) by
+  // sparse remainders, unless pure_fourier (the thesis's representation, error only reported).
+  double key_tolerance = 1e-4;
+  bool pure_fourier = false;
+};
+
+struct FitReport {
+  std::vector<double> key_error;      // K: max vertex error of the played key / longest box side
+  std::size_t remainder_count = 0;    // sparse remainders over all segments
+  std::size_t ill_conditioned = 0;    // vertices whose blended rotation A is near singular
+  double max_series_error = 0.0;      // worst |eps| before remainders, / longest box side
+  std::size_t packed_bytes = 0;       // float32 GPU bytes of the asset
+};
+
+// Errors: kInvalidArgument (sizes, indices, a curve vertex not bound to its curve, fewer than 2
+// poses), kIllPosed (a curve with too few vertices for N, a resonant material mode), and the
+// errors of fitFourier / ModeTimeBasis::create, each prefixed with the curve or material concerned.
+Result<DeformAsset> fitDeformAsset(const FitInput& input, const FitOptions& options, FitReport* report = nullptr);
+
+// Longest side of the axis-aligned bounding box (MATH.md 6.1's Lbox).
+double longestBoxSide(std::span<const Vec3> positions);
+
+}  // namespace odeskin
