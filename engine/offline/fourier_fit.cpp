@@ -1,1 +1,213 @@
 // SPDX-License-Identifier: MIT
+// Least-squares Fourier fit of iso-parametric curves (MATH.md 4.1-4.3; thesis Eqs 6.2-6.6, open
+// curves per erratum G9): C(v) = [p0 + slope v] + sum_m c_m phi_m(v), c = argmin |A c - P|, A = QR.
+#include "fourier_fit.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <Eigen/Dense>
+#include <glm/geometric.hpp>
+
+namespace odeskin {
+namespace {
+
+// MATH.md 4.2: full column rank requires min|R_ii| > 1e-10 max|R_ii|.
+constexpr double kRankTolerance = 1e-10;
+
+bool isFinite(const glm::dvec3& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+// Least squares by column-pivoted Householder QR. Pivoting makes |R_ii| non-increasing, so the
+// MATH.md 4.2 test min|R_ii| > 1e-10 max|R_ii| reads off the diagonal and is rank revealing; with
+// unpivoted QR a dependent column can hide behind a moderately small R_ii instead of a near-zero one.
+// `what` describes the problem for the error message.
+Result<Eigen::MatrixXd> solveLeastSquares(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+                                          const std::string& what) {
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  const Eigen::VectorXd diag = qr.matrixR().diagonal().cwiseAbs();
+  const double max_r = diag.maxCoeff();
+  const double min_r = diag.minCoeff();
+  if (!(min_r > kRankTolerance * max_r)) {
+    return illPosed(what + ": rank deficient (min|R_ii| = " + std::to_string(min_r) +
+                    ", max|R_ii| = " + std::to_string(max_r) + ")");
+  }
+  return Eigen::MatrixXd(qr.solve(b));
+}
+
+Status validateFitInput(std::span<const double> v, std::span<const glm::dvec3> values, int modes,
+                        bool closed) {
+  if (modes < 1 || modes > kMaxFourierModes) {
+    return outOfRange("Fourier mode count N = " + std::to_string(modes) + " outside [1, " +
+                      std::to_string(kMaxFourierModes) + "]");
+  }
+  if (v.size() != values.size()) {
+    return invalidArgument("parameter count " + std::to_string(v.size()) +
+                           " differs from sample count " + std::to_string(values.size()));
+  }
+  const std::size_t min_samples = closed ? 1 : 2;  // open curves need both end points
+  if (values.size() < min_samples) {
+    return invalidArgument(std::string(closed ? "closed" : "open") + " curve with " +
+                           std::to_string(values.size()) + " samples: need at least " +
+                           std::to_string(min_samples));
+  }
+  for (std::size_t j = 0; j < values.size(); ++j) {
+    if (!std::isfinite(v[j]) || !isFinite(values[j])) {
+      return invalidArgument("non-finite parameter or sample at index " + std::to_string(j));
+    }
+  }
+  // The trend p0 + slope v interpolates the end points only at v = 0 and v = 1 (MATH.md 4.3);
+  // arcLengthParameters returns exactly these values.
+  if (!closed && (v.front() != 0.0 || v.back() != 1.0)) {
+    return invalidArgument("open curve parameters must start at 0 and end at 1 (got " +
+                           std::to_string(v.front()) + " and " + std::to_string(v.back()) + ")");
+  }
+  return okStatus();
+}
+
+// Squared Frobenius norm of the residual A x - b: the fit's rss over all samples and coordinates.
+double residualSumOfSquares(const Eigen::MatrixXd& a, const Eigen::MatrixXd& x, const Eigen::MatrixXd& b) {
+  return (a * x - b).squaredNorm();
+}
+
+// MATH.md 4.2: closed curves fit all samples with the full 2N+1 basis.
+Result<FourierFit> fitClosed(std::span<const double> v, std::span<const glm::dvec3> values, int modes) {
+  const auto rows = static_cast<Eigen::Index>(values.size());
+  const Eigen::Index cols = 2 * modes + 1;
+  const std::string what = "closed curve with " + std::to_string(rows) + " samples cannot determine " +
+                           std::to_string(cols) + " coefficients (N=" + std::to_string(modes) + ")";
+  // J < 2N+1 is rank deficient by counting; say so before QR (which also wants rows >= cols).
+  if (rows < cols) return illPosed(what + ": rank deficient (too few samples)");
+  Eigen::MatrixXd a(rows, cols);
+  Eigen::MatrixXd b(rows, 3);
+  std::vector<double> phi(static_cast<std::size_t>(cols));
+  for (Eigen::Index j = 0; j < rows; ++j) {
+    const auto uj = static_cast<std::size_t>(j);
+    fourierBasis(v[uj], modes, phi);
+    for (Eigen::Index m = 0; m < cols; ++m) a(j, m) = phi[static_cast<std::size_t>(m)];
+    for (int k = 0; k < 3; ++k) b(j, k) = values[uj][k];
+  }
+  ODESKIN_ASSIGN_OR_RETURN(const Eigen::MatrixXd c, solveLeastSquares(a, b, what));
+  FourierFit fit;
+  fit.modes = modes;
+  fit.closed = true;
+  fit.coefficients.resize(static_cast<std::size_t>(cols));
+  for (Eigen::Index m = 0; m < cols; ++m) {
+    fit.coefficients[static_cast<std::size_t>(m)] = glm::dvec3(c(m, 0), c(m, 1), c(m, 2));
+  }
+  fit.rss = residualSumOfSquares(a, c, b);
+  return fit;
+}
+
+// MATH.md 4.3 (erratum G9): C(v) = P_0 + (P_J - P_0) v + sum_n [a_n (cos 2 pi n v - 1) + b_n sin 2 pi n v].
+// Every correction term vanishes at v = 0 and v = 1, so the ends are exact; a_n, b_n (2N unknowns)
+// come from least squares over the interior samples j = 1..J-1.
+Result<FourierFit> fitOpen(std::span<const double> v, std::span<const glm::dvec3> values, int modes) {
+  const std::size_t last = values.size() - 1;
+  const auto rows = static_cast<Eigen::Index>(last) - 1;
+  const Eigen::Index cols = 2 * modes;
+  const std::string what = "open curve with " + std::to_string(rows) +
+                           " interior samples cannot determine " + std::to_string(cols) +
+                           " coefficients (N=" + std::to_string(modes) + ")";
+  if (rows < cols) return illPosed(what + ": rank deficient (too few samples)");
+  const glm::dvec3 p0 = values.front();
+  const glm::dvec3 slope = values[last] - p0;
+  Eigen::MatrixXd a(rows, cols);
+  Eigen::MatrixXd b(rows, 3);
+  std::vector<double> phi(static_cast<std::size_t>(cols) + 1);
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const auto j = static_cast<std::size_t>(r) + 1;
+    fourierBasis(v[j], modes, phi);
+    for (int n = 1; n <= modes; ++n) {
+      a(r, 2 * n - 2) = phi[static_cast<std::size_t>(2 * n - 1)] - 1.0;
+      a(r, 2 * n - 1) = phi[static_cast<std::size_t>(2 * n)];
+    }
+    const glm::dvec3 detrended = values[j] - (p0 + slope * v[j]);
+    for (int k = 0; k < 3; ++k) b(r, k) = detrended[k];
+  }
+  ODESKIN_ASSIGN_OR_RETURN(const Eigen::MatrixXd ab, solveLeastSquares(a, b, what));
+  FourierFit fit;
+  fit.modes = modes;
+  fit.closed = false;
+  fit.p0 = p0;
+  fit.slope = slope;
+  // Layout of MATH.md 4.3: c_{2n-1} = a_n, c_{2n} = b_n, c_0 = -sum_n a_n.
+  fit.coefficients.assign(static_cast<std::size_t>(cols) + 1, glm::dvec3(0.0));
+  for (Eigen::Index m = 0; m < cols; ++m) {
+    const glm::dvec3 cm(ab(m, 0), ab(m, 1), ab(m, 2));
+    fit.coefficients[static_cast<std::size_t>(m) + 1] = cm;
+    if (m % 2 == 0) fit.coefficients[0] -= cm;
+  }
+  fit.rss = residualSumOfSquares(a, ab, b);
+  return fit;
+}
+
+}  // namespace
+
+Result<std::vector<double>> arcLengthParameters(std::span<const glm::dvec3> points, bool closed) {
+  if (points.size() < 2) {
+    return invalidArgument("arc-length parameters need at least 2 points, got " +
+                           std::to_string(points.size()));
+  }
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    if (!isFinite(points[j])) return invalidArgument("non-finite point at index " + std::to_string(j));
+  }
+  // Cumulative lengths l_1 + ... + l_j (MATH.md 4.1); closed curves add the segment P_{J-1} -> P_0.
+  std::vector<double> v(points.size());
+  double length = 0.0;
+  v[0] = 0.0;
+  for (std::size_t j = 1; j < points.size(); ++j) {
+    length += glm::length(points[j] - points[j - 1]);
+    v[j] = length;
+  }
+  if (closed) length += glm::length(points.front() - points.back());
+  if (!(length > 0.0)) {
+    return degenerate(std::string(closed ? "closed" : "open") + " curve of " +
+                      std::to_string(points.size()) + " points has zero total length");
+  }
+  for (double& vj : v) vj /= length;
+  // Open curves end at exactly 1 (rounding of the division could leave 1 - ulp), which the end
+  // interpolation of MATH.md 4.3 relies on; closed curves keep v_{J-1} < 1 as computed.
+  if (!closed) v.back() = 1.0;
+  return v;
+}
+
+void fourierBasis(double v, int modes, std::span<double> out) {
+  assert(modes >= 0 && out.size() >= static_cast<std::size_t>(2 * modes + 1));
+  // Direct cos/sin per mode rather than the angle-addition recurrence: the fit is offline, and
+  // the direct form keeps every entry within an ulp or two for all N <= 64.
+  out[0] = 1.0;
+  for (int n = 1; n <= modes; ++n) {
+    const double angle = 2.0 * std::numbers::pi * n * v;
+    out[static_cast<std::size_t>(2 * n - 1)] = std::cos(angle);
+    out[static_cast<std::size_t>(2 * n)] = std::sin(angle);
+  }
+}
+
+glm::dvec3 FourierFit::evaluate(double v) const {
+  // Open curves add the trend of MATH.md 4.3; for closed curves p0 = slope = 0 by construction,
+  // but skip them anyway so a closed fit never depends on those fields.
+  glm::dvec3 c = closed ? glm::dvec3(0.0) : p0 + slope * v;
+  if (coefficients.empty()) return c;
+  c += coefficients[0];
+  // Guard against a hand-edited fit whose modes and coefficient count disagree.
+  const int usable_modes = std::min(modes, static_cast<int>((coefficients.size() - 1) / 2));
+  for (int n = 1; n <= usable_modes; ++n) {
+    const double angle = 2.0 * std::numbers::pi * n * v;
+    c += coefficients[static_cast<std::size_t>(2 * n - 1)] * std::cos(angle) +
+         coefficients[static_cast<std::size_t>(2 * n)] * std::sin(angle);
+  }
+  return c;
+}
+
+Result<FourierFit> fitFourier(std::span<const double> v, std::span<const glm::dvec3> values, int modes,
+                              bool closed) {
+  ODESKIN_TRY(validateFitInput(v, values, modes, closed));
+  return closed ? fitClosed(v, values, modes) : fitOpen(v, values, modes);
+}
+
+}  // namespace odeskin
