@@ -13,7 +13,11 @@ double modeStiffness(const Material& material, int n) {
   return material.bending == BendingSign::kThesis ? material.zeta - bending : material.zeta + bending;
 }
 
-Material staticMaterial() { return Material{}; }
+Material staticMaterial() {
+  // rho = eta = 0 with h = 0 would be degenerate (MATH.md 5.3); any h != 0 gives gamma = t, so
+  // zeta = 1 with xi = 0 keeps every mode static.
+  return Material{0.0, 0.0, 1.0, 0.0, BendingSign::kThesis};
+}
 
 Material skinMaterial() {
   // Thesis 6.5.1 quotes E = 150, mu = 0.3, rho = 1050, eta = 0.619; thickness 2 mm and zeta = 1e4

@@ -21,7 +21,8 @@ struct Material {
 // h_n = zeta -/+ 4 n^2 pi^2 xi (MATH.md 5.1), n >= 0.
 double modeStiffness(const Material& material, int n);
 
-// rho = eta = 0: gamma_n(t) = t for every mode, the thesis's static deformation (Fig. 6.12).
+// rho = eta = 0, zeta = 1, xi = 0: gamma_n(t) = t for every mode, the thesis's static deformation
+// (Fig. 6.12).
 Material staticMaterial();
 // The thesis's skin values (rho = 1050, eta = 0.619) with our assumed zeta = 1e4 and 2 mm thickness
 // (xi = E h^3 / (12 (1 - mu^2)) with E = 150, mu = 0.3), MATH.md 5.7.

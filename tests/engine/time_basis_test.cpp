@@ -193,7 +193,13 @@ TEST(TimeBasis, FirstOrderAndStaticIgnoreTheRate) {
   EXPECT_TRUE(stat->rateIgnored());
   EXPECT_EQ(stat->at(0.4).gamma, 0.4);
   EXPECT_EQ(stat->at(0.0).dgamma, 1.0);
-  EXPECT_EQ(ModeTimeBasis::create(staticMaterial(), 0).status().code(), StatusCode::kDegenerate);
+  EXPECT_EQ(ModeTimeBasis::create(0.0, 0.0, 0.0).status().code(), StatusCode::kDegenerate);
+  // The preset is static in every mode, never degenerate.
+  for (int n = 0; n <= 32; ++n) {
+    const Result<ModeTimeBasis> mode = ModeTimeBasis::create(staticMaterial(), n);
+    ASSERT_TRUE(mode.ok()) << n;
+    EXPECT_EQ(mode->at(0.7).gamma, 0.7);
+  }
 }
 
 TEST(TimeBasis, Flags) {
@@ -229,7 +235,7 @@ TEST(Material, Presets) {
   const Material still = staticMaterial();
   EXPECT_EQ(still.rho, 0.0);
   EXPECT_EQ(still.eta, 0.0);
-  EXPECT_EQ(still.zeta, 0.0);
+  EXPECT_EQ(still.zeta, 1.0);
   EXPECT_EQ(still.xi, 0.0);
   const std::string text = describe(skin);
   EXPECT_NE(text.find("rho=1050"), std::string::npos) << text;
