@@ -31,12 +31,14 @@ class ModeTimeBasis {
   // Errors (message names the parameters and `mode` for the user):
   //   kInvalidArgument  a parameter is NaN or infinite;
   //   kDegenerate       rho = eta = h = 0 (the equation carries no information);
-  //   kIllPosed         resonance, P(1) = 0 up to 1e-9 of max|P| (only possible for eta/rho < -2).
+  //   kIllPosed         resonance, P(1) = 0 up to 1e-9 of max|P| (only possible for eta/rho < -2),
+  //                     or growth so fast that P(1) or H(1) overflows float64.
   static Result<ModeTimeBasis> create(double rho, double eta, double h, int mode = 0);
   // Same for mode n of a material (h = modeStiffness(material, n)).
   static Result<ModeTimeBasis> create(const Material& material, int n);
 
-  // gamma, gamma', psi, psi' at t (any finite t; the segment is t in [0, 1]).
+  // gamma, gamma', psi, psi' at t (any finite t; the segment is t in [0, 1]). Never NaN for finite t:
+  // a value that overflows float64 (|t| far outside [0, 1] for growing modes) comes back as +-inf.
   TimeBasisSample at(double t) const;
 
   ModeKind kind() const { return kind_; }
@@ -50,11 +52,15 @@ class ModeTimeBasis {
 
  private:
   ModeTimeBasis() = default;
+  TimeBasisSample atSecondOrder(double t) const;
+  TimeBasisSample atFirstOrder(double t) const;
+
   // Implementation-defined normalised constants; see time_basis.cpp.
   ModeKind kind_ = ModeKind::kStatic;
   double rho_ = 0.0, eta_ = 0.0, h_ = 0.0;
-  double kappa_ = 0.0, k_ = 0.0, x_ = 0.0;  // eta/(2 rho), h/rho, kappa^2 - k
-  double q1_ = 1.0, dq1_ = 0.0, h1_ = 0.0, dh1_ = 0.0;  // Q(1), Q'(1), H(1), H'(1)
+  double kappa_ = 0.0, k_ = 0.0, x_ = 0.0;  // second order: eta/(2 rho), h/rho, kappa^2 - k
+  double q1_ = 1.0, h1_ = 0.0;              // second order: Q(1), H(1)
+  double c_ = 0.0, norm_ = 1.0;             // first order: -h/eta and the normaliser of gamma
 };
 
 }  // namespace odeskin

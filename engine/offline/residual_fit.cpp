@@ -1,0 +1,246 @@
+// SPDX-License-Identifier: MIT
+#include "residual_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "../kernels/fourier_deform_job.hpp"
+#include "../kernels/lbs_job.hpp"
+#include "deform_player.hpp"
+#include "fourier_fit.hpp"
+#include "time_basis.hpp"
+
+namespace odeskin {
+namespace {
+
+// |det A| below this marks a blended rotation that mixes nearly opposed rotations (PIPELINE.md 2):
+// its inverse would amplify the corrective by more than ~1e3.
+constexpr double kSingularDet = 1e-9;
+
+// The time-basis mode n that drives coefficient m of the 2N+2 layout (constant and trend: n = 0).
+int modeOfCoefficient(std::size_t m, int modes) {
+  if (m == 0 || m == coefficientsPerCurve(modes) - 1) return 0;
+  return static_cast<int>((m + 1) / 2);
+}
+
+Status checkInput(const FitInput& in, const FitOptions& opt) {
+  const std::size_t v_count = in.rest_positions.size();
+  auto mismatch = [](const std::string& what, std::size_t got, std::size_t expected) {
+    return invalidArgument("fit: " + what + " has " + std::to_string(got) + " entries, expected " +
+                           std::to_string(expected));
+  };
+  if (v_count == 0) return invalidArgument("fit: the mesh has no vertices");
+  if (in.poses.size() < 2) return invalidArgument("fit: needs at least 2 example poses, got " + std::to_string(in.poses.size()));
+  if (in.key_poses.size() != in.poses.size()) return mismatch("key_poses", in.key_poses.size(), in.poses.size());
+  for (std::size_t k = 0; k < in.poses.size(); ++k) {
+    if (in.poses[k].size() != v_count) return mismatch("pose " + std::to_string(k), in.poses[k].size(), v_count);
+    if (in.key_poses[k].size() != in.bone_count) {
+      return mismatch("bone transforms of pose " + std::to_string(k), in.key_poses[k].size(), in.bone_count);
+    }
+    for (std::size_t i = 0; i < v_count; ++i) {
+      const Vec3& p = in.poses[k][i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        return invalidArgument("fit: pose " + std::to_string(k) + " vertex " + std::to_string(i) + " is not finite");
+      }
+    }
+  }
+  if (in.bindings.size() != v_count) return mismatch("bindings", in.bindings.size(), v_count);
+  if (in.bone_pivots.size() != in.bone_count) return mismatch("bone_pivots", in.bone_pivots.size(), in.bone_count);
+  if (!opt.curve_materials.empty() && opt.curve_materials.size() != in.curves.size()) {
+    return mismatch("curve_materials", opt.curve_materials.size(), in.curves.size());
+  }
+  if (!(opt.key_tolerance > 0.0)) return invalidArgument("fit: key tolerance must be positive");
+  for (std::size_t c = 0; c < in.curves.size(); ++c) {
+    for (std::uint32_t vertex : in.curves[c].vertices) {
+      if (vertex >= v_count) {
+        return invalidArgument("fit: curve " + std::to_string(c) + " lists vertex " + std::to_string(vertex) +
+                               " of " + std::to_string(v_count));
+      }
+      const CurveBinding& b = in.bindings[vertex];
+      if (b.curve_a != c || b.w != 0.0) {
+        return invalidArgument("fit: vertex " + std::to_string(vertex) + " lies on curve " + std::to_string(c) +
+                               " but is not bound to it with w = 0");
+      }
+    }
+  }
+  return validateInfluences(in.influences, v_count, in.bone_count);
+}
+
+// r_i^k of PIPELINE.md 2 (bind space) or the posed-space residual of its section 6.
+std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, std::size_t k, std::size_t* ill_conditioned) {
+  std::vector<BoneTransform> bones(in.bone_count);
+  for (std::uint32_t b = 0; b < in.bone_count; ++b) bones[b] = in.key_poses[k][b].matrix();
+  const InfluencesView influences(in.influences);
+  std::vector<Vec3> residuals(in.rest_positions.size());
+  for (std::size_t i = 0; i < residuals.size(); ++i) {
+    Vec3 skinned(0.0);
+    for (std::uint32_t j = influences.offsets[i]; j < influences.offsets[i + 1]; ++j) {
+      skinned += influences.weights[j] * (bones[influences.bones[j]] * glm::dvec4(in.rest_positions[i], 1.0));
+    }
+    const Vec3 posed = in.poses[k][i] - skinned;
+    if (opt.residual_space == ResidualSpace::kPosed) {
+      residuals[i] = posed;
+      continue;
+    }
+    const glm::dmat3 a = blendedLinearPart(influences, bones, i);
+    const double det = glm::determinant(a);
+    if (std::abs(det) < kSingularDet) {
+      ++*ill_conditioned;
+      residuals[i] = posed;  // best effort; counted and reported (fit report ill_conditioned)
+    } else {
+      residuals[i] = glm::inverse(a) * posed;
+    }
+  }
+  return residuals;
+}
+
+Vec3 seriesAtKey(const DeformSegment& seg, int modes, std::uint32_t curve, double v) {
+  const std::size_t m_count = coefficientsPerCurve(modes);
+  const Vec3* d = seg.coefficients.data() + curve * m_count;
+  Vec3 sum = d[0] + v * d[m_count - 1];
+  for (int n = 1; n <= modes; ++n) {
+    const double angle = 2.0 * 3.14159265358979323846 * n * v;
+    sum += std::cos(angle) * d[2 * n - 1] + std::sin(angle) * d[2 * n];
+  }
+  return sum;
+}
+
+Status fitSegmentCurves(const FitInput& in, int modes, const std::vector<Vec3>& delta, DeformSegment& seg) {
+  const std::size_t m_count = coefficientsPerCurve(modes);
+  std::vector<double> v;
+  std::vector<Vec3> values;
+  for (std::size_t c = 0; c < in.curves.size(); ++c) {
+    const IsoCurve& curve = in.curves[c];
+    v.clear();
+    values.clear();
+    for (std::uint32_t vertex : curve.vertices) {
+      v.push_back(in.bindings[vertex].v);
+      values.push_back(delta[vertex]);
+    }
+    Result<FourierFit> fit = fitFourier(v, values, modes, curve.closed);
+    if (!fit.ok()) {
+      return Status(fit.status().code(), "curve " + std::to_string(c) + ": " + fit.status().message());
+    }
+    Vec3* d = seg.coefficients.data() + c * m_count;
+    for (std::size_t m = 0; m + 1 < m_count; ++m) d[m] = fit->coefficients[m];
+    // Open curves: the trend p0 + slope v joins the constant and the v term (gpu_layout.h).
+    d[0] += fit->p0;
+    d[m_count - 1] = fit->slope;
+  }
+  return okStatus();
+}
+
+}  // namespace
+
+double longestBoxSide(std::span<const Vec3> positions) {
+  if (positions.empty()) return 0.0;
+  Vec3 lo(std::numeric_limits<double>::infinity());
+  Vec3 hi(-std::numeric_limits<double>::infinity());
+  for (const Vec3& p : positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const Vec3 size = hi - lo;
+  return std::max({size.x, size.y, size.z});
+}
+
+Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, FitReport* report) {
+  if (opt.modes < 1 || opt.modes > kMaxFourierModes) {
+    return outOfRange("fit: modes N = " + std::to_string(opt.modes) + " outside 1.." + std::to_string(kMaxFourierModes));
+  }
+  ODESKIN_TRY(checkInput(in, opt));
+  FitReport local;
+  FitReport& rep = report ? *report : local;
+  rep = FitReport{};
+
+  DeformAsset asset;
+  asset.modes = opt.modes;
+  asset.residual_space = opt.residual_space;
+  asset.rest_positions = in.rest_positions;
+  asset.faces = in.faces;
+  asset.bindings = in.bindings;
+  asset.materials = opt.materials.empty() ? std::vector<Material>{staticMaterial()} : opt.materials;
+  asset.curve_materials = opt.curve_materials.empty() ? std::vector<std::uint32_t>(in.curves.size(), 0u)
+                                                      : opt.curve_materials;
+  asset.influences = in.influences;
+  asset.bone_count = in.bone_count;
+  asset.bone_pivots = in.bone_pivots;
+  asset.key_poses = in.key_poses;
+
+  const std::size_t v_count = in.rest_positions.size();
+  const std::size_t key_count = in.poses.size();
+  const std::size_t m_count = coefficientsPerCurve(opt.modes);
+  std::vector<std::vector<Vec3>> residuals(key_count);
+  for (std::size_t k = 0; k < key_count; ++k) residuals[k] = keyResiduals(in, opt, k, &rep.ill_conditioned);
+
+  asset.segments.resize(key_count - 1);
+  std::vector<Vec3> delta(v_count);
+  for (std::size_t s = 0; s + 1 < key_count; ++s) {
+    DeformSegment& seg = asset.segments[s];
+    seg.base_residuals = residuals[s];
+    seg.coefficients.assign(in.curves.size() * m_count, Vec3(0.0));
+    seg.rates.assign(in.curves.size() * m_count, Vec3(0.0));
+    seg.remainder_indices.assign(v_count, kNoRemainder);
+    for (std::size_t i = 0; i < v_count; ++i) delta[i] = residuals[s + 1][i] - residuals[s][i];
+    Status fitted = fitSegmentCurves(in, opt.modes, delta, seg);
+    if (!fitted.ok()) return Status(fitted.code(), "segment " + std::to_string(s) + ": " + fitted.message());
+
+    // Bind-space remainders bound the posed key error too: a convex blend of rotations has norm <= 1.
+    const double box = longestBoxSide(in.poses[s + 1]);
+    const double threshold = 0.5 * opt.key_tolerance * box;
+    for (std::size_t i = 0; i < v_count; ++i) {
+      const CurveBinding& b = in.bindings[i];
+      const Vec3 series = (1.0 - b.w) * seriesAtKey(seg, opt.modes, b.curve_a, b.v) +
+                          b.w * seriesAtKey(seg, opt.modes, b.curve_b, b.v);
+      const Vec3 eps = delta[i] - series;
+      const double error = glm::length(eps);
+      if (box > 0.0) rep.max_series_error = std::max(rep.max_series_error, error / box);
+      if (!opt.pure_fourier && error > threshold) {
+        seg.remainder_indices[i] = static_cast<std::uint32_t>(seg.remainders.size());
+        seg.remainders.push_back(eps);
+      }
+    }
+    rep.remainder_count += seg.remainders.size();
+  }
+
+  ODESKIN_ASSIGN_OR_RETURN(DeformPlayer player, DeformPlayer::create(asset));
+  // Rate continuity across keys (PIPELINE.md 3): the end rate of segment s-1 starts segment s.
+  for (std::size_t s = 1; s < asset.segments.size(); ++s) {
+    const DeformSegment& prev = asset.segments[s - 1];
+    DeformSegment& seg = asset.segments[s];
+    for (std::size_t c = 0; c < asset.curveCount(); ++c) {
+      for (std::size_t m = 0; m < m_count; ++m) {
+        const TimeBasisSample end = player.basis(asset.curve_materials[c], modeOfCoefficient(m, opt.modes)).at(1.0);
+        const std::size_t k = c * m_count + m;
+        seg.rates[k] = end.dgamma * prev.coefficients[k] + end.dpsi * prev.rates[k];
+      }
+    }
+  }
+
+  // Play every key back with the reference kernel: the error users will see, not an estimate.
+  rep.key_error.assign(key_count, 0.0);
+  std::vector<ModeBasisValue> basis(player.basisSize());
+  std::vector<BoneTransform> bones(asset.bone_count);
+  std::vector<Vec3> played(v_count);
+  for (std::size_t k = 0; k < key_count; ++k) {
+    const double box = longestBoxSide(in.poses[k]);
+    for (int side = 0; side < 2; ++side) {
+      if ((side == 0 && k + 1 == key_count) || (side == 1 && k == 0)) continue;
+      const auto segment = static_cast<std::uint32_t>(side == 0 ? k : k - 1);
+      const double tau = side == 0 ? 0.0 : 1.0;
+      player.basisAt(tau, basis);
+      player.bonesAt(asset, segment, tau, bones);
+      ODESKIN_TRY(referenceJob(asset, segment, basis, bones, played).run());
+      double worst = 0.0;
+      for (std::size_t i = 0; i < v_count; ++i) worst = std::max(worst, glm::length(played[i] - in.poses[k][i]));
+      rep.key_error[k] = std::max(rep.key_error[k], box > 0.0 ? worst / box : worst);
+    }
+  }
+  ODESKIN_ASSIGN_OR_RETURN(PackedDeformData packed, packDeformAsset(asset));
+  rep.packed_bytes = packed.byteSize();
+  return asset;
+}
+
+}  // namespace odeskin

@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: MIT
+#include "engine/kernels/fourier_deform_job.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "engine/kernels/fourier_deform_fast_job.hpp"
+#include "engine/offline/deform_player.hpp"
+#include "engine/test_meshes.hpp"
+
+namespace odeskin {
+namespace {
+
+// One vertex, one curve, N = 1: small enough to compute the answer by hand.
+struct Tiny {
+  std::vector<Vec3> rest{Vec3(1.0, 2.0, 3.0)};
+  std::vector<CurveBinding> bindings{CurveBinding{0, 0, 0.0, 0.25}};
+  std::vector<Vec3> base{Vec3(0.5, 0.0, 0.0)};
+  std::vector<std::uint32_t> materials{0};
+  // d_0 (constant), d_1 (cos), d_2 (sin), d_3 (trend v)
+  std::vector<Vec3> coef{Vec3(1.0, 0.0, 0.0), Vec3(0.0, 7.0, 0.0), Vec3(0.0, 0.0, 2.0), Vec3(4.0, 0.0, 0.0)};
+  std::vector<Vec3> rates{Vec3(0.0), Vec3(0.0), Vec3(0.0, 0.0, 1.0), Vec3(0.0)};
+  std::vector<ModeBasisValue> basis{{0.5, 0.0}, {2.0, 3.0}};
+  Influences influences;
+  std::vector<BoneTransform> bones{BoneTransform(1.0)};
+  std::vector<Vec3> out{Vec3(0.0)};
+
+  Tiny() {
+    influences.offsets = {0, 1};
+    influences.bones = {0};
+    influences.weights = {1.0};
+  }
+  FourierDeformJob job() {
+    FourierDeformJob j;
+    j.modes = 1;
+    j.rest_positions = rest;
+    j.bindings = bindings;
+    j.base_residuals = base;
+    j.curve_materials = materials;
+    j.coefficients = coef;
+    j.rates = rates;
+    j.basis = basis;
+    j.influences = InfluencesView(influences);
+    j.bones = bones;
+    j.out_positions = out;
+    return j;
+  }
+};
+
+TEST(FourierDeformJob, DefaultJobIsInvalid) {
+  EXPECT_EQ(FourierDeformJob{}.validate().code(), StatusCode::kOutOfRange);
+}
+
+TEST(FourierDeformJob, EachRequiredFieldIsChecked) {
+  Tiny t;
+  ASSERT_TRUE(t.job().validate().ok()) << t.job().validate().toString();
+  auto expectInvalid = [](FourierDeformJob j, const char* what) {
+    EXPECT_EQ(j.validate().code(), StatusCode::kInvalidArgument) << what;
+  };
+  { auto j = t.job(); j.bindings = {}; expectInvalid(j, "bindings"); }
+  { auto j = t.job(); j.out_positions = {}; expectInvalid(j, "out_positions"); }
+  { auto j = t.job(); j.coefficients = std::span(t.coef).first(3); expectInvalid(j, "coefficients"); }
+  { auto j = t.job(); j.rates = std::span(t.rates).first(2); expectInvalid(j, "rates"); }
+  { auto j = t.job(); j.basis = {}; expectInvalid(j, "basis"); }
+  { auto j = t.job(); j.bones = {}; expectInvalid(j, "bones"); }
+  { auto j = t.job(); j.base_residuals = std::span(t.coef).first(2); expectInvalid(j, "base_residuals"); }
+  {
+    Tiny bad;
+    bad.bindings[0].curve_b = 1;
+    expectInvalid(bad.job(), "curve index");
+  }
+  {
+    Tiny bad;
+    bad.bindings[0].w = 1.5;
+    expectInvalid(bad.job(), "blend weight");
+  }
+  {
+    Tiny bad;
+    bad.materials[0] = 1;
+    expectInvalid(bad.job(), "material index");
+  }
+  {
+    Tiny bad;
+    bad.basis[1].gamma = std::nan("");
+    expectInvalid(bad.job(), "NaN basis");
+  }
+  {
+    auto j = t.job();
+    j.modes = 65;
+    EXPECT_EQ(j.validate().code(), StatusCode::kOutOfRange);
+  }
+}
+
+TEST(FourierDeformJob, HandComputedVertex) {
+  Tiny t;
+  ASSERT_TRUE(t.job().run().ok());
+  // v = 1/4: cos(2 pi v) = 0, sin(2 pi v) = 1, trend v = 0.25.
+  // mode 0: 0.5 * (d0 + 0.25 d3) = 0.5 * (2, 0, 0) = (1, 0, 0); rates of mode 0 are zero.
+  // mode 1: gamma 2 * (0 * d1 + 1 * d2) = (0, 0, 4); psi 3 * (1 * rate_2) = (0, 0, 3).
+  const Vec3 expected = t.rest[0] + t.base[0] + Vec3(1.0, 0.0, 7.0);
+  EXPECT_NEAR(t.out[0].x, expected.x, 1e-14);
+  EXPECT_NEAR(t.out[0].y, expected.y, 1e-14);
+  EXPECT_NEAR(t.out[0].z, expected.z, 1e-14);
+}
+
+TEST(FourierDeformJob, PosedResidualIsAddedAfterSkinning) {
+  Tiny t;
+  RigidTransform turn = rotationAbout(Vec3(0.0), Vec3(0.0, 0.0, 1.0), std::numbers::pi / 2);
+  t.bones[0] = turn.matrix();
+  auto bind = t.job();
+  ASSERT_TRUE(bind.run().ok());
+  const Vec3 bind_out = t.out[0];
+  auto posed = t.job();
+  posed.residual_space = ResidualSpace::kPosed;
+  ASSERT_TRUE(posed.run().ok());
+  const Vec3 residual = Vec3(0.5, 0.0, 0.0) + Vec3(1.0, 0.0, 7.0);
+  const Vec3 expect_bind = turn.apply(t.rest[0] + residual);
+  const Vec3 expect_posed = turn.apply(t.rest[0]) + residual;
+  EXPECT_LT(glm::length(bind_out - expect_bind), 1e-12);
+  EXPECT_LT(glm::length(t.out[0] - expect_posed), 1e-12);
+}
+
+TEST(FourierDeformJob, ZeroBasisAndIdentityBonesGiveRestPlusBase) {
+  DeformAsset a = testing::randomAsset(300, 7, 5, 4, 3, 2, 11);
+  std::vector<ModeBasisValue> basis(2 * 6);
+  std::vector<BoneTransform> bones(4, BoneTransform(1.0));
+  std::vector<Vec3> out(300);
+  ASSERT_TRUE(referenceJob(a, 0, basis, bones, out).run().ok());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    ASSERT_LT(glm::length(out[i] - (a.rest_positions[i] + a.segments[0].base_residuals[i])), 1e-12) << i;
+  }
+}
+
+TEST(FourierDeformJob, BlendIsLinearInW) {
+  // Moving w from 0 to 1 moves the vertex linearly from curve a's series to curve b's.
+  DeformAsset a = testing::randomAsset(1, 2, 3, 1, 1, 1, 5);
+  a.bindings[0] = CurveBinding{0, 1, 0.0, 0.3};
+  std::vector<ModeBasisValue> basis = testing::randomBasis(4, 9);
+  std::vector<BoneTransform> bones(1, BoneTransform(1.0));
+  Vec3 out[3];
+  const double ws[3] = {0.0, 1.0, 0.25};
+  for (int k = 0; k < 3; ++k) {
+    a.bindings[0].w = ws[k];
+    ASSERT_TRUE(referenceJob(a, 1, basis, bones, std::span(&out[k], 1)).run().ok());
+  }
+  EXPECT_LT(glm::length(out[2] - (0.75 * out[0] + 0.25 * out[1])), 1e-12);
+}
+
+// The fast path follows the shader in float32; against the double reference its error is a few
+// float ulps of the largest term, so 2e-5 absolute on unit-size data leaves a wide margin while a
+// wrong index or sign (errors of 1e-2 and more) cannot pass.
+void expectFastMatchesReference(std::uint32_t layout, ResidualSpace space, unsigned threads) {
+  DeformAsset a = testing::randomAsset(5000, 40, 9, 12, layout == 0 ? 7 : layout, 3, 21);
+  a.residual_space = space;
+  Result<PackedDeformData> packed = packDeformAsset(a, layout);
+  ASSERT_TRUE(packed.ok()) << packed.status().toString();
+  const std::vector<ModeBasisValue> basis = testing::randomBasis(3 * 10, 3);
+  const std::vector<BoneTransform> bones = testing::randomBones(12, 4);
+  for (std::uint32_t segment = 0; segment < 2; ++segment) {
+    std::vector<Vec3> expected(a.vertexCount());
+    ASSERT_TRUE(referenceJob(a, segment, basis, bones, expected).run().ok());
+    std::vector<gpu::BoneMatrix> gpu_bones(12);
+    std::vector<gpu::ModeBasis> gpu_basis(basis.size());
+    toGpuBones(bones, gpu_bones);
+    toGpuBasis(basis, gpu_basis);
+    std::vector<gpu::Float4> out(a.vertexCount());
+    FourierDeformFastJob job{&*packed, segment, gpu_bones, gpu_basis, out, threads};
+    ASSERT_TRUE(job.run().ok());
+    double worst = 0.0;
+    std::size_t worst_i = 0;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const double e = glm::length(Vec3(out[i].x, out[i].y, out[i].z) - expected[i]);
+      if (e > worst) { worst = e; worst_i = i; }
+    }
+    EXPECT_LT(worst, 2e-5) << "layout " << layout << " segment " << segment << " worst vertex " << worst_i;
+  }
+}
+
+TEST(FourierDeformFastJob, MatchesReferenceSparseBind) { expectFastMatchesReference(0, ResidualSpace::kBind, 1); }
+TEST(FourierDeformFastJob, MatchesReferenceFourSlots) { expectFastMatchesReference(4, ResidualSpace::kBind, 0); }
+TEST(FourierDeformFastJob, MatchesReferenceEightSlotsPosed) { expectFastMatchesReference(8, ResidualSpace::kPosed, 2); }
+
+TEST(FourierDeformFastJob, BitIdenticalAcrossThreadCounts) {
+  DeformAsset a = testing::randomAsset(20000, 30, 9, 8, 5, 2, 8);
+  Result<PackedDeformData> packed = packDeformAsset(a, 0);
+  ASSERT_TRUE(packed.ok());
+  std::vector<gpu::BoneMatrix> bones(8);
+  toGpuBones(testing::randomBones(8, 1), bones);
+  std::vector<gpu::ModeBasis> basis(20);
+  toGpuBasis(testing::randomBasis(20, 2), basis);
+  std::vector<gpu::Float4> one(a.vertexCount()), many(a.vertexCount());
+  ASSERT_TRUE((FourierDeformFastJob{&*packed, 1, bones, basis, one, 1}).run().ok());
+  ASSERT_TRUE((FourierDeformFastJob{&*packed, 1, bones, basis, many, 0}).run().ok());
+  EXPECT_EQ(0, std::memcmp(one.data(), many.data(), one.size() * sizeof(gpu::Float4)));
+}
+
+TEST(FourierDeformFastJob, ValidatesSizes) {
+  DeformAsset a = testing::randomAsset(10, 2, 3, 2, 2, 1, 1);
+  Result<PackedDeformData> packed = packDeformAsset(a, 0);
+  ASSERT_TRUE(packed.ok());
+  std::vector<gpu::BoneMatrix> bones(2);
+  std::vector<gpu::ModeBasis> basis(4);
+  std::vector<gpu::Float4> out(10);
+  EXPECT_TRUE((FourierDeformFastJob{&*packed, 0, bones, basis, out, 1}).validate().ok());
+  EXPECT_EQ((FourierDeformFastJob{}).validate().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ((FourierDeformFastJob{&*packed, 2, bones, basis, out, 1}).validate().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ((FourierDeformFastJob{&*packed, 0, std::span(bones).first(1), basis, out, 1}).validate().code(),
+            StatusCode::kInvalidArgument);
+  EXPECT_EQ((FourierDeformFastJob{&*packed, 0, bones, std::span(basis).first(3), out, 1}).validate().code(),
+            StatusCode::kInvalidArgument);
+  EXPECT_EQ((FourierDeformFastJob{&*packed, 0, bones, basis, std::span(out).first(9), 1}).validate().code(),
+            StatusCode::kInvalidArgument);
+}
+
+}  // namespace
+}  // namespace odeskin

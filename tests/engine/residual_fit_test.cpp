@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: MIT
+#include "engine/offline/residual_fit.hpp"
+
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "engine/offline/deform_player.hpp"
+#include "engine/offline/procedural_arm.hpp"
+
+namespace odeskin {
+namespace {
+
+std::vector<Vec3> play(const DeformAsset& asset, const DeformPlayer& player, double t) {
+  const auto [segment, tau] = player.locate(t);
+  std::vector<ModeBasisValue> basis(player.basisSize());
+  std::vector<BoneTransform> bones(asset.bone_count);
+  std::vector<Vec3> out(asset.vertexCount());
+  player.basisAt(tau, basis);
+  player.bonesAt(asset, segment, tau, bones);
+  EXPECT_TRUE(referenceJob(asset, segment, basis, bones, out).run().ok());
+  return out;
+}
+
+double maxDistance(std::span<const Vec3> a, std::span<const Vec3> b) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, glm::length(a[i] - b[i]));
+  return worst;
+}
+
+TEST(ProceduralArm, CountsAndCurves) {
+  ArmOptions o;
+  Result<ProceduralArm> arm = makeProceduralArm(o);
+  ASSERT_TRUE(arm.ok());
+  const FitInput& in = arm->fit_input;
+  EXPECT_EQ(in.rest_positions.size(), armVertexCount(o));
+  EXPECT_EQ(in.faces.faceCount(), (o.rings - 1) * o.ring_vertices);
+  EXPECT_EQ(in.curves.size(), 21u);  // rings 0, 2, ..., 40
+  EXPECT_TRUE(validateInfluences(in.influences, in.rest_positions.size(), 2).ok());
+  // The elbow does not move: the forearm turns about it.
+  EXPECT_LT(glm::length(in.key_poses[1][1].apply(in.bone_pivots[1]) - in.bone_pivots[1]), 1e-15);
+}
+
+TEST(ProceduralArm, RejectsBadOptions) {
+  ArmOptions o;
+  o.rings = 2;
+  EXPECT_EQ(makeProceduralArm(o).status().code(), StatusCode::kInvalidArgument);
+  o = ArmOptions{};
+  o.radius = std::nan("");
+  EXPECT_EQ(makeProceduralArm(o).status().code(), StatusCode::kInvalidArgument);
+  o = ArmOptions{};
+  o.curve_stride = 0;
+  EXPECT_EQ(makeProceduralArm(o).status().code(), StatusCode::kInvalidArgument);
+}
+
+TEST(ResidualFit, BindSpaceCorrectiveIsTheBulge) {
+  // The arm's end pose is LBS(X + bulge), so the exact bind-space corrective of key 1 is the bulge:
+  // rotation-aware (bind space) residuals do not depend on how far the elbow bends.
+  ArmOptions bent;
+  ArmOptions straight;
+  straight.bend_degrees = 0.0;
+  Result<ProceduralArm> a = makeProceduralArm(bent);
+  Result<ProceduralArm> b = makeProceduralArm(straight);
+  ASSERT_TRUE(a.ok() && b.ok());
+  FitOptions opt;
+  Result<DeformAsset> fa = fitDeformAsset(a->fit_input, opt);
+  Result<DeformAsset> fb = fitDeformAsset(b->fit_input, opt);
+  ASSERT_TRUE(fa.ok()) << fa.status().toString();
+  ASSERT_TRUE(fb.ok());
+  const auto& ca = fa->segments[0].coefficients;
+  const auto& cb = fb->segments[0].coefficients;
+  for (std::size_t k = 0; k < ca.size(); ++k) ASSERT_LT(glm::length(ca[k] - cb[k]), 1e-12) << k;
+}
+
+TEST(ResidualFit, KeysAreHitWithinTolerance) {
+  Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
+  ASSERT_TRUE(arm.ok());
+  FitOptions opt;
+  opt.key_tolerance = 1e-6;
+  opt.materials = {skinMaterial()};
+  FitReport report;
+  Result<DeformAsset> asset = fitDeformAsset(arm->fit_input, opt, &report);
+  ASSERT_TRUE(asset.ok()) << asset.status().toString();
+  ASSERT_EQ(report.key_error.size(), 2u);
+  EXPECT_LE(report.key_error[0], 1e-6);
+  EXPECT_LE(report.key_error[1], 1e-6);
+  Result<DeformPlayer> player = DeformPlayer::create(*asset);
+  ASSERT_TRUE(player.ok());
+  const double box = longestBoxSide(arm->end_positions);
+  EXPECT_LE(maxDistance(play(*asset, *player, 0.0), arm->start_positions), 1e-12);
+  EXPECT_LE(maxDistance(play(*asset, *player, 1.0), arm->end_positions), 1e-6 * box);
+}
+
+TEST(ResidualFit, PureFourierReportsItsKeyError) {
+  Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
+  ASSERT_TRUE(arm.ok());
+  FitOptions opt;
+  opt.modes = 2;
+  opt.pure_fourier = true;
+  FitReport report;
+  ASSERT_TRUE(fitDeformAsset(arm->fit_input, opt, &report).ok());
+  EXPECT_EQ(report.remainder_count, 0u);
+  EXPECT_GT(report.key_error[1], 1e-4);  // N = 2 cannot draw the one-sided bulge
+  EXPECT_NEAR(report.key_error[1], report.max_series_error, 0.5 * report.max_series_error);
+  // More modes, smaller series error.
+  opt.modes = 9;
+  FitReport finer;
+  ASSERT_TRUE(fitDeformAsset(arm->fit_input, opt, &finer).ok());
+  EXPECT_LT(finer.max_series_error, report.max_series_error);
+}
+
+TEST(ResidualFit, StaticMaterialIsLinearInTime) {
+  // rho = eta = 0 gives gamma_n(tau) = tau: the bind-space residual grows linearly (PIPELINE.md 7).
+  ArmOptions o;
+  o.bend_degrees = 0.0;
+  Result<ProceduralArm> arm = makeProceduralArm(o);
+  ASSERT_TRUE(arm.ok());
+  Result<DeformAsset> asset = fitDeformAsset(arm->fit_input, FitOptions{});
+  ASSERT_TRUE(asset.ok());
+  Result<DeformPlayer> player = DeformPlayer::create(*asset);
+  ASSERT_TRUE(player.ok());
+  const std::vector<Vec3> mid = play(*asset, *player, 0.3);
+  for (std::size_t i = 0; i < mid.size(); ++i) {
+    const Vec3 expected = 0.7 * arm->start_positions[i] + 0.3 * arm->end_positions[i];
+    ASSERT_LT(glm::length(mid[i] - expected), 1e-12) << i;
+  }
+}
+
+TEST(ResidualFit, RateIsContinuousAcrossKeys) {
+  // Three keys: bend 0 -> 60 -> 120 degrees with growing bulge. With a dynamic material the
+  // deformation's velocity at the end of segment 0 must equal its velocity at the start of
+  // segment 1 (MATH.md 5.2, erratum G7); without the rate basis it would restart at zero.
+  ArmOptions o;
+  o.bend_degrees = 60.0;
+  o.bulge = 0.2;
+  Result<ProceduralArm> first = makeProceduralArm(o);
+  o.bend_degrees = 120.0;
+  o.bulge = 0.4;
+  Result<ProceduralArm> second = makeProceduralArm(o);
+  ASSERT_TRUE(first.ok() && second.ok());
+  FitInput in = first->fit_input;
+  in.poses.push_back(second->end_positions);
+  in.key_poses.push_back(second->fit_input.key_poses[1]);
+  FitOptions opt;
+  opt.materials = {Material{1.0, 0.5, 30.0, 0.01}};
+  // Sparse remainders follow gamma_0 without a rate of their own; leave them out to test the
+  // Fourier rate chain alone. The key then carries the series error as a position step.
+  opt.pure_fourier = true;
+  FitReport report;
+  Result<DeformAsset> asset = fitDeformAsset(in, opt, &report);
+  ASSERT_TRUE(asset.ok()) << asset.status().toString();
+  Result<DeformPlayer> player = DeformPlayer::create(*asset);
+  ASSERT_TRUE(player.ok());
+  // Velocity of the bind-space residual D by one-sided differences on each side of the join.
+  const double h = 1e-5;
+  auto residual = [&](std::uint32_t segment, double tau) {
+    std::vector<ModeBasisValue> basis(player->basisSize());
+    player->basisAt(tau, basis);
+    std::vector<BoneTransform> identity(asset->bone_count, BoneTransform(1.0));
+    std::vector<Vec3> out(asset->vertexCount());
+    EXPECT_TRUE(referenceJob(*asset, segment, basis, identity, out).run().ok());
+    return out;
+  };
+  const auto before0 = residual(0, 1.0 - h), before1 = residual(0, 1.0);
+  const auto after0 = residual(1, 0.0), after1 = residual(1, h);
+  double worst_jump = 0.0, typical = 0.0;
+  for (std::size_t i = 0; i < before0.size(); ++i) {
+    const Vec3 v_before = (before1[i] - before0[i]) / h;
+    const Vec3 v_after = (after1[i] - after0[i]) / h;
+    worst_jump = std::max(worst_jump, glm::length(v_after - v_before));
+    typical = std::max(typical, glm::length(v_before));
+    ASSERT_LT(glm::length(before1[i] - after0[i]), 1.01 * report.max_series_error * longestBoxSide(in.poses[1]))
+        << "position step at the key exceeds the series error, vertex " << i;
+  }
+  EXPECT_GT(typical, 1e-3);
+  EXPECT_LT(worst_jump, 1e-3 * typical + 1e-6);
+}
+
+TEST(ResidualFit, RejectsMismatchedInput) {
+  Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
+  ASSERT_TRUE(arm.ok());
+  FitInput in = arm->fit_input;
+  in.poses[1].pop_back();
+  EXPECT_EQ(fitDeformAsset(in, FitOptions{}).status().code(), StatusCode::kInvalidArgument);
+  in = arm->fit_input;
+  in.poses[1][5].y = std::nan("");
+  EXPECT_EQ(fitDeformAsset(in, FitOptions{}).status().code(), StatusCode::kInvalidArgument);
+  in = arm->fit_input;
+  in.poses.pop_back();
+  in.key_poses.pop_back();
+  EXPECT_EQ(fitDeformAsset(in, FitOptions{}).status().code(), StatusCode::kInvalidArgument);
+  in = arm->fit_input;
+  in.curves[0].vertices.push_back(in.curves[1].vertices[0]);
+  EXPECT_EQ(fitDeformAsset(in, FitOptions{}).status().code(), StatusCode::kInvalidArgument);
+  FitOptions too_many;
+  too_many.modes = 16;  // rings of 32 vertices determine at most 15 modes (2N+1 <= 32)
+  Result<DeformAsset> rank = fitDeformAsset(arm->fit_input, too_many);
+  EXPECT_EQ(rank.status().code(), StatusCode::kIllPosed);
+  EXPECT_NE(rank.status().message().find("curve 0"), std::string::npos) << rank.status().message();
+  FitOptions resonant;
+  resonant.materials = {Material{1.0, -10.0, 46.95719084373242, 0.0}};
+  EXPECT_EQ(fitDeformAsset(arm->fit_input, resonant).status().code(), StatusCode::kIllPosed);
+}
+
+}  // namespace
+}  // namespace odeskin
