@@ -4,6 +4,7 @@
 // GTEST_SKIP without a Vulkan device unless ODESKIN_REQUIRE_GPU=1 (CI), which turns that into a failure.
 #pragma once
 
+#include <array>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
@@ -18,7 +19,7 @@ namespace odeskin::testing {
 
 // Lavapipe gaps met by these tests, one entry per missing feature (kompute keeps such a list). None
 // so far: lavapipe runs every test here.
-inline constexpr const char* kLavapipeGaps[] = {""};
+inline constexpr std::array<const char*, 0> kLavapipeGaps{};
 
 inline bool gpuRequired() {
   const char* value = std::getenv("ODESKIN_REQUIRE_GPU");
