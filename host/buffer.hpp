@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+// A VkBuffer with its own VkDeviceMemory. Device-local data is mapped directly when a memory type
+// is DEVICE_LOCAL|HOST_VISIBLE|HOST_COHERENT (lavapipe, ReBAR GPUs) and staged otherwise.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <vulkan/vulkan.h>
+
+#include "device.hpp"
+#include "engine/core/result.hpp"
+#include "vk_handle.hpp"
+
+namespace odeskin::vk {
+
+enum class MemoryUse {
+  // Read by shaders every frame: device-local; host-mapped when such a type exists, else written
+  // and read through a temporary staging buffer.
+  kDeviceLocal,
+  // As kDeviceLocal but never mapped, always staged: the discrete-GPU path, forced (tests, benches).
+  kDeviceLocalStaged,
+  // Written by the host every frame and kept mapped (HOST_VISIBLE|HOST_COHERENT required).
+  kHostVisible,
+};
+
+// Usage of a buffer a deformer writes and a renderer may bind directly as vertex input.
+inline constexpr VkBufferUsageFlags kOutputBufferUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
+                                                         VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+
+class Buffer {
+ public:
+  // `size_bytes` > 0 (a zero-sized VkBuffer is invalid; callers round empty arrays up). Transfer
+  // usage is added for staged buffers. kDeviceError on allocation failure, kUnavailable when no
+  // memory type fits.
+  static Result<Buffer> create(const Device& device, VkDeviceSize size_bytes, VkBufferUsageFlags usage,
+                               MemoryUse use = MemoryUse::kDeviceLocal);
+
+  Buffer() = default;
+  Buffer(Buffer&& other) noexcept;
+  Buffer& operator=(Buffer&& other) noexcept;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  ~Buffer();
+
+  VkBuffer handle() const { return buffer_.get(); }
+  VkDeviceSize size() const { return size_; }
+  // Host pointer to the whole buffer when it is mapped, else null.
+  std::byte* mapped() const { return mapped_; }
+
+  // Copies `bytes` to [offset, offset + bytes.size()): memcpy when mapped, else through a staging
+  // buffer and a one-off submit. kInvalidArgument when the range exceeds the buffer. The caller
+  // makes sure the GPU is not using the range.
+  Status upload(const Device& device, std::span<const std::byte> bytes, VkDeviceSize offset = 0);
+  // Copies [offset, offset + out.size()) to `out`; the caller has waited for the writes.
+  Status download(const Device& device, std::span<std::byte> out, VkDeviceSize offset = 0) const;
+
+ private:
+  void destroy();
+
+  UniqueBuffer buffer_;   // declared before memory_: destroyed first
+  UniqueMemory memory_;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkDeviceSize size_ = 0;
+  std::byte* mapped_ = nullptr;
+};
+
+// A storage buffer holding `bytes`, at least 16 bytes long so empty arrays still give a valid
+// descriptor. kUnavailable when it exceeds maxStorageBufferRange (one binding's limit).
+Result<Buffer> createStorageBuffer(const Device& device, std::span<const std::byte> bytes,
+                                   VkBufferUsageFlags extra_usage = 0, MemoryUse use = MemoryUse::kDeviceLocal);
+
+// Typed helpers: upload/download a span of trivially copyable elements.
+template <typename T>
+Status uploadSpan(const Device& device, Buffer& buffer, std::span<const T> data, VkDeviceSize offset = 0) {
+  return buffer.upload(device, std::as_bytes(data), offset);
+}
+template <typename T>
+Status downloadSpan(const Device& device, const Buffer& buffer, std::span<T> out, VkDeviceSize offset = 0) {
+  return buffer.download(device, std::as_writable_bytes(out), offset);
+}
+
+}  // namespace odeskin::vk

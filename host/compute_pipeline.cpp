@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+#include "compute_pipeline.hpp"
+
+#include <string>
+
+#include "vk_status.hpp"
+
+namespace odeskin::vk {
+
+Result<ComputePipeline> ComputePipeline::create(const Device& device, const ComputePipelineDesc& desc) {
+  if (desc.spirv.empty()) return invalidArgument("ComputePipeline: spirv is empty");
+  if (desc.descriptor_set_count == 0) return invalidArgument("ComputePipeline: descriptor_set_count is 0");
+  if (desc.push_constant_bytes % 4 != 0) {
+    return invalidArgument("ComputePipeline: push_constant_bytes must be a multiple of 4");
+  }
+  if (desc.push_constant_bytes > device.limits().maxPushConstantsSize) {
+    return unavailable("ComputePipeline: " + std::to_string(desc.push_constant_bytes) +
+                       " push constant bytes exceed maxPushConstantsSize " +
+                       std::to_string(device.limits().maxPushConstantsSize));
+  }
+  VkDevice vk_device = device.handle();
+  ComputePipeline result;
+  result.device_ = vk_device;
+  result.push_constant_bytes_ = desc.push_constant_bytes;
+
+  // Set 0: one storage buffer per binding the shader declares, all read in the compute stage.
+  std::vector<VkDescriptorSetLayoutBinding> bindings;
+  for (std::uint32_t binding : desc.storage_bindings) {
+    VkDescriptorSetLayoutBinding b{};
+    b.binding = binding;
+    b.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    b.descriptorCount = 1;
+    b.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    bindings.push_back(b);
+  }
+  VkDescriptorSetLayoutCreateInfo set_info{};
+  set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  set_info.bindingCount = static_cast<std::uint32_t>(bindings.size());
+  set_info.pBindings = bindings.data();
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateDescriptorSetLayout(vk_device, &set_info, nullptr, &set_layout));
+  result.set_layout_ = UniqueDescriptorSetLayout(vk_device, set_layout);
+
+  // Per-dispatch scalars travel as push constants: no buffer update between frames.
+  VkPushConstantRange push{};
+  push.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+  push.size = desc.push_constant_bytes;
+  VkPipelineLayoutCreateInfo layout_info{};
+  layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  layout_info.setLayoutCount = 1;
+  layout_info.pSetLayouts = &set_layout;
+  layout_info.pushConstantRangeCount = desc.push_constant_bytes > 0 ? 1 : 0;
+  layout_info.pPushConstantRanges = &push;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreatePipelineLayout(vk_device, &layout_info, nullptr, &layout));
+  result.layout_ = UniquePipelineLayout(vk_device, layout);
+
+  // The shader module is only needed while the pipeline is compiled; it dies at scope exit.
+  VkShaderModuleCreateInfo module_info{};
+  module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+  module_info.codeSize = desc.spirv.size_bytes();
+  module_info.pCode = desc.spirv.data();
+  VkShaderModule module_handle = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateShaderModule(vk_device, &module_info, nullptr, &module_handle));
+  UniqueShaderModule shader_module(vk_device, module_handle);
+
+  // Workgroup size is fixed in the shader (ODESKIN_WORKGROUP_SIZE), so no specialization constants.
+  VkComputePipelineCreateInfo pipeline_info{};
+  pipeline_info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+  pipeline_info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  pipeline_info.stage.module = module_handle;
+  pipeline_info.stage.pName = "main";
+  pipeline_info.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateComputePipelines(vk_device, device.pipelineCache(), 1, &pipeline_info, nullptr, &pipeline));
+  result.pipeline_ = UniquePipeline(vk_device, pipeline);
+
+  // Exactly enough descriptors for `descriptor_set_count` sets; sets are freed with the pool.
+  VkDescriptorPoolSize pool_size{};
+  pool_size.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  pool_size.descriptorCount = static_cast<std::uint32_t>(bindings.size()) * desc.descriptor_set_count;
+  VkDescriptorPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  pool_info.maxSets = desc.descriptor_set_count;
+  pool_info.poolSizeCount = bindings.empty() ? 0 : 1;
+  pool_info.pPoolSizes = &pool_size;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateDescriptorPool(vk_device, &pool_info, nullptr, &pool));
+  result.pool_ = UniqueDescriptorPool(vk_device, pool);
+
+  std::vector<VkDescriptorSetLayout> layouts(desc.descriptor_set_count, set_layout);
+  VkDescriptorSetAllocateInfo alloc{};
+  alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  alloc.descriptorPool = pool;
+  alloc.descriptorSetCount = desc.descriptor_set_count;
+  alloc.pSetLayouts = layouts.data();
+  result.sets_.resize(desc.descriptor_set_count);
+  ODESKIN_VK_TRY(vkAllocateDescriptorSets(vk_device, &alloc, result.sets_.data()));
+  return result;
+}
+
+void ComputePipeline::bindBuffer(std::uint32_t set_index, std::uint32_t binding, VkBuffer buffer,
+                                 VkDeviceSize offset, VkDeviceSize range) const {
+  VkDescriptorBufferInfo info{buffer, offset, range};
+  VkWriteDescriptorSet write{};
+  write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  write.dstSet = sets_[set_index];
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  write.pBufferInfo = &info;
+  vkUpdateDescriptorSets(device_, 1, &write, 0, nullptr);
+}
+
+void ComputePipeline::recordDispatch(VkCommandBuffer cmd, std::uint32_t set_index, const void* push,
+                                     std::uint32_t group_count_x) const {
+  if (group_count_x == 0) return;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[set_index], 0, nullptr);
+  if (push_constant_bytes_ > 0) {
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_bytes_, push);
+  }
+  vkCmdDispatch(cmd, group_count_x, 1, 1);
+}
+
+}  // namespace odeskin::vk

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// A compute pipeline built from embedded SPIR-V whose descriptor set 0 holds only storage buffers,
+// with a push constant block and a small pool of descriptor sets (one per frame in flight).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "device.hpp"
+#include "engine/core/result.hpp"
+#include "vk_handle.hpp"
+
+namespace odeskin::vk {
+
+struct ComputePipelineDesc {
+  std::span<const std::uint32_t> spirv;             // required: SPIR-V words, entry point "main"
+  std::span<const std::uint32_t> storage_bindings;  // binding numbers of set 0, every one used
+  std::uint32_t push_constant_bytes = 0;            // <= limits.maxPushConstantsSize, multiple of 4
+  std::uint32_t descriptor_set_count = 1;           // >= 1
+};
+
+class ComputePipeline {
+ public:
+  // kInvalidArgument for empty SPIR-V, zero sets or a push block not a multiple of 4;
+  // kUnavailable when the push block exceeds the device limit; kDeviceError from the driver.
+  static Result<ComputePipeline> create(const Device& device, const ComputePipelineDesc& desc);
+
+  ComputePipeline() = default;
+  ComputePipeline(ComputePipeline&&) noexcept = default;
+  ComputePipeline& operator=(ComputePipeline&&) noexcept = default;
+
+  VkPipeline pipeline() const { return pipeline_.get(); }
+  VkPipelineLayout layout() const { return layout_.get(); }
+  VkDescriptorSet set(std::uint32_t index) const { return sets_[index]; }
+  std::uint32_t setCount() const { return static_cast<std::uint32_t>(sets_.size()); }
+
+  // Points `binding` of descriptor set `set_index` at [offset, offset + range) of `buffer`. Only
+  // while no submitted work uses that set.
+  void bindBuffer(std::uint32_t set_index, std::uint32_t binding, VkBuffer buffer, VkDeviceSize offset = 0,
+                  VkDeviceSize range = VK_WHOLE_SIZE) const;
+  // Binds the pipeline, set `set_index` and `push` (push_constant_bytes long), then dispatches
+  // `group_count_x` workgroups (nothing when 0).
+  void recordDispatch(VkCommandBuffer cmd, std::uint32_t set_index, const void* push,
+                      std::uint32_t group_count_x) const;
+
+ private:
+  VkDevice device_ = VK_NULL_HANDLE;
+  std::uint32_t push_constant_bytes_ = 0;
+  // Destroyed bottom-up: pool (frees the sets) and pipeline before the layouts they use.
+  UniqueDescriptorSetLayout set_layout_;
+  UniquePipelineLayout layout_;
+  UniquePipeline pipeline_;
+  UniqueDescriptorPool pool_;
+  std::vector<VkDescriptorSet> sets_;
+};
+
+}  // namespace odeskin::vk

@@ -1,0 +1,257 @@
+// SPDX-License-Identifier: MIT
+#include "device.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <utility>
+
+#include "vk_status.hpp"
+
+namespace odeskin::vk {
+namespace {
+
+// Lower rank = preferred by "auto": real GPUs first, lavapipe (CPU) last.
+int typeRank(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_OTHER: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 4;
+    default: return 5;
+  }
+}
+
+std::string lowerCase(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string deviceList(const std::vector<VkPhysicalDevice>& devices) {
+  std::string list;
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(devices[i], &p);
+    list += "\n  " + std::to_string(i) + ": " + p.deviceName + " (" + deviceTypeName(p.deviceType) + ")";
+  }
+  return list;
+}
+
+}  // namespace
+
+const char* deviceTypeName(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+  }
+}
+
+Result<std::vector<VkPhysicalDevice>> physicalDevices(const Instance& instance) {
+  std::uint32_t count = 0;
+  ODESKIN_VK_TRY(vkEnumeratePhysicalDevices(instance.handle(), &count, nullptr));
+  std::vector<VkPhysicalDevice> devices(count);
+  if (count > 0) ODESKIN_VK_TRY(vkEnumeratePhysicalDevices(instance.handle(), &count, devices.data()));
+  devices.resize(count);
+  if (devices.empty()) {
+    return unavailable(
+        "no Vulkan device: install mesa-vulkan-drivers for lavapipe (a CPU implementation), or a GPU "
+        "driver; VK_DRIVER_FILES can point the loader at an ICD json");
+  }
+  return devices;
+}
+
+Result<std::uint32_t> selectPhysicalDevice(const Instance& instance, std::string_view selector) {
+  ODESKIN_ASSIGN_OR_RETURN(std::vector<VkPhysicalDevice> devices, physicalDevices(instance));
+  std::string chosen(selector);
+  if (chosen.empty() || chosen == "auto") {
+    const char* env = std::getenv("ODESKIN_DEVICE");
+    chosen = (env != nullptr && env[0] != '\0') ? env : "auto";
+  }
+  if (chosen == "auto") {
+    std::uint32_t best = 0;
+    int best_rank = 1 << 30;
+    for (std::uint32_t i = 0; i < devices.size(); ++i) {
+      VkPhysicalDeviceProperties p;
+      vkGetPhysicalDeviceProperties(devices[i], &p);
+      if (typeRank(p.deviceType) < best_rank) {
+        best_rank = typeRank(p.deviceType);
+        best = i;
+      }
+    }
+    return best;
+  }
+  if (std::all_of(chosen.begin(), chosen.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) {
+    // More than 9 digits cannot be a device index and would overflow stoul on 32-bit longs.
+    if (chosen.size() < 10 && std::stoul(chosen) < devices.size()) {
+      return static_cast<std::uint32_t>(std::stoul(chosen));
+    }
+    return invalidArgument("device index " + chosen + " out of range; available devices:" + deviceList(devices));
+  }
+  std::string needle = lowerCase(chosen);
+  for (std::uint32_t i = 0; i < devices.size(); ++i) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(devices[i], &p);
+    if (lowerCase(p.deviceName).find(needle) != std::string::npos) return i;
+  }
+  return invalidArgument("no Vulkan device name contains \"" + chosen + "\"; available devices:" +
+                         deviceList(devices));
+}
+
+Result<Device> Device::create(const Instance& instance, std::string_view selector) {
+  ODESKIN_ASSIGN_OR_RETURN(std::uint32_t index, selectPhysicalDevice(instance, selector));
+  ODESKIN_ASSIGN_OR_RETURN(std::vector<VkPhysicalDevice> devices, physicalDevices(instance));
+  Device device;
+  device.index_ = index;
+  device.physical_ = devices[index];
+  vkGetPhysicalDeviceProperties(device.physical_, &device.properties_);
+  vkGetPhysicalDeviceMemoryProperties(device.physical_, &device.memory_);
+
+  // One compute-capable family; among those, prefer one that can write timestamps so GPU times
+  // are available (lavapipe has a single GRAPHICS|COMPUTE|TRANSFER family that can).
+  std::uint32_t family_count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device.physical_, &family_count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(family_count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device.physical_, &family_count, families.data());
+  int family = -1;
+  for (std::uint32_t i = 0; i < family_count; ++i) {
+    if (!(families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) continue;
+    if (family < 0 || (families[i].timestampValidBits > 0 &&
+                       families[static_cast<std::uint32_t>(family)].timestampValidBits == 0)) {
+      family = static_cast<int>(i);
+    }
+  }
+  if (family < 0) return unavailable(std::string("Vulkan device has no compute queue: ") + device.name());
+  device.queue_family_ = static_cast<std::uint32_t>(family);
+  device.timestamp_valid_bits_ = families[device.queue_family_].timestampValidBits;
+  device.queue_flags_ = families[device.queue_family_].queueFlags;
+
+  // A single queue: every submission is ordered on it, which keeps synchronization simple.
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queue_info{};
+  queue_info.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+  queue_info.queueFamilyIndex = device.queue_family_;
+  queue_info.queueCount = 1;
+  queue_info.pQueuePriorities = &priority;
+  VkDeviceCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+  info.queueCreateInfoCount = 1;
+  info.pQueueCreateInfos = &queue_info;
+  ODESKIN_VK_TRY(vkCreateDevice(device.physical_, &info, nullptr, &device.device_));
+  vkGetDeviceQueue(device.device_, device.queue_family_, 0, &device.queue_);
+
+  // Resettable command buffers: per-frame buffers are re-recorded in place instead of reallocated.
+  VkCommandPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pool_info.queueFamilyIndex = device.queue_family_;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateCommandPool(device.device_, &pool_info, nullptr, &pool));
+  device.command_pool_ = UniqueCommandPool(device.device_, pool);
+
+  // An in-memory cache shares compiled pipelines between dispatchers built on this device.
+  VkPipelineCacheCreateInfo cache_info{};
+  cache_info.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO;
+  VkPipelineCache cache = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreatePipelineCache(device.device_, &cache_info, nullptr, &cache));
+  device.pipeline_cache_ = UniquePipelineCache(device.device_, cache);
+  return device;
+}
+
+Device::Device(Device&& other) noexcept { *this = std::move(other); }
+
+Device& Device::operator=(Device&& other) noexcept {
+  if (this != &other) {
+    destroy();
+    physical_ = std::exchange(other.physical_, VK_NULL_HANDLE);
+    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+    queue_ = std::exchange(other.queue_, VK_NULL_HANDLE);
+    index_ = other.index_;
+    queue_family_ = other.queue_family_;
+    queue_flags_ = other.queue_flags_;
+    timestamp_valid_bits_ = other.timestamp_valid_bits_;
+    properties_ = other.properties_;
+    memory_ = other.memory_;
+    command_pool_ = std::move(other.command_pool_);
+    pipeline_cache_ = std::move(other.pipeline_cache_);
+  }
+  return *this;
+}
+
+Device::~Device() { destroy(); }
+
+void Device::destroy() {
+  if (device_ == VK_NULL_HANDLE) return;
+  // Children before the device; idle first so no command buffer from the pool is still running.
+  vkDeviceWaitIdle(device_);
+  command_pool_.reset();
+  pipeline_cache_.reset();
+  vkDestroyDevice(device_, nullptr);
+  device_ = VK_NULL_HANDLE;
+}
+
+Result<std::uint32_t> Device::findMemoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required,
+                                             VkMemoryPropertyFlags preferred) const {
+  int fallback = -1;
+  for (std::uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
+    if (!(type_bits & (1u << i))) continue;
+    VkMemoryPropertyFlags flags = memory_.memoryTypes[i].propertyFlags;
+    if ((flags & required) != required) continue;
+    if ((flags & preferred) == preferred) return i;
+    if (fallback < 0) fallback = static_cast<int>(i);
+  }
+  if (fallback >= 0) return static_cast<std::uint32_t>(fallback);
+  return unavailable("no Vulkan memory type with the required properties on " + std::string(name()));
+}
+
+Status Device::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+  VkCommandBufferAllocateInfo alloc{};
+  alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+  alloc.commandPool = command_pool_.get();
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkAllocateCommandBuffers(device_, &alloc, &cmd));
+  // Freed on every path: the pool outlives this call but should not accumulate one-off buffers.
+  struct FreeOnExit {
+    VkDevice device;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
+  } free_on_exit{device_, command_pool_.get(), cmd};
+
+  VkCommandBufferBeginInfo begin{};
+  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  ODESKIN_VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+  record(cmd);
+  ODESKIN_VK_TRY(vkEndCommandBuffer(cmd));
+
+  // A fence, not vkQueueWaitIdle, so per-frame work already on the queue is not waited for twice.
+  VkFenceCreateInfo fence_info{};
+  fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+  VkFence fence_handle = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateFence(device_, &fence_info, nullptr, &fence_handle));
+  UniqueFence fence(device_, fence_handle);
+  VkSubmitInfo submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  ODESKIN_VK_TRY(vkQueueSubmit(queue_, 1, &submit, fence.get()));
+  ODESKIN_VK_TRY(vkWaitForFences(device_, 1, &fence_handle, VK_TRUE, UINT64_MAX));
+  return okStatus();
+}
+
+Result<Gpu> Gpu::open(std::string_view selector, bool validation) {
+  InstanceOptions options;
+  options.validation = validation;
+  ODESKIN_ASSIGN_OR_RETURN(Instance instance, Instance::create(options));
+  ODESKIN_ASSIGN_OR_RETURN(Device device, Device::create(instance, selector));
+  return Gpu{std::move(instance), std::move(device)};
+}
+
+}  // namespace odeskin::vk

@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: MIT
+// Physical device selection and the logical device: one compute queue, a command pool for one-off
+// and per-frame command buffers, and a pipeline cache.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "engine/core/result.hpp"
+#include "instance.hpp"
+#include "vk_handle.hpp"
+
+namespace odeskin::vk {
+
+// All physical devices in loader order (the order `odeskin info` numbers them).
+// kUnavailable when there is none, with a hint to install lavapipe.
+Result<std::vector<VkPhysicalDevice>> physicalDevices(const Instance& instance);
+
+// Index into physicalDevices() that `selector` picks:
+//  - "auto" or empty: the environment variable ODESKIN_DEVICE if set, else the first discrete GPU,
+//    then integrated, virtual, other, and finally CPU devices (lavapipe);
+//  - a decimal number: that index;
+//  - anything else: the first device whose name contains it, ignoring case.
+// kInvalidArgument (message listing every device) when the index or the name matches nothing;
+// kUnavailable when there are no devices.
+Result<std::uint32_t> selectPhysicalDevice(const Instance& instance, std::string_view selector);
+
+// "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other".
+const char* deviceTypeName(VkPhysicalDeviceType type);
+
+class Device {
+ public:
+  // Selects a physical device (see selectPhysicalDevice) and creates a logical device with one
+  // compute-capable queue. kUnavailable when the device has no compute queue.
+  static Result<Device> create(const Instance& instance, std::string_view selector = "auto");
+
+  Device(Device&& other) noexcept;
+  Device& operator=(Device&& other) noexcept;
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+  ~Device();
+
+  VkDevice handle() const { return device_; }
+  VkPhysicalDevice physicalDevice() const { return physical_; }
+  std::uint32_t index() const { return index_; }  // into physicalDevices()
+  const char* name() const { return properties_.deviceName; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
+  const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memory_; }
+  VkQueue queue() const { return queue_; }
+  std::uint32_t queueFamily() const { return queue_family_; }
+  VkQueueFlags queueFlags() const { return queue_flags_; }
+  // Bits of a timestamp written on queue(); 0 means the queue cannot time dispatches.
+  std::uint32_t timestampValidBits() const { return timestamp_valid_bits_; }
+  VkCommandPool commandPool() const { return command_pool_.get(); }
+  VkPipelineCache pipelineCache() const { return pipeline_cache_.get(); }
+
+  // Index of a memory type allowed by `type_bits` that has all `required` flags, preferring one
+  // that also has all `preferred` flags. kUnavailable when none has the required flags.
+  Result<std::uint32_t> findMemoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required,
+                                       VkMemoryPropertyFlags preferred) const;
+
+  // Records `record` into a one-off command buffer, submits it and waits for it (uploads,
+  // readbacks, tests). Not for the per-frame path.
+  Status submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+
+ private:
+  Device() = default;
+  void destroy();
+
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  std::uint32_t index_ = 0;
+  std::uint32_t queue_family_ = 0;
+  VkQueueFlags queue_flags_ = 0;
+  std::uint32_t timestamp_valid_bits_ = 0;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+  UniqueCommandPool command_pool_;
+  UniquePipelineCache pipeline_cache_;
+};
+
+// An instance and a device opened together; members in destruction order (device first).
+struct Gpu {
+  Instance instance;
+  Device device;
+
+  // `validation`: as InstanceOptions::validation. Errors as Instance::create and Device::create.
+  static Result<Gpu> open(std::string_view selector = "auto", bool validation = false);
+};
+
+}  // namespace odeskin::vk

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: MIT
+#include <cstdint>
+#include <numeric>
+#include <vector>
+
+#include "gpu_test_support.hpp"
+#include "host/buffer.hpp"
+
+namespace odeskin {
+namespace {
+
+using testing::GpuTest;
+
+TEST_F(GpuTest, BufferRoundTripMappedAndStaged) {
+  std::vector<std::uint32_t> data(1000);
+  std::iota(data.begin(), data.end(), 7u);
+  for (vk::MemoryUse use : {vk::MemoryUse::kDeviceLocal, vk::MemoryUse::kDeviceLocalStaged,
+                            vk::MemoryUse::kHostVisible}) {
+    Result<vk::Buffer> buffer = vk::Buffer::create(device(), data.size() * 4, vk::kOutputBufferUsage, use);
+    ASSERT_TRUE(buffer.ok()) << buffer.status().toString();
+    if (use == vk::MemoryUse::kDeviceLocalStaged) {
+      EXPECT_EQ(buffer->mapped(), nullptr);
+    }
+    if (use == vk::MemoryUse::kHostVisible) {
+      EXPECT_NE(buffer->mapped(), nullptr);
+    }
+    ASSERT_TRUE(vk::uploadSpan<std::uint32_t>(device(), *buffer, data).ok());
+    std::vector<std::uint32_t> back(data.size(), 0);
+    ASSERT_TRUE(vk::downloadSpan<std::uint32_t>(device(), *buffer, back).ok());
+    EXPECT_EQ(back, data);
+    // A partial write at an offset leaves the rest alone.
+    std::vector<std::uint32_t> patch = {1, 2, 3};
+    ASSERT_TRUE(vk::uploadSpan<std::uint32_t>(device(), *buffer, patch, 40).ok());
+    ASSERT_TRUE(vk::downloadSpan<std::uint32_t>(device(), *buffer, std::span(back)).ok());
+    EXPECT_EQ(back[10], 1u);
+    EXPECT_EQ(back[12], 3u);
+    EXPECT_EQ(back[13], data[13]);
+  }
+}
+
+TEST_F(GpuTest, BufferRejectsOutOfRangeAndEmpty) {
+  EXPECT_EQ(vk::Buffer::create(device(), 0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT).status().code(),
+            StatusCode::kInvalidArgument);
+  Result<vk::Buffer> buffer = vk::Buffer::create(device(), 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  ASSERT_TRUE(buffer.ok());
+  std::vector<std::uint32_t> big(5, 0);
+  EXPECT_EQ(vk::uploadSpan<std::uint32_t>(device(), *buffer, big).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(vk::downloadSpan<std::uint32_t>(device(), *buffer, std::span(big)).code(), StatusCode::kInvalidArgument);
+  // Empty arrays still give a bindable 16-byte storage buffer.
+  Result<vk::Buffer> empty = vk::createStorageBuffer(device(), {});
+  ASSERT_TRUE(empty.ok());
+  EXPECT_EQ(empty->size(), 16u);
+}
+
+TEST_F(GpuTest, BufferMovesOwnership) {
+  Result<vk::Buffer> created = vk::Buffer::create(device(), 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  ASSERT_TRUE(created.ok());
+  VkBuffer handle = created->handle();
+  vk::Buffer moved = std::move(created).value();
+  EXPECT_EQ(moved.handle(), handle);
+  vk::Buffer assigned;
+  assigned = std::move(moved);
+  EXPECT_EQ(assigned.handle(), handle);
+  EXPECT_EQ(moved.handle(), VK_NULL_HANDLE);  // NOLINT: checking the moved-from state on purpose
+}
+
+}  // namespace
+}  // namespace odeskin
