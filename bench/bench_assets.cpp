@@ -61,9 +61,10 @@ double verify(std::span<const Vec3> expected, std::span<const gpu::Float4> actua
   std::size_t worst_index = 0;
   for (std::size_t i = 0; i < expected.size(); ++i) {
     const Vec3 a(actual[i].x, actual[i].y, actual[i].z);
-    const double e = glm::length(a - expected[i]);
-    if (!(e <= worst) || std::isnan(e)) {  // NaN counts as the worst error
-      worst = std::isnan(e) ? INFINITY : e;
+    double e = glm::length(a - expected[i]);
+    if (std::isnan(e)) e = INFINITY;  // a NaN output must fail, and NaN compares false
+    if (e > worst) {
+      worst = e;
       worst_index = i;
     }
   }

@@ -42,8 +42,9 @@ struct BenchAsset {
   double lbs_gpu_error = 0.0;
 };
 
-// The Vulkan device shared by every GPU case, opened once; nullptr when there is none (why() says
-// why). Its objects must go before it: call releaseAll() before main returns.
+// The Vulkan device shared by every GPU case, opened once; nullptr when there is none
+// (benchDeviceNote() then says why, else it is the device name). Its objects must go before it:
+// call releaseAll() before main returns.
 const vk::Device* benchDevice();
 const std::string& benchDeviceNote();
 

@@ -58,7 +58,7 @@ std::map<std::string, Case>& cases() {
   return map;
 }
 
-// The loop body of each backend; returns false (after SkipWithError) when it cannot run.
+// Times `body` (one frame); a failed frame skips the case with its status instead of timing garbage.
 template <typename Body>
 void timeLoop(benchmark::State& state, Body&& body) {
   for (auto _ : state) {
@@ -216,12 +216,19 @@ void printSummary(const SummaryReporter& reporter) {
       const double lbs_s = it != lbs.end() ? it->second.seconds : 0.0;
       char gpu_us[32] = "-";
       if (backend == Backend::kVulkan) std::snprintf(gpu_us, sizeof gpu_us, "%.1f", m.gpu_seconds * 1e6);
-      std::printf("%-13s %9u %3d %12.1f %9.2f %11.2f %12s %12.1f %8.2f\n", backendName(backend), m.vertex_count,
+      char lbs_us[32] = "-";
+      char ratio[32] = "-";  // no LBS case ran (filtered out or skipped)
+      if (lbs_s > 0.0) {
+        std::snprintf(lbs_us, sizeof lbs_us, "%.1f", lbs_s * 1e6);
+        std::snprintf(ratio, sizeof ratio, "%.2f", m.seconds / lbs_s);
+      }
+      std::printf("%-13s %9u %3d %12.1f %9.2f %11.2f %12s %12s %8s\n", backendName(backend), m.vertex_count,
                   c.modes, m.seconds * 1e6, m.seconds * 1e9 / m.vertex_count, m.vertex_count / m.seconds * 1e-6,
-                  gpu_us, lbs_s * 1e6, lbs_s > 0.0 ? m.seconds / lbs_s : 0.0);
+                  gpu_us, lbs_us, ratio);
     }
   }
-  std::printf("\nVerified before timing (worst error / box side; limit %.0e):\n", kVerifyTolerance);
+  std::printf("\nVerified before timing (worst error / box side; limit %.0e; vulkan 0 = no device):\n",
+              kVerifyTolerance);
   for (const VerifiedSize& s : verifiedSizes()) {
     std::printf("  V = %7u N = %d: cpu_fast %.2e  vulkan %.2e  lbs cpu_fast %.2e  lbs vulkan %.2e  (build %.1f s)\n",
                 s.vertex_count, s.modes, s.fast_error, s.gpu_error, s.lbs_fast_error, s.lbs_gpu_error,
