@@ -5,40 +5,17 @@
 #include <numbers>
 #include <string>
 
+#include "lbs_job.hpp"
+
 namespace odeskin {
 namespace {
 
 constexpr int kMaxModes = 64;
 
-// S_c(v) = sum_m (gamma_n d_cm + psi_n rdot_cm) phi_m(v), harmonics by direct cos/sin (the
-// reference does not use the recurrence of the fast paths, so it checks them independently).
-Vec3 curveSeries(const FourierDeformJob& job, std::uint32_t curve, double v) {
-  const std::size_t m_count = coefficientsPerCurve(job.modes);
-  const std::size_t base = curve * m_count;
-  const std::size_t basis_base = job.curve_materials[curve] * static_cast<std::size_t>(job.modes + 1);
-  const bool with_rates = !job.rates.empty();
-  const ModeBasisValue& b0 = job.basis[basis_base];
-  Vec3 sum = b0.gamma * (job.coefficients[base] + v * job.coefficients[base + m_count - 1]);
-  if (with_rates) sum += b0.psi * (job.rates[base] + v * job.rates[base + m_count - 1]);
-  for (int n = 1; n <= job.modes; ++n) {
-    const double angle = 2.0 * std::numbers::pi * n * v;
-    const double c = std::cos(angle);
-    const double s = std::sin(angle);
-    const ModeBasisValue& bn = job.basis[basis_base + static_cast<std::size_t>(n)];
-    const std::size_t mc = base + 2 * static_cast<std::size_t>(n) - 1;
-    sum += bn.gamma * (c * job.coefficients[mc] + s * job.coefficients[mc + 1]);
-    if (with_rates) sum += bn.psi * (c * job.rates[mc] + s * job.rates[mc + 1]);
-  }
-  return sum;
-}
-
-Vec3 skin(const FourierDeformJob& job, std::size_t i, const Vec3& x) {
-  const glm::dvec4 h(x, 1.0);
-  Vec3 p(0.0);
-  for (std::uint32_t k = job.influences.offsets[i]; k < job.influences.offsets[i + 1]; ++k) {
-    p += job.influences.weights[k] * (job.bones[job.influences.bones[k]] * h);
-  }
-  return p;
+Vec3 jobSeries(const FourierDeformJob& job, std::uint32_t curve, double v) {
+  const std::size_t per_material = static_cast<std::size_t>(job.modes) + 1;
+  return curveSeries(job.coefficients, job.rates,
+                     job.basis.subspan(job.curve_materials[curve] * per_material, per_material), job.modes, curve, v);
 }
 
 Status sizeError(const char* field, std::size_t got, std::size_t expected) {
@@ -47,6 +24,28 @@ Status sizeError(const char* field, std::size_t got, std::size_t expected) {
 }
 
 }  // namespace
+
+// Harmonics by direct cos/sin: the reference does not use the fast paths' recurrence, so it checks
+// them independently.
+Vec3 curveSeries(std::span<const Vec3> coefficients, std::span<const Vec3> rates,
+                 std::span<const ModeBasisValue> material_basis, int modes, std::uint32_t curve, double v) {
+  const std::size_t m_count = coefficientsPerCurve(modes);
+  const std::size_t base = curve * m_count;
+  const bool with_rates = !rates.empty();
+  const ModeBasisValue& b0 = material_basis[0];
+  Vec3 sum = b0.gamma * (coefficients[base] + v * coefficients[base + m_count - 1]);
+  if (with_rates) sum += b0.psi * (rates[base] + v * rates[base + m_count - 1]);
+  for (int n = 1; n <= modes; ++n) {
+    const double angle = 2.0 * std::numbers::pi * n * v;
+    const double c = std::cos(angle);
+    const double s = std::sin(angle);
+    const ModeBasisValue& bn = material_basis[static_cast<std::size_t>(n)];
+    const std::size_t mc = base + 2 * static_cast<std::size_t>(n) - 1;
+    sum += bn.gamma * (c * coefficients[mc] + s * coefficients[mc + 1]);
+    if (with_rates) sum += bn.psi * (c * rates[mc] + s * rates[mc + 1]);
+  }
+  return sum;
+}
 
 Status FourierDeformJob::validate() const {
   if (modes < 1 || modes > kMaxModes) {
@@ -107,15 +106,16 @@ Status FourierDeformJob::run() const {
   const std::size_t per_material = static_cast<std::size_t>(modes) + 1;
   for (std::size_t i = 0; i < rest_positions.size(); ++i) {
     const CurveBinding& b = bindings[i];
-    const Vec3 series_a = curveSeries(*this, b.curve_a, b.v);
-    const Vec3 series_b = b.curve_b == b.curve_a ? series_a : curveSeries(*this, b.curve_b, b.v);
+    const Vec3 series_a = jobSeries(*this, b.curve_a, b.v);
+    const Vec3 series_b = b.curve_b == b.curve_a ? series_a : jobSeries(*this, b.curve_b, b.v);
     Vec3 residual = (1.0 - b.w) * series_a + b.w * series_b;
     if (!base_residuals.empty()) residual += base_residuals[i];
     if (!remainder_indices.empty() && remainder_indices[i] != kNoRemainder) {
       residual += basis[curve_materials[b.curve_a] * per_material].gamma * remainders[remainder_indices[i]];
     }
-    out_positions[i] = residual_space == ResidualSpace::kBind ? skin(*this, i, rest_positions[i] + residual)
-                                                              : skin(*this, i, rest_positions[i]) + residual;
+    out_positions[i] = residual_space == ResidualSpace::kBind
+                           ? skinPoint(influences, bones, i, rest_positions[i] + residual)
+                           : skinPoint(influences, bones, i, rest_positions[i]) + residual;
   }
   return okStatus();
 }

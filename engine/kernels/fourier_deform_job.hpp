@@ -23,6 +23,12 @@ inline constexpr std::uint32_t kNoRemainder = 0xFFFFFFFFu;
 // Coefficients per curve for N modes: 2N+1 Fourier terms and the open-curve trend.
 constexpr std::size_t coefficientsPerCurve(int modes) { return 2 * static_cast<std::size_t>(modes) + 2; }
 
+// S_c(v) of curve `curve`: sum_m [gamma_n(m) d_cm + psi_n(m) rdot_cm] phi_m(v) (the gpu_layout.h
+// coefficient layout), with `material_basis` the N+1 values of the curve's material. `rates` may
+// be empty (zero). Reference precision: cos/sin evaluated directly for every harmonic.
+Vec3 curveSeries(std::span<const Vec3> coefficients, std::span<const Vec3> rates,
+                 std::span<const ModeBasisValue> material_basis, int modes, std::uint32_t curve, double v);
+
 struct FourierDeformJob {
   int modes = 0;  // N, 1..64
   ResidualSpace residual_space = ResidualSpace::kBind;

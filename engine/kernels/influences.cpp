@@ -6,6 +6,8 @@
 #include <numeric>
 #include <string>
 
+#include "lbs_job.hpp"
+
 namespace odeskin {
 
 std::uint32_t Influences::maxInfluences() const {
@@ -94,18 +96,6 @@ Result<FixedSlotInfluences> toFixedSlots(const Influences& influences, std::uint
   return out;
 }
 
-namespace {
-
-Vec3 skin(const Influences& in, std::span<const BoneTransform> bones, std::size_t i, const Vec3& x) {
-  Vec3 p(0.0);
-  for (std::uint32_t k = in.offsets[i]; k < in.offsets[i + 1]; ++k) {
-    p += in.weights[k] * (bones[in.bones[k]] * glm::dvec4(x, 1.0));
-  }
-  return p;
-}
-
-}  // namespace
-
 Result<PrunedInfluences> pruneInfluences(const Influences& influences, std::uint32_t max_influences,
                                          std::span<const Vec3> rest_positions,
                                          std::span<const std::vector<BoneTransform>> poses) {
@@ -145,8 +135,8 @@ Result<PrunedInfluences> pruneInfluences(const Influences& influences, std::uint
   for (const std::vector<BoneTransform>& pose : poses) {
     for (std::size_t i = 0; i < vertex_count; ++i) {
       if (influences.offsets[i + 1] - influences.offsets[i] <= max_influences) continue;
-      const double error = glm::length(skin(pruned, pose, i, rest_positions[i]) -
-                                       skin(influences, pose, i, rest_positions[i]));
+      const double error = glm::length(skinPoint(pruned, pose, i, rest_positions[i]) -
+                                       skinPoint(influences, pose, i, rest_positions[i]));
       if (error > out.report.max_position_error) {
         out.report.max_position_error = error;
         out.report.worst_vertex = static_cast<std::uint32_t>(i);

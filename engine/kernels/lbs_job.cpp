@@ -18,14 +18,19 @@ Status LbsJob::validate() const {
 Status LbsJob::run() const {
   ODESKIN_TRY(validate());
   for (std::size_t i = 0; i < rest_positions.size(); ++i) {
-    const glm::dvec4 x(rest_positions[i], 1.0);
-    Vec3 p(0.0);
-    for (std::uint32_t k = influences.offsets[i]; k < influences.offsets[i + 1]; ++k) {
-      p += influences.weights[k] * (bones[influences.bones[k]] * x);
-    }
-    out_positions[i] = p;
+    out_positions[i] = skinPoint(influences, bones, i, rest_positions[i]);
   }
   return okStatus();
+}
+
+Vec3 skinPoint(const InfluencesView& influences, std::span<const BoneTransform> bones, std::size_t vertex,
+               const Vec3& x) {
+  const glm::dvec4 h(x, 1.0);
+  Vec3 p(0.0);
+  for (std::uint32_t k = influences.offsets[vertex]; k < influences.offsets[vertex + 1]; ++k) {
+    p += influences.weights[k] * (bones[influences.bones[k]] * h);
+  }
+  return p;
 }
 
 glm::dmat3 blendedLinearPart(const InfluencesView& influences, std::span<const BoneTransform> bones,

@@ -22,6 +22,10 @@ struct LbsJob {
   Status run() const;
 };
 
+// sum_b w_ib M_b x for vertex i's influences applied to an arbitrary point x (the LBS map L_i).
+Vec3 skinPoint(const InfluencesView& influences, std::span<const BoneTransform> bones, std::size_t vertex,
+               const Vec3& x);
+
 // The blended linear part A_i = sum_b w_ib R_b of vertex i (PIPELINE.md 2), as a 3x3 matrix.
 glm::dmat3 blendedLinearPart(const InfluencesView& influences, std::span<const BoneTransform> bones,
                              std::size_t vertex);

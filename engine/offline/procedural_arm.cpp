@@ -6,6 +6,8 @@
 #include <numbers>
 #include <string>
 
+#include "../kernels/lbs_job.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -108,13 +110,9 @@ Result<ProceduralArm> makeProceduralArm(const ArmOptions& o) {
   arm.start_positions = in.rest_positions;
   arm.end_positions.resize(v_count);
   const BoneTransform bones[2] = {identity.matrix(), bent.matrix()};
+  const InfluencesView influences(in.influences);
   for (std::size_t i = 0; i < v_count; ++i) {
-    const glm::dvec4 h(in.rest_positions[i] + bulge[i], 1.0);
-    Vec3 p(0.0);
-    for (std::uint32_t k = in.influences.offsets[i]; k < in.influences.offsets[i + 1]; ++k) {
-      p += in.influences.weights[k] * (bones[in.influences.bones[k]] * h);
-    }
-    arm.end_positions[i] = p;
+    arm.end_positions[i] = skinPoint(influences, bones, i, in.rest_positions[i] + bulge[i]);
   }
   in.poses = {arm.start_positions, arm.end_positions};
   return arm;

@@ -75,11 +75,7 @@ std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, std::s
   const InfluencesView influences(in.influences);
   std::vector<Vec3> residuals(in.rest_positions.size());
   for (std::size_t i = 0; i < residuals.size(); ++i) {
-    Vec3 skinned(0.0);
-    for (std::uint32_t j = influences.offsets[i]; j < influences.offsets[i + 1]; ++j) {
-      skinned += influences.weights[j] * (bones[influences.bones[j]] * glm::dvec4(in.rest_positions[i], 1.0));
-    }
-    const Vec3 posed = in.poses[k][i] - skinned;
+    const Vec3 posed = in.poses[k][i] - skinPoint(influences, bones, i, in.rest_positions[i]);
     if (opt.residual_space == ResidualSpace::kPosed) {
       residuals[i] = posed;
       continue;
@@ -94,17 +90,6 @@ std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, std::s
     }
   }
   return residuals;
-}
-
-Vec3 seriesAtKey(const DeformSegment& seg, int modes, std::uint32_t curve, double v) {
-  const std::size_t m_count = coefficientsPerCurve(modes);
-  const Vec3* d = seg.coefficients.data() + curve * m_count;
-  Vec3 sum = d[0] + v * d[m_count - 1];
-  for (int n = 1; n <= modes; ++n) {
-    const double angle = 2.0 * 3.14159265358979323846 * n * v;
-    sum += std::cos(angle) * d[2 * n - 1] + std::sin(angle) * d[2 * n];
-  }
-  return sum;
 }
 
 Status fitSegmentCurves(const FitInput& in, int modes, const std::vector<Vec3>& delta, DeformSegment& seg) {
@@ -190,10 +175,12 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
     // Bind-space remainders bound the posed key error too: a convex blend of rotations has norm <= 1.
     const double box = longestBoxSide(in.poses[s + 1]);
     const double threshold = 0.5 * opt.key_tolerance * box;
+    // At tau = 1 every gamma_n is 1 and every psi_n is 0, whatever the material.
+    const std::vector<ModeBasisValue> at_key(static_cast<std::size_t>(opt.modes) + 1, ModeBasisValue{1.0, 0.0});
     for (std::size_t i = 0; i < v_count; ++i) {
       const CurveBinding& b = in.bindings[i];
-      const Vec3 series = (1.0 - b.w) * seriesAtKey(seg, opt.modes, b.curve_a, b.v) +
-                          b.w * seriesAtKey(seg, opt.modes, b.curve_b, b.v);
+      const Vec3 series = (1.0 - b.w) * curveSeries(seg.coefficients, {}, at_key, opt.modes, b.curve_a, b.v) +
+                          b.w * curveSeries(seg.coefficients, {}, at_key, opt.modes, b.curve_b, b.v);
       const Vec3 eps = delta[i] - series;
       const double error = glm::length(eps);
       if (box > 0.0) rep.max_series_error = std::max(rep.max_series_error, error / box);
@@ -238,8 +225,6 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
       rep.key_error[k] = std::max(rep.key_error[k], box > 0.0 ? worst / box : worst);
     }
   }
-  ODESKIN_ASSIGN_OR_RETURN(PackedDeformData packed, packDeformAsset(asset));
-  rep.packed_bytes = packed.byteSize();
   return asset;
 }
 

@@ -50,7 +50,6 @@ struct FitReport {
   std::size_t remainder_count = 0;    // sparse remainders over all segments
   std::size_t ill_conditioned = 0;    // vertices whose blended rotation A is near singular
   double max_series_error = 0.0;      // worst |eps| before remainders, / longest box side
-  std::size_t packed_bytes = 0;       // float32 GPU bytes of the asset
 };
 
 // Errors: kInvalidArgument (sizes, indices, a curve vertex not bound to its curve, fewer than 2
