@@ -36,11 +36,26 @@ enum class ResidualSpace {
   kPosed,  // the thesis's variant: added after skinning
 };
 
+// How bones deform the (bind-space corrected) rest position: linear blend skinning, or
+// dual-quaternion skinning (Kavan et al. 2008), which blends rigid transforms and keeps volume.
+enum class SkinningMode : std::uint32_t {
+  kLinear = 0,
+  kDualQuaternion = 1,
+};
+
 // Polygon faces as compressed rows: face f has vertex indices [face_offsets[f], face_offsets[f+1]).
 struct FaceList {
   std::vector<std::uint32_t> face_offsets{0};
   std::vector<std::uint32_t> indices;  // 0-based
   std::size_t faceCount() const { return face_offsets.size() - 1; }
+};
+
+// glTF meshes are split at UV/normal seams: analysis runs on welded topology vertices, output keeps
+// the input's render vertices. Empty `topology_of_render`: render layout == topology layout.
+struct RenderLayout {
+  std::vector<std::uint32_t> topology_of_render;  // render vertex -> topology vertex
+  FaceList faces;                                 // faces over render vertices
+  bool empty() const { return topology_of_render.empty(); }
 };
 
 }  // namespace odeskin

@@ -56,6 +56,45 @@ Status validateDeformAsset(const DeformAsset& a) {
       }
     }
   }
+  if (!(a.segment_seconds > 0.0) || !std::isfinite(a.segment_seconds)) {
+    return invalidArgument("deform asset: segment length " + std::to_string(a.segment_seconds) + " s is not positive");
+  }
+  if (a.skinning != SkinningMode::kLinear && a.skinning != SkinningMode::kDualQuaternion) {
+    return invalidArgument("deform asset: unknown skinning mode");
+  }
+  if (!a.curves.empty()) ODESKIN_TRY(fieldSize("curves", a.curves.size(), c_count));
+  for (std::size_t c = 0; c < a.curves.size(); ++c) {
+    const IsoCurve& curve = a.curves[c];
+    if (curve.v.size() != curve.points.size()) {
+      return invalidArgument("deform asset: curve " + std::to_string(c) + " has a v per point missing");
+    }
+    for (const CurvePoint& p : curve.points) {
+      if (p.a >= v_count || p.b >= v_count || !(p.t >= 0.0 && p.t <= 1.0)) {
+        return invalidArgument("deform asset: curve " + std::to_string(c) + " has a point off the mesh");
+      }
+    }
+  }
+  if (!a.bone_parents.empty()) {
+    ODESKIN_TRY(fieldSize("bone_parents", a.bone_parents.size(), a.bone_count));
+    for (std::int32_t parent : a.bone_parents) {
+      if (parent < -1 || parent >= static_cast<std::int32_t>(a.bone_count)) {
+        return invalidArgument("deform asset: bone parent " + std::to_string(parent) + " out of range");
+      }
+    }
+  }
+  if (!a.bone_names.empty()) ODESKIN_TRY(fieldSize("bone_names", a.bone_names.size(), a.bone_count));
+  for (std::uint32_t t : a.render.topology_of_render) {
+    if (t >= v_count) return invalidArgument("deform asset: render vertex maps to topology vertex " + std::to_string(t));
+  }
+  for (std::uint32_t index : a.render.faces.indices) {
+    if (index >= a.render.topology_of_render.size()) {
+      return invalidArgument("deform asset: a render face uses vertex " + std::to_string(index) + " of " +
+                             std::to_string(a.render.topology_of_render.size()));
+    }
+  }
+  for (std::uint32_t index : a.faces.indices) {
+    if (index >= v_count) return invalidArgument("deform asset: a face uses vertex " + std::to_string(index));
+  }
   return validateInfluences(a.influences, v_count, a.bone_count);
 }
 

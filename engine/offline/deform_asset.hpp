@@ -4,8 +4,10 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "../core/iso_curve.hpp"
 #include "../core/result.hpp"
 #include "../core/types.hpp"
 #include "../kernels/influences.hpp"
@@ -27,14 +29,20 @@ struct DeformSegment {
 struct DeformAsset {
   int modes = 0;                                   // N
   ResidualSpace residual_space = ResidualSpace::kBind;
+  SkinningMode skinning = SkinningMode::kLinear;
+  double segment_seconds = 1.0;                    // playback length of one segment
   std::vector<Vec3> rest_positions;                // V: bind mesh X
   FaceList faces;
+  RenderLayout render;                             // glTF input: the render vertices (empty for OBJ)
   std::vector<CurveBinding> bindings;              // V
+  std::vector<IsoCurve> curves;                    // C on the bind mesh (display, refits); may be empty
   std::vector<std::uint32_t> curve_materials;      // C
   std::vector<Material> materials;                 // >= 1
   Influences influences;                           // V rows
   std::uint32_t bone_count = 0;                    // B
   std::vector<Vec3> bone_pivots;                   // B: joint of each bone in bind space
+  std::vector<std::int32_t> bone_parents;          // B (-1: root), or empty
+  std::vector<std::string> bone_names;             // B, or empty
   std::vector<std::vector<RigidTransform>> key_poses;  // K x B
   std::vector<DeformSegment> segments;             // K - 1
 

@@ -73,7 +73,9 @@ Result<ProceduralArm> makeProceduralArm(const ArmOptions& o) {
       bulge[i] = o.bulge * ring_radius * along * around * normal;
       if (on_curve) {
         in.bindings[i] = CurveBinding{static_cast<std::uint32_t>(curve), static_cast<std::uint32_t>(curve), 0.0, v};
-        in.curves[curve].vertices.push_back(static_cast<std::uint32_t>(i));
+        const auto vertex = static_cast<std::uint32_t>(i);
+        in.curves[curve].points.push_back(CurvePoint{vertex, vertex, 0.0});
+        in.curves[curve].v.push_back(v);
       } else {
         const double w = static_cast<double>(r - curve_rings[curve]) / (curve_rings[curve + 1] - curve_rings[curve]);
         in.bindings[i] = CurveBinding{static_cast<std::uint32_t>(curve), static_cast<std::uint32_t>(curve + 1), w, v};

@@ -53,15 +53,16 @@ Status checkInput(const FitInput& in, const FitOptions& opt) {
   }
   if (!(opt.key_tolerance > 0.0)) return invalidArgument("fit: key tolerance must be positive");
   for (std::size_t c = 0; c < in.curves.size(); ++c) {
-    for (std::uint32_t vertex : in.curves[c].vertices) {
-      if (vertex >= v_count) {
-        return invalidArgument("fit: curve " + std::to_string(c) + " lists vertex " + std::to_string(vertex) +
-                               " of " + std::to_string(v_count));
-      }
-      const CurveBinding& b = in.bindings[vertex];
-      if (b.curve_a != c || b.w != 0.0) {
-        return invalidArgument("fit: vertex " + std::to_string(vertex) + " lies on curve " + std::to_string(c) +
-                               " but is not bound to it with w = 0");
+    const IsoCurve& curve = in.curves[c];
+    if (curve.v.size() != curve.points.size()) {
+      return invalidArgument("fit: curve " + std::to_string(c) + " has " + std::to_string(curve.points.size()) +
+                             " points but " + std::to_string(curve.v.size()) + " parameters v");
+    }
+    for (const CurvePoint& p : curve.points) {
+      if (p.a >= v_count || p.b >= v_count || !(p.t >= 0.0 && p.t <= 1.0)) {
+        return invalidArgument("fit: curve " + std::to_string(c) + " has a point on edge (" + std::to_string(p.a) +
+                               ", " + std::to_string(p.b) + ") at " + std::to_string(p.t) + ", off the mesh of " +
+                               std::to_string(v_count) + " vertices");
       }
     }
   }
@@ -94,17 +95,13 @@ std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, std::s
 
 Status fitSegmentCurves(const FitInput& in, int modes, const std::vector<Vec3>& delta, DeformSegment& seg) {
   const std::size_t m_count = coefficientsPerCurve(modes);
-  std::vector<double> v;
   std::vector<Vec3> values;
   for (std::size_t c = 0; c < in.curves.size(); ++c) {
     const IsoCurve& curve = in.curves[c];
-    v.clear();
+    // A point on an edge moves with the same edge ratio in every pose (thesis Fig. 6.6).
     values.clear();
-    for (std::uint32_t vertex : curve.vertices) {
-      v.push_back(in.bindings[vertex].v);
-      values.push_back(delta[vertex]);
-    }
-    Result<FourierFit> fit = fitFourier(v, values, modes, curve.closed);
+    for (const CurvePoint& p : curve.points) values.push_back((1.0 - p.t) * delta[p.a] + p.t * delta[p.b]);
+    Result<FourierFit> fit = fitFourier(curve.v, values, modes, curve.closed);
     if (!fit.ok()) {
       return Status(fit.status().code(), "curve " + std::to_string(c) + ": " + fit.status().message());
     }
@@ -146,6 +143,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   asset.rest_positions = in.rest_positions;
   asset.faces = in.faces;
   asset.bindings = in.bindings;
+  asset.curves = in.curves;
   asset.materials = opt.materials.empty() ? std::vector<Material>{staticMaterial()} : opt.materials;
   asset.curve_materials = opt.curve_materials.empty() ? std::vector<std::uint32_t>(in.curves.size(), 0u)
                                                       : opt.curve_materials;

@@ -10,17 +10,11 @@
 #include <span>
 #include <vector>
 
+#include "../core/iso_curve.hpp"
 #include "../core/result.hpp"
 #include "deform_asset.hpp"
 
 namespace odeskin {
-
-// An iso-parametric curve: vertex indices in order along it. Each listed vertex must be bound to the
-// curve (binding curve_a == curve index, w == 0); its binding's v is the fitting parameter.
-struct IsoCurve {
-  std::vector<std::uint32_t> vertices;
-  bool closed = true;
-};
 
 struct FitInput {
   std::vector<Vec3> rest_positions;                  // V: bind mesh X
@@ -30,13 +24,14 @@ struct FitInput {
   std::uint32_t bone_count = 0;
   std::vector<Vec3> bone_pivots;                     // B
   std::vector<std::vector<RigidTransform>> key_poses;  // K x B, bind -> pose k
-  std::vector<IsoCurve> curves;                      // C
+  std::vector<IsoCurve> curves;                      // C: points on the bind mesh, each with its v
   std::vector<CurveBinding> bindings;                // V
 };
 
 struct FitOptions {
   int modes = 9;
   ResidualSpace residual_space = ResidualSpace::kBind;
+  SkinningMode skinning = SkinningMode::kLinear;
   std::vector<Material> materials;                   // empty: one static material
   std::vector<std::uint32_t> curve_materials;        // C, or empty: every curve uses material 0
   // Key poses are reproduced within key_tolerance x (longest bounding-box side of the pose) by
@@ -52,8 +47,8 @@ struct FitReport {
   double max_series_error = 0.0;      // worst |eps| before remainders, / longest box side
 };
 
-// Errors: kInvalidArgument (sizes, indices, a curve vertex not bound to its curve, fewer than 2
-// poses), kIllPosed (a curve with too few vertices for N, a resonant material mode), and the
+// Errors: kInvalidArgument (sizes, indices, a curve point off the mesh or without its v, fewer
+// than 2 poses), kIllPosed (a curve with too few vertices for N, a resonant material mode), and the
 // errors of fitFourier / ModeTimeBasis::create, each prefixed with the curve or material concerned.
 Result<DeformAsset> fitDeformAsset(const FitInput& input, const FitOptions& options, FitReport* report = nullptr);
 

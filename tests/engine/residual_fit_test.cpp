@@ -192,7 +192,7 @@ TEST(ResidualFit, RejectsMismatchedInput) {
   in.key_poses.pop_back();
   EXPECT_EQ(fitDeformAsset(in, FitOptions{}).status().code(), StatusCode::kInvalidArgument);
   in = arm->fit_input;
-  in.curves[0].vertices.push_back(in.curves[1].vertices[0]);
+  in.curves[0].points.push_back(in.curves[1].points[0]);  // without its v
   EXPECT_EQ(fitDeformAsset(in, FitOptions{}).status().code(), StatusCode::kInvalidArgument);
   FitOptions too_many;
   too_many.modes = 16;  // rings of 32 vertices determine at most 15 modes (2N+1 <= 32)

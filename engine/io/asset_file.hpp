@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+// The .odsk asset: a versioned little-endian binary file holding a DeformAsset.
+//   header (32 bytes): magic "ODSK\r\n\x1a\n", u32 version, u32 flags (0), u64 payload bytes,
+//                      u64 FNV-1a 64 checksum of the payload
+//   payload: tagged sections (u32 tag, u64 bytes, data) so later versions can add sections.
+// Doubles are stored bit-exactly: save -> load reproduces the asset exactly.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "../core/result.hpp"
+#include "../offline/deform_asset.hpp"
+
+namespace odeskin {
+
+inline constexpr std::uint32_t kAssetVersion = 1;
+
+// The whole file as bytes (validateDeformAsset first: kInvalidArgument for an inconsistent asset).
+Result<std::string> encodeAsset(const DeformAsset& asset);
+// kParseError naming `source` for a bad magic, an unknown version, a size or checksum mismatch
+// (truncated or corrupted), a section that overruns; then validateDeformAsset's errors.
+Result<DeformAsset> decodeAsset(const std::string& bytes, const std::string& source);
+
+// Atomic write (temp + rename): no half-written asset on failure. kIoError naming the path.
+Status saveAsset(const std::filesystem::path& path, const DeformAsset& asset);
+Result<DeformAsset> loadAsset(const std::filesystem::path& path);
+
+}  // namespace odeskin

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// The libigl text formats of ../shared/data (its README, "File formats"): .tgf skeletons, .dmat
+// dense matrices (skinning weights), .Tmat per-pose absolute bone transforms, and the viewer .json
+// that stores a pose as relative bone rotations (forward kinematics gives the .Tmat).
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "../core/result.hpp"
+#include "../rig/rig.hpp"
+
+namespace odeskin {
+
+// Bone b is the b-th edge line; heads/tails are its start/end joints; the parent of b is the bone
+// whose end joint is b's start joint (libigl directed_edge_parents). Names are "bone<b>".
+// kIoError / kParseError naming path and line.
+Result<Skeleton> readTgf(const std::filesystem::path& path);
+
+struct DenseMatrix {
+  std::size_t rows = 0;
+  std::size_t cols = 0;
+  std::vector<double> values;  // row-major: values[r * cols + c]
+  double at(std::size_t r, std::size_t c) const { return values[r * cols + c]; }
+};
+
+// "cols rows" header, then column-major values. kParseError for a short or non-numeric file.
+Result<DenseMatrix> readDmat(const std::filesystem::path& path);
+
+// A .dmat of V x B weights as sparse influences (zero weights dropped). kInvalidArgument naming
+// the path if the size is not V x B, a weight is negative or non-finite, or a row does not sum to 1
+// within 1e-6 (rows are not silently renormalised).
+Result<Influences> readWeightsDmat(const std::filesystem::path& path, std::size_t vertex_count, std::size_t bone_count);
+
+// 4B lines of 3 numbers: the columns of R_b then t_b (absolute, bind -> pose). Rotations are
+// re-orthonormalised (the files carry ~6 digits); kInvalidArgument if one is not a rotation within 1e-4.
+Result<std::vector<RigidTransform>> readTmat(const std::filesystem::path& path, std::size_t bone_count);
+
+// "dQ-<b>": [x, y, z, w] relative rotations; a missing bone is the identity. kParseError naming the path.
+Result<std::vector<glm::dquat>> readPoseJson(const std::filesystem::path& path, std::size_t bone_count);
+
+// libigl forward_kinematics with zero extra translation: root R_b = q_b, t_b = c - R_b c;
+// child R_b = R_p q_b, t_b = t_p + R_p c - R_b c (c = the bone's head). Parents may come in any order.
+std::vector<RigidTransform> forwardKinematics(const Skeleton& skeleton, const std::vector<glm::dquat>& relative);
+
+}  // namespace odeskin
