@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: MIT
+// Weighted rigid alignment (Kabsch / Umeyama without scale): the rotation and translation that
+// minimise sum_i w_i |R x_i + t - y_i|^2, and its use to recover per-pose bone transforms from
+// skinning weights (PIPELINE.md 1).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "../core/result.hpp"
+#include "rig.hpp"
+
+namespace odeskin {
+
+// kInvalidArgument for mismatched sizes, negative or non-finite weights; kDegenerate when the
+// weighted points do not determine a rotation (fewer than 3 non-collinear points with weight > 0).
+Result<RigidTransform> weightedKabsch(std::span<const Vec3> from, std::span<const Vec3> to, std::span<const double> weights);
+
+// For every pose k and bone b, the bind -> pose k transform by weighted Kabsch of the bind mesh
+// onto pose k with the bone's weights (K x B). A bone whose weighted points are degenerate inherits
+// its parent's transform (or the identity for a root), as a skeleton with that bone fixed would.
+Result<std::vector<std::vector<RigidTransform>>> fitBoneTransforms(std::span<const Vec3> rest,
+                                                                   const std::vector<std::vector<Vec3>>& poses,
+                                                                   const Influences& influences,
+                                                                   const Skeleton& skeleton);
+
+}  // namespace odeskin
