@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: MIT
+#include "obj_reader.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+namespace odeskin {
+namespace {
+
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+// Next whitespace-separated token of `line` (advanced past it); empty at the end.
+std::string_view nextToken(std::string_view& line) {
+  line = trimmed(line);
+  std::size_t end = 0;
+  while (end < line.size() && line[end] != ' ' && line[end] != '\t') ++end;
+  std::string_view token = line.substr(0, end);
+  line.remove_prefix(end);
+  return token;
+}
+
+bool parseDouble(std::string_view token, double& out) {
+  const char* first = token.data();
+  const char* last = token.data() + token.size();
+  if (first != last && *first == '+') ++first;
+  auto [ptr, ec] = std::from_chars(first, last, out);
+  return ec == std::errc() && ptr == last && std::isfinite(out);
+}
+
+bool parseIndex(std::string_view token, long long& out) {
+  const std::size_t slash = token.find('/');
+  if (slash != std::string_view::npos) token = token.substr(0, slash);  // a/t, a//n, a/t/n: keep a
+  auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
+  return ec == std::errc() && ptr == token.data() + token.size();
+}
+
+}  // namespace
+
+Result<ObjMesh> readObj(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return ioError(path.string() + ": cannot open for reading");
+  std::stringstream buffer;
+  buffer << file.rdbuf();
+  if (file.bad()) return ioError(path.string() + ": read failed");
+  const std::string text = buffer.str();
+
+  ObjMesh mesh;
+  std::vector<long long> raw;  // face corners as written (1-based or negative), resolved below
+  std::vector<std::size_t> face_lines;
+  std::size_t line_number = 0;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line(text.data() + pos, end - pos);
+    pos = end + 1;
+    ++line_number;
+    const std::size_t hash = line.find('#');
+    if (hash != std::string_view::npos) line = line.substr(0, hash);
+    const std::string_view keyword = nextToken(line);
+    auto error = [&](const std::string& what) {
+      return parseError(path.string() + ":" + std::to_string(line_number) + ": " + what);
+    };
+    if (keyword == "v") {
+      Vec3 p;
+      for (int k = 0; k < 3; ++k) {
+        if (!parseDouble(nextToken(line), p[k])) return error("vertex needs 3 finite coordinates");
+      }
+      mesh.positions.push_back(p);  // an optional w or colour after x y z is ignored
+    } else if (keyword == "f") {
+      std::size_t corners = 0;
+      for (std::string_view token = nextToken(line); !token.empty(); token = nextToken(line), ++corners) {
+        long long index = 0;
+        if (!parseIndex(token, index) || index == 0) return error("bad face index '" + std::string(token) + "'");
+        // Negative indices count back from the vertices read so far.
+        if (index < 0) index = static_cast<long long>(mesh.positions.size()) + index + 1;
+        if (index < 1) return error("face index '" + std::string(token) + "' points before the first vertex");
+        raw.push_back(index - 1);
+      }
+      if (corners < 3) return error("face has " + std::to_string(corners) + " corners, needs at least 3");
+      mesh.faces.face_offsets.push_back(static_cast<std::uint32_t>(raw.size()));
+      face_lines.push_back(line_number);
+    }
+  }
+  if (mesh.positions.empty()) return parseError(path.string() + ": no vertices");
+  if (mesh.faces.faceCount() == 0) return parseError(path.string() + ": no faces");
+  mesh.faces.indices.reserve(raw.size());
+  for (std::size_t f = 0; f < mesh.faces.faceCount(); ++f) {
+    for (std::uint32_t k = mesh.faces.face_offsets[f]; k < mesh.faces.face_offsets[f + 1]; ++k) {
+      if (raw[k] >= static_cast<long long>(mesh.positions.size())) {
+        return parseError(path.string() + ":" + std::to_string(face_lines[f]) + ": face index " +
+                          std::to_string(raw[k] + 1) + " > vertex count " + std::to_string(mesh.positions.size()));
+      }
+      mesh.faces.indices.push_back(static_cast<std::uint32_t>(raw[k]));
+    }
+  }
+  return mesh;
+}
+
+}  // namespace odeskin
