@@ -189,6 +189,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   stage = Clock::now();
 
   asset.segments.resize(key_count - 1);
+  double sum_squares = 0.0;
   std::vector<Vec3> delta(v_count);
   for (std::size_t s = 0; s + 1 < key_count; ++s) {
     DeformSegment& seg = asset.segments[s];
@@ -211,7 +212,10 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
                           b.w * curveSeries(seg.coefficients, {}, at_key, opt.modes, b.curve_b, b.v);
       const Vec3 eps = delta[i] - series;
       const double error = glm::length(eps);
-      if (box > 0.0) rep.max_series_error = std::max(rep.max_series_error, error / box);
+      if (box > 0.0) {
+        rep.max_series_error = std::max(rep.max_series_error, error / box);
+        sum_squares += (error / box) * (error / box);
+      }
       if (!opt.pure_fourier && error > threshold) {
         seg.remainder_indices[i] = static_cast<std::uint32_t>(seg.remainders.size());
         seg.remainders.push_back(eps);
@@ -220,6 +224,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
     rep.remainder_count += seg.remainders.size();
   }
 
+  rep.rms_series_error = std::sqrt(sum_squares / static_cast<double>(v_count * (key_count - 1)));
   rep.seconds_fourier = seconds_since(stage);
   stage = Clock::now();
   ODESKIN_ASSIGN_OR_RETURN(DeformPlayer player, DeformPlayer::create(asset));

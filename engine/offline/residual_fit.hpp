@@ -48,6 +48,7 @@ struct FitReport {
   std::size_t remainder_count = 0;    // sparse remainders over all segments
   std::size_t ill_conditioned = 0;    // vertices whose blended rotation A is near singular
   double max_series_error = 0.0;      // worst |eps| before remainders, / longest box side
+  double rms_series_error = 0.0;      // root mean square |eps| over all vertices and segments, / box side
   std::size_t reduced_curves = 0;     // (segment, curve) fits that used fewer than N modes
   // Seconds per stage (thesis Table 6.3): skinning the bind mesh at every key and the bind-space
   // residuals; Fourier fits and remainders; time bases, rate chaining and playing every key back.
