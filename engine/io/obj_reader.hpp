@@ -28,7 +28,8 @@ Result<ObjMesh> readObj(const std::filesystem::path& path);
 // and face list (kInvalidArgument naming the first differing pose file and, for faces, the face
 // number and both versions). The topology must be manifold (OpenMesh; buildPolyMesh's errors).
 // `bind` (optional): a rest mesh with the same topology; the bind mesh X is then that mesh, else
-// X = pose 0. Labels are the file names.
+// X = pose 0. Labels are the file names. readObj's errors pass through; fewer than 2 poses, and a
+// bind mesh that differs (named like a differing pose), are kInvalidArgument. No rig is attached.
 Result<ExampleSet> readObjSequence(std::span<const std::filesystem::path> poses, const std::filesystem::path* bind = nullptr);
 
 }  // namespace odeskin

@@ -1,0 +1,338 @@
+// SPDX-License-Identifier: MIT
+#include "engine/io/obj_reader.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "engine/io/obj_io.hpp"
+
+namespace odeskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kData = ODESKIN_DATA_DIR;
+
+std::string slurp(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::uint32_t> face(const FaceList& faces, std::size_t f) {
+  return std::vector<std::uint32_t>(faces.indices.begin() + faces.face_offsets[f],
+                                    faces.indices.begin() + faces.face_offsets[f + 1]);
+}
+
+// A fresh folder per test for synthetic files, removed afterwards.
+class ObjTempDir : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / (std::string("odeskin_obj_reader_test_") + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& name, const std::string& text) const {
+    const fs::path path = dir_ / name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+  // Expects readObj(text) to fail with `code` and a message containing `path` and `needle`.
+  void expectError(const std::string& text, StatusCode code, const std::string& needle) const {
+    const fs::path path = write("bad.obj", text);
+    const Result<ObjMesh> mesh = readObj(path);
+    ASSERT_FALSE(mesh.ok()) << text;
+    EXPECT_EQ(mesh.status().code(), code) << mesh.status().toString();
+    EXPECT_NE(mesh.status().message().find(path.string()), std::string::npos) << mesh.status().message();
+    EXPECT_NE(mesh.status().message().find(needle), std::string::npos) << mesh.status().message();
+  }
+
+  fs::path dir_;
+};
+
+void expectTriangles(const ObjMesh& mesh, std::size_t vertices, std::size_t faces) {
+  EXPECT_EQ(mesh.positions.size(), vertices);
+  ASSERT_EQ(mesh.faces.faceCount(), faces);
+  for (std::size_t f = 0; f < faces; ++f) ASSERT_EQ(mesh.faces.face_offsets[f + 1] - mesh.faces.face_offsets[f], 3u);
+  for (std::uint32_t i : mesh.faces.indices) ASSERT_LT(i, vertices);
+}
+
+TEST(ReadObj, CatReferenceWithCrlfLineEndings) {
+  const fs::path path = kData / "cat-poses/cat-00.obj";
+  ASSERT_NE(slurp(path).find("\r\n"), std::string::npos) << "the data quirk this test covers is gone";
+  const Result<ObjMesh> mesh = readObj(path);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  expectTriangles(*mesh, 7207, 14410);
+  EXPECT_EQ(mesh->positions[0], Vec3(0.0334364212, 0.5303362761, -0.4207956109));
+  EXPECT_EQ(face(mesh->faces, 0), (std::vector<std::uint32_t>{7206, 0, 1}));
+}
+
+TEST(ReadObj, CatPoseWithExponentNotation) {
+  const Result<ObjMesh> mesh = readObj(kData / "cat-poses/cat-01.obj");
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  expectTriangles(*mesh, 7207, 14410);
+  EXPECT_EQ(mesh->positions[196], Vec3(3.93978e-05, 0.073814242, -0.3751113886));  // line 197
+}
+
+TEST(ReadObj, HorseFirstFrame) {
+  const Result<ObjMesh> mesh = readObj(kData / "horse-gallop/horse-01.obj");
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  expectTriangles(*mesh, 8431, 16843);
+  EXPECT_EQ(mesh->positions[0], Vec3(-0.022739015899999999, 0.97907069999999996, -0.63614849900000003));
+  EXPECT_EQ(mesh->positions[4228], Vec3(-4.84786e-05, 0.95982354250000002, 0.62491002929999995));
+}
+
+TEST(ReadObj, CylinderRestWithTexcoordCornersAndNoVt) {
+  const fs::path path = kData / "cylinder/cylinder.obj";
+  ASSERT_NE(slurp(path).find("f 1/1 2/2 21/22"), std::string::npos);
+  const Result<ObjMesh> mesh = readObj(path);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  expectTriangles(*mesh, 420, 800);
+  EXPECT_EQ(mesh->positions[0], Vec3(2.0, 0.475529, -0.154509));
+  EXPECT_EQ(face(mesh->faces, 0), (std::vector<std::uint32_t>{0, 1, 20}));
+  EXPECT_EQ(face(mesh->faces, 1), (std::vector<std::uint32_t>{20, 1, 21}));
+  // The posed files write the same faces as plain `f i j k`.
+  const Result<ObjMesh> posed = readObj(kData / "cylinder/poses-1/cylinder-1.obj");
+  ASSERT_TRUE(posed.ok()) << posed.status().toString();
+  EXPECT_EQ(posed->faces.indices, mesh->faces.indices);
+  EXPECT_EQ(posed->faces.face_offsets, mesh->faces.face_offsets);
+}
+
+TEST(ReadObj, CheburashkaWithoutFinalNewline) {
+  const fs::path path = kData / "cheburashka/cheburashka.obj";
+  const std::string text = slurp(path);
+  ASSERT_FALSE(text.empty());
+  ASSERT_NE(text.back(), '\n') << "the data quirk this test covers is gone";
+  const Result<ObjMesh> mesh = readObj(path);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  expectTriangles(*mesh, 6669, 13334);
+  EXPECT_EQ(mesh->positions[6668], Vec3(0.515443, 0.161067, 0.585582));
+  EXPECT_EQ(face(mesh->faces, 13333), (std::vector<std::uint32_t>{2, 1, 0}));  // the unterminated "f 3 2 1"
+}
+
+TEST(ReadObj, FaceReferenceFirstFile) {
+  const Result<ObjMesh> mesh = readObj(kData / "face-poses/face-00.obj");
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  expectTriangles(*mesh, 29299, 57836);
+}
+
+TEST_F(ObjTempDir, QuadsAndMixedPolygons) {
+  const Result<ObjMesh> mesh = readObj(write("mixed.obj",
+                                             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nv 3 0.5 0\n"
+                                             "f 1 2 3 4\nf 2 5 6 3\nf 5 7 6\nf 1 2 5 7 6 3\n"));
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  EXPECT_EQ(mesh->positions.size(), 7u);
+  EXPECT_EQ(mesh->faces.face_offsets, (std::vector<std::uint32_t>{0, 4, 8, 11, 17}));
+  EXPECT_EQ(face(mesh->faces, 1), (std::vector<std::uint32_t>{1, 4, 5, 2}));
+  EXPECT_EQ(face(mesh->faces, 3), (std::vector<std::uint32_t>{0, 1, 4, 6, 5, 2}));
+}
+
+TEST_F(ObjTempDir, NegativeIndicesCountBackFromVerticesReadSoFar) {
+  const Result<ObjMesh> mesh =
+      readObj(write("neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 1 1 0\nf -3 -1 -2\nf 2 -1 3\n"));
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  EXPECT_EQ(face(mesh->faces, 0), (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(face(mesh->faces, 1), (std::vector<std::uint32_t>{1, 3, 2}));
+  EXPECT_EQ(face(mesh->faces, 2), (std::vector<std::uint32_t>{1, 3, 2}));
+}
+
+TEST_F(ObjTempDir, CommentsAndOtherStatementsAreSkipped) {
+  const Result<ObjMesh> mesh = readObj(write("extras.obj",
+                                             "# exported by hand\r\nmtllib a.mtl\r\no thing\r\ng part\r\n"
+                                             "v 0 0 0 # origin\r\nv 1e0 0 0 1.0\r\n\tv  0 +1 0 \r\n"
+                                             "vt 0 0\r\nvt 1 0\r\nvn 0 0 1\r\nusemtl skin\r\ns 1\r\n"
+                                             "f 1/1/1 2/2/1 3//1 # one\r\n\r\n# f 9 9 9\r\nl 1 2\r\n"));
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  ASSERT_EQ(mesh->positions.size(), 3u);
+  EXPECT_EQ(mesh->positions[1], Vec3(1.0, 0.0, 0.0));
+  EXPECT_EQ(mesh->positions[2], Vec3(0.0, 1.0, 0.0));
+  ASSERT_EQ(mesh->faces.faceCount(), 1u);
+  EXPECT_EQ(face(mesh->faces, 0), (std::vector<std::uint32_t>{0, 1, 2}));
+}
+
+TEST_F(ObjTempDir, MalformedFilesNamePathAndLine) {
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  expectError("v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n", StatusCode::kParseError, ":2: ");
+  expectError("v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n", StatusCode::kParseError, ":2: ");
+  expectError("v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n", StatusCode::kParseError, ":2: ");
+  expectError("v 0 0 0\nv 1 0 1e999\nv 0 1 0\nf 1 2 3\n", StatusCode::kParseError, ":2: ");
+  expectError(tri + "f 1 2 x\n", StatusCode::kParseError, ":4: ");
+  expectError(tri + "f 0 1 2\n", StatusCode::kParseError, ":4: bad face index '0'");
+  expectError(tri + "f 1 2 3\nf 1 2 4\n", StatusCode::kParseError, ":5: face index 4 > vertex count 3");
+  expectError(tri + "f 1 -4 3\n", StatusCode::kParseError, ":4: face index '-4' points before the first vertex");
+  expectError(tri + "f 1 2\n", StatusCode::kParseError, ":4: face has 2 corners");
+  expectError("", StatusCode::kParseError, "no vertices");
+  expectError("# nothing\n", StatusCode::kParseError, "no vertices");
+  expectError(tri, StatusCode::kParseError, "no faces");
+}
+
+TEST(ReadObj, MissingFileIsAnIoError) {
+  const fs::path path = fs::temp_directory_path() / "odeskin_obj_reader_test_no_such_dir/none.obj";
+  const Result<ObjMesh> mesh = readObj(path);
+  ASSERT_FALSE(mesh.ok());
+  EXPECT_EQ(mesh.status().code(), StatusCode::kIoError);
+  EXPECT_NE(mesh.status().message().find(path.string()), std::string::npos);
+}
+
+// --- readObjSequence ---
+
+TEST(ReadObjSequence, AllTenCatPosesShareOneTopology) {
+  std::vector<fs::path> paths;
+  for (int k = 0; k < 10; ++k) paths.push_back(kData / ("cat-poses/cat-0" + std::to_string(k) + ".obj"));
+  const Result<ExampleSet> set = readObjSequence(paths);
+  ASSERT_TRUE(set.ok()) << set.status().toString();
+  ASSERT_EQ(set->poses.size(), 10u);
+  ASSERT_EQ(set->pose_labels.size(), 10u);
+  const Result<ObjMesh> first = readObj(paths[0]);
+  const Result<ObjMesh> last = readObj(paths[9]);
+  ASSERT_TRUE(first.ok() && last.ok());
+  for (int k = 0; k < 10; ++k) {
+    EXPECT_EQ(set->pose_labels[static_cast<std::size_t>(k)], "cat-0" + std::to_string(k) + ".obj");
+    EXPECT_EQ(set->poses[static_cast<std::size_t>(k)].size(), 7207u);
+  }
+  EXPECT_EQ(set->poses[0], first->positions);
+  EXPECT_EQ(set->poses[9], last->positions);
+  EXPECT_EQ(set->rest_positions, first->positions);  // no bind file: X = pose 0
+  EXPECT_EQ(set->faces.indices, first->faces.indices);
+  EXPECT_EQ(set->faces.face_offsets, first->faces.face_offsets);
+  EXPECT_FALSE(set->rig.has_value());
+  EXPECT_TRUE(set->render.empty());
+}
+
+TEST(ReadObjSequence, BindMeshBecomesTheRestPositions) {
+  std::vector<fs::path> paths;
+  for (int k = 1; k <= 4; ++k) paths.push_back(kData / ("cylinder/poses-1/cylinder-" + std::to_string(k) + ".obj"));
+  const fs::path bind = kData / "cylinder/cylinder.obj";  // `a/t` faces, same topology as the plain posed ones
+  const Result<ExampleSet> set = readObjSequence(paths, &bind);
+  ASSERT_TRUE(set.ok()) << set.status().toString();
+  const Result<ObjMesh> rest = readObj(bind);
+  const Result<ObjMesh> pose0 = readObj(paths[0]);
+  ASSERT_TRUE(rest.ok() && pose0.ok());
+  EXPECT_EQ(set->rest_positions, rest->positions);
+  EXPECT_EQ(set->poses[0], pose0->positions);
+  EXPECT_NE(set->rest_positions, set->poses[0]);
+  EXPECT_EQ(set->pose_labels,
+            (std::vector<std::string>{"cylinder-1.obj", "cylinder-2.obj", "cylinder-3.obj", "cylinder-4.obj"}));
+}
+
+// Poses written from the cylinder, then edited one way or another.
+class ObjSequenceTempDir : public ObjTempDir {
+ protected:
+  void SetUp() override {
+    ObjTempDir::SetUp();
+    const Result<ObjMesh> a = readObj(kData / "cylinder/poses-1/cylinder-1.obj");
+    const Result<ObjMesh> b = readObj(kData / "cylinder/poses-1/cylinder-2.obj");
+    ASSERT_TRUE(a.ok() && b.ok());
+    a_ = *a;
+    b_ = *b;
+  }
+  fs::path save(const std::string& name, const ObjMesh& mesh) const {
+    const fs::path path = dir_ / name;
+    EXPECT_TRUE(writeObj(path, mesh.positions, mesh.faces).ok());
+    return path;
+  }
+  std::string errorOf(const std::vector<fs::path>& poses, const fs::path* bind = nullptr) const {
+    const Result<ExampleSet> set = readObjSequence(poses, bind);
+    EXPECT_FALSE(set.ok());
+    if (set.ok()) return {};
+    EXPECT_EQ(set.status().code(), StatusCode::kInvalidArgument) << set.status().toString();
+    return set.status().message();
+  }
+
+  ObjMesh a_, b_;
+};
+
+TEST_F(ObjSequenceTempDir, WrittenCopiesRoundTrip) {
+  const std::vector<fs::path> paths{save("pose-a.obj", a_), save("pose-b.obj", b_)};
+  const Result<ExampleSet> set = readObjSequence(paths);
+  ASSERT_TRUE(set.ok()) << set.status().toString();
+  EXPECT_EQ(set->poses[1].size(), 420u);
+}
+
+TEST_F(ObjSequenceTempDir, ChangedFaceIndexNamesFileFaceAndBothVersions) {
+  ObjMesh bad = b_;
+  // Face 17 (1-based): give it another third corner.
+  const std::uint32_t k = bad.faces.face_offsets[16] + 2;
+  const std::string expected_a =
+      std::to_string(a_.faces.indices[k - 2] + 1) + " " + std::to_string(a_.faces.indices[k - 1] + 1) + " ";
+  bad.faces.indices[k] = (bad.faces.indices[k] + 7) % 420;
+  const std::vector<fs::path> paths{save("pose-a.obj", a_), save("pose-a2.obj", a_), save("pose-b.obj", bad),
+                                    save("pose-c.obj", bad)};
+  const std::string message = errorOf(paths);
+  const std::string want = "pose-b.obj: face 17 is " + expected_a + std::to_string(bad.faces.indices[k] + 1) +
+                           " but pose-a.obj has " + expected_a + std::to_string(a_.faces.indices[k] + 1);
+  EXPECT_EQ(message, want);
+}
+
+TEST_F(ObjSequenceTempDir, SwappedCornersAreADifferentFace) {
+  ObjMesh bad = b_;
+  std::swap(bad.faces.indices[bad.faces.face_offsets[4]], bad.faces.indices[bad.faces.face_offsets[4] + 1]);
+  const std::string message = errorOf({save("pose-a.obj", a_), save("pose-b.obj", bad)});
+  EXPECT_EQ(message.rfind("pose-b.obj: face 5 is ", 0), 0u) << message;
+}
+
+TEST_F(ObjSequenceTempDir, DroppedOrExtraVertexNamesFileAndBothCounts) {
+  // Drop the last vertex and the faces that use it, so the file itself stays valid.
+  ObjMesh dropped;
+  dropped.positions.assign(b_.positions.begin(), b_.positions.end() - 1);
+  for (std::size_t f = 0; f < b_.faces.faceCount(); ++f) {
+    const std::vector<std::uint32_t> corners = face(b_.faces, f);
+    if (std::find(corners.begin(), corners.end(), 419u) != corners.end()) continue;
+    dropped.faces.indices.insert(dropped.faces.indices.end(), corners.begin(), corners.end());
+    dropped.faces.face_offsets.push_back(static_cast<std::uint32_t>(dropped.faces.indices.size()));
+  }
+  EXPECT_EQ(errorOf({save("pose-a.obj", a_), save("pose-b.obj", dropped)}),
+            "pose-b.obj: 419 vertices but pose-a.obj has 420");
+  ObjMesh extra = b_;
+  extra.positions.push_back(Vec3(9.0));
+  EXPECT_EQ(errorOf({save("pose-a.obj", a_), save("pose-b.obj", extra)}),
+            "pose-b.obj: 421 vertices but pose-a.obj has 420");
+}
+
+TEST_F(ObjSequenceTempDir, MissingTrailingFacesNameBothFaceCounts) {
+  ObjMesh fewer = b_;
+  fewer.faces.face_offsets.pop_back();
+  fewer.faces.indices.resize(fewer.faces.face_offsets.back());
+  EXPECT_EQ(errorOf({save("pose-a.obj", a_), save("pose-b.obj", fewer)}),
+            "pose-b.obj: 799 faces but pose-a.obj has 800");
+}
+
+TEST_F(ObjSequenceTempDir, BindMeshWithOtherTopologyIsNamed) {
+  ObjMesh bad = b_;
+  std::swap(bad.faces.indices[0], bad.faces.indices[1]);
+  const fs::path bind = save("rest.obj", bad);
+  const std::string message = errorOf({save("pose-a.obj", a_), save("pose-b.obj", b_)}, &bind);
+  EXPECT_EQ(message.rfind("rest.obj: face 1 is ", 0), 0u) << message;
+  EXPECT_NE(message.find("but pose-a.obj has"), std::string::npos) << message;
+}
+
+TEST_F(ObjSequenceTempDir, FewerThanTwoPosesIsInvalid) {
+  EXPECT_NE(errorOf({save("pose-a.obj", a_)}).find("at least 2"), std::string::npos);
+  EXPECT_NE(errorOf({}).find("at least 2"), std::string::npos);
+}
+
+TEST_F(ObjSequenceTempDir, ReaderErrorsPassThrough) {
+  const std::vector<fs::path> paths{save("pose-a.obj", a_), dir_ / "missing.obj"};
+  const Result<ExampleSet> set = readObjSequence(paths);
+  ASSERT_FALSE(set.ok());
+  EXPECT_EQ(set.status().code(), StatusCode::kIoError);
+  EXPECT_NE(set.status().message().find("missing.obj"), std::string::npos);
+}
+
+TEST_F(ObjSequenceTempDir, NonManifoldFaceIsNamed) {
+  // Three triangles on the edge 1-2: the third cannot be added to a half-edge mesh.
+  const std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+  const std::vector<fs::path> paths{write("fan-1.obj", text), write("fan-2.obj", text)};
+  const std::string message = errorOf(paths);
+  EXPECT_EQ(message.rfind("fan-1.obj: face 3 ", 0), 0u) << message;
+  EXPECT_NE(message.find("non-manifold"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace odeskin
