@@ -5,12 +5,14 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
 
 #include "../core/result.hpp"
 #include "../rig/rig.hpp"
+#include "example_set.hpp"
 
 namespace odeskin {
 
@@ -44,5 +46,12 @@ Result<std::vector<glm::dquat>> readPoseJson(const std::filesystem::path& path, 
 // libigl forward_kinematics with zero extra translation: root R_b = q_b, t_b = c - R_b c;
 // child R_b = R_p q_b, t_b = t_p + R_p c - R_b c (c = the bone's head). Parents may come in any order.
 std::vector<RigidTransform> forwardKinematics(const Skeleton& skeleton, const std::vector<glm::dquat>& relative);
+
+// Example poses with a libigl rig: the rest mesh is the bind mesh X, `poses` are OBJ files of the
+// same topology, the skeleton comes from `tgf`; `weights` (.dmat, optional: distance weights are
+// computed later) and `transforms` (one .Tmat per pose, optional: Kabsch-fitted later) complete it.
+Result<ExampleSet> readLibiglExamples(const std::filesystem::path& rest, std::span<const std::filesystem::path> poses,
+                                      const std::filesystem::path& tgf, const std::filesystem::path* weights,
+                                      std::span<const std::filesystem::path> transforms);
 
 }  // namespace odeskin

@@ -21,6 +21,12 @@ Result<DeformPlayer> DeformPlayer::create(const DeformAsset& asset) {
       player.bases_.push_back(*basis);
     }
   }
+  std::vector<RigidTransform> keys(asset.key_poses.size());
+  player.bone_paths_.reserve(asset.bone_count);
+  for (std::uint32_t b = 0; b < asset.bone_count; ++b) {
+    for (std::size_t k = 0; k < keys.size(); ++k) keys[k] = asset.key_poses[k][b];
+    player.bone_paths_.emplace_back(keys, asset.bone_pivots[b]);
+  }
   return player;
 }
 
@@ -40,10 +46,8 @@ void DeformPlayer::basisAt(double tau, std::span<ModeBasisValue> out) const {
 
 void DeformPlayer::bonesAt(const DeformAsset& asset, std::uint32_t segment, double tau,
                            std::span<BoneTransform> out) const {
-  const auto& from = asset.key_poses[segment];
-  const auto& to = asset.key_poses[segment + 1];
-  for (std::uint32_t b = 0; b < asset.bone_count && b < out.size(); ++b) {
-    out[b] = interpolateRigid(from[b], to[b], tau, asset.bone_pivots[b]).matrix();
+  for (std::uint32_t b = 0; b < asset.bone_count && b < out.size() && b < bone_paths_.size(); ++b) {
+    out[b] = bone_paths_[b].at(segment, tau).matrix();
   }
 }
 

@@ -27,7 +27,7 @@ class DeformPlayer {
 
   // Time basis values at tau (basisSize() entries).
   void basisAt(double tau, std::span<ModeBasisValue> out) const;
-  // Bone transforms of `segment` at tau (asset.bone_count entries).
+  // Bone transforms of `segment` at tau (asset.bone_count entries), C1 across keys (RigidKeyPath).
   void bonesAt(const DeformAsset& asset, std::uint32_t segment, double tau, std::span<BoneTransform> out) const;
 
   const ModeTimeBasis& basis(std::uint32_t material, int n) const { return bases_[material * (modes_ + 1) + n]; }
@@ -36,6 +36,7 @@ class DeformPlayer {
   int modes_ = 0;
   std::uint32_t segment_count_ = 0;
   std::vector<ModeTimeBasis> bases_;
+  std::vector<RigidKeyPath> bone_paths_;  // B
 };
 
 // The reference job of `asset` for one frame (spans into asset and the caller's frame buffers).

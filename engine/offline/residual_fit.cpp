@@ -2,6 +2,7 @@
 #include "residual_fit.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -93,20 +94,42 @@ std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, std::s
   return residuals;
 }
 
-Status fitSegmentCurves(const FitInput& in, int modes, const std::vector<Vec3>& delta, DeformSegment& seg) {
-  const std::size_t m_count = coefficientsPerCurve(modes);
+// The fit of one curve with the most modes (<= N) its points determine; with none, the mean
+// (closed) or the end-to-end trend (open).
+Result<FourierFit> fitCurveAdaptive(std::span<const double> v, std::span<const Vec3> values, int modes, bool closed,
+                                    bool adaptive) {
+  for (int n = modes; n >= 1; --n) {
+    Result<FourierFit> fit = fitFourier(v, values, n, closed);
+    if (fit.ok() || fit.status().code() != StatusCode::kIllPosed || !adaptive) return fit;
+  }
+  FourierFit constant;
+  constant.closed = closed;
+  constant.coefficients.assign(1, Vec3(0.0));
+  if (closed) {
+    for (const Vec3& x : values) constant.coefficients[0] += x / static_cast<double>(values.size());
+  } else {
+    constant.p0 = values.front();
+    constant.slope = values.back() - values.front();
+  }
+  return constant;
+}
+
+Status fitSegmentCurves(const FitInput& in, const FitOptions& opt, const std::vector<Vec3>& delta, DeformSegment& seg,
+                        std::size_t* reduced) {
+  const std::size_t m_count = coefficientsPerCurve(opt.modes);
   std::vector<Vec3> values;
   for (std::size_t c = 0; c < in.curves.size(); ++c) {
     const IsoCurve& curve = in.curves[c];
     // A point on an edge moves with the same edge ratio in every pose (thesis Fig. 6.6).
     values.clear();
     for (const CurvePoint& p : curve.points) values.push_back((1.0 - p.t) * delta[p.a] + p.t * delta[p.b]);
-    Result<FourierFit> fit = fitFourier(curve.v, values, modes, curve.closed);
+    Result<FourierFit> fit = fitCurveAdaptive(curve.v, values, opt.modes, curve.closed, opt.adaptive_modes);
     if (!fit.ok()) {
       return Status(fit.status().code(), "curve " + std::to_string(c) + ": " + fit.status().message());
     }
+    if (fit->modes < opt.modes) ++*reduced;
     Vec3* d = seg.coefficients.data() + c * m_count;
-    for (std::size_t m = 0; m + 1 < m_count; ++m) d[m] = fit->coefficients[m];
+    for (std::size_t m = 0; m < fit->coefficients.size(); ++m) d[m] = fit->coefficients[m];
     // Open curves: the trend p0 + slope v joins the constant and the v term (gpu_layout.h).
     d[0] += fit->p0;
     d[m_count - 1] = fit->slope;
@@ -155,10 +178,18 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   const std::size_t v_count = in.rest_positions.size();
   const std::size_t key_count = in.poses.size();
   const std::size_t m_count = coefficientsPerCurve(opt.modes);
+  using Clock = std::chrono::steady_clock;
+  auto seconds_since = [](Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  Clock::time_point stage = Clock::now();
   std::vector<std::vector<Vec3>> residuals(key_count);
   for (std::size_t k = 0; k < key_count; ++k) residuals[k] = keyResiduals(in, opt, k, &rep.ill_conditioned);
+  rep.seconds_geometric = seconds_since(stage);
+  stage = Clock::now();
 
   asset.segments.resize(key_count - 1);
+  double sum_squares = 0.0;
   std::vector<Vec3> delta(v_count);
   for (std::size_t s = 0; s + 1 < key_count; ++s) {
     DeformSegment& seg = asset.segments[s];
@@ -167,7 +198,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
     seg.rates.assign(in.curves.size() * m_count, Vec3(0.0));
     seg.remainder_indices.assign(v_count, kNoRemainder);
     for (std::size_t i = 0; i < v_count; ++i) delta[i] = residuals[s + 1][i] - residuals[s][i];
-    Status fitted = fitSegmentCurves(in, opt.modes, delta, seg);
+    Status fitted = fitSegmentCurves(in, opt, delta, seg, &rep.reduced_curves);
     if (!fitted.ok()) return Status(fitted.code(), "segment " + std::to_string(s) + ": " + fitted.message());
 
     // Bind-space remainders bound the posed key error too: a convex blend of rotations has norm <= 1.
@@ -181,7 +212,10 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
                           b.w * curveSeries(seg.coefficients, {}, at_key, opt.modes, b.curve_b, b.v);
       const Vec3 eps = delta[i] - series;
       const double error = glm::length(eps);
-      if (box > 0.0) rep.max_series_error = std::max(rep.max_series_error, error / box);
+      if (box > 0.0) {
+        rep.max_series_error = std::max(rep.max_series_error, error / box);
+        sum_squares += (error / box) * (error / box);
+      }
       if (!opt.pure_fourier && error > threshold) {
         seg.remainder_indices[i] = static_cast<std::uint32_t>(seg.remainders.size());
         seg.remainders.push_back(eps);
@@ -190,6 +224,9 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
     rep.remainder_count += seg.remainders.size();
   }
 
+  rep.rms_series_error = std::sqrt(sum_squares / static_cast<double>(v_count * (key_count - 1)));
+  rep.seconds_fourier = seconds_since(stage);
+  stage = Clock::now();
   ODESKIN_ASSIGN_OR_RETURN(DeformPlayer player, DeformPlayer::create(asset));
   // Rate continuity across keys (PIPELINE.md 3): the end rate of segment s-1 starts segment s.
   for (std::size_t s = 1; s < asset.segments.size(); ++s) {
@@ -223,6 +260,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
       rep.key_error[k] = std::max(rep.key_error[k], box > 0.0 ? worst / box : worst);
     }
   }
+  rep.seconds_solve = seconds_since(stage);
   return asset;
 }
 

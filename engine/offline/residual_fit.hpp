@@ -38,6 +38,9 @@ struct FitOptions {
   // sparse remainders, unless pure_fourier (the thesis's representation, error only reported).
   double key_tolerance = 1e-4;
   bool pure_fourier = false;
+  // A curve with too few points (or too uneven a spacing) for N modes is fitted with the largest
+  // N' < N its points determine (PIPELINE.md 4's per-curve N); false makes that an error.
+  bool adaptive_modes = true;
 };
 
 struct FitReport {
@@ -45,10 +48,18 @@ struct FitReport {
   std::size_t remainder_count = 0;    // sparse remainders over all segments
   std::size_t ill_conditioned = 0;    // vertices whose blended rotation A is near singular
   double max_series_error = 0.0;      // worst |eps| before remainders, / longest box side
+  double rms_series_error = 0.0;      // root mean square |eps| over all vertices and segments, / box side
+  std::size_t reduced_curves = 0;     // (segment, curve) fits that used fewer than N modes
+  // Seconds per stage (thesis Table 6.3): skinning the bind mesh at every key and the bind-space
+  // residuals; Fourier fits and remainders; time bases, rate chaining and playing every key back.
+  double seconds_geometric = 0.0;
+  double seconds_fourier = 0.0;
+  double seconds_solve = 0.0;
 };
 
 // Errors: kInvalidArgument (sizes, indices, a curve point off the mesh or without its v, fewer
-// than 2 poses), kIllPosed (a curve with too few vertices for N, a resonant material mode), and the
+// than 2 poses), kIllPosed (a curve with too few points for N when !adaptive_modes, a resonant
+// material mode), and the
 // errors of fitFourier / ModeTimeBasis::create, each prefixed with the curve or material concerned.
 Result<DeformAsset> fitDeformAsset(const FitInput& input, const FitOptions& options, FitReport* report = nullptr);
 

@@ -178,6 +178,25 @@ TEST(ResidualFit, RateIsContinuousAcrossKeys) {
   EXPECT_LT(worst_jump, 1e-3 * typical + 1e-6);
 }
 
+TEST(ResidualFit, CurvesWithFewPointsUseFewerModes) {
+  Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
+  ASSERT_TRUE(arm.ok());
+  FitOptions opt;
+  opt.modes = 16;  // rings of 32 vertices determine at most 15 modes: every curve drops to 15
+  FitReport report;
+  Result<DeformAsset> asset = fitDeformAsset(arm->fit_input, opt, &report);
+  ASSERT_TRUE(asset.ok()) << asset.status().toString();
+  EXPECT_EQ(report.reduced_curves, arm->fit_input.curves.size());
+  for (double e : report.key_error) EXPECT_LT(e, opt.key_tolerance);
+  // A 3-point curve keeps only its mean.
+  FitInput in = arm->fit_input;
+  in.curves[0].points.resize(3);
+  in.curves[0].v.resize(3);
+  ASSERT_TRUE(fitDeformAsset(in, FitOptions{}, &report).ok());
+  EXPECT_EQ(report.reduced_curves, 1u);
+  for (double e : report.key_error) EXPECT_LT(e, 1e-4);
+}
+
 TEST(ResidualFit, RejectsMismatchedInput) {
   Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
   ASSERT_TRUE(arm.ok());
@@ -196,6 +215,7 @@ TEST(ResidualFit, RejectsMismatchedInput) {
   EXPECT_EQ(fitDeformAsset(in, FitOptions{}).status().code(), StatusCode::kInvalidArgument);
   FitOptions too_many;
   too_many.modes = 16;  // rings of 32 vertices determine at most 15 modes (2N+1 <= 32)
+  too_many.adaptive_modes = false;
   Result<DeformAsset> rank = fitDeformAsset(arm->fit_input, too_many);
   EXPECT_EQ(rank.status().code(), StatusCode::kIllPosed);
   EXPECT_NE(rank.status().message().find("curve 0"), std::string::npos) << rank.status().message();

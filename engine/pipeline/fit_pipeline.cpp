@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: MIT
+#include "fit_pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "../curves/iso_curves.hpp"
+#include "../rig/auto_rig.hpp"
+#include "../rig/distance_weights.hpp"
+#include "../rig/kabsch.hpp"
+
+namespace odeskin {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+std::string scientific(double x) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.2e", x);
+  return text;
+}
+
+Status checkExamples(const ExampleSet& ex) {
+  const std::size_t v_count = ex.rest_positions.size();
+  if (v_count == 0) return invalidArgument("fit: the mesh has no vertices");
+  if (ex.poses.size() < 2) {
+    return invalidArgument("fit: needs at least 2 example poses, got " + std::to_string(ex.poses.size()));
+  }
+  for (std::size_t k = 0; k < ex.poses.size(); ++k) {
+    const std::string label = k < ex.pose_labels.size() ? ex.pose_labels[k] : "pose " + std::to_string(k);
+    if (ex.poses[k].size() != v_count) {
+      return invalidArgument("fit: " + label + " has " + std::to_string(ex.poses[k].size()) + " vertices, the bind mesh " +
+                             std::to_string(v_count));
+    }
+  }
+  for (std::uint32_t index : ex.faces.indices) {
+    if (index >= v_count) return invalidArgument("fit: a face uses vertex " + std::to_string(index) + " of " + std::to_string(v_count));
+  }
+  return okStatus();
+}
+
+// The rig the fit uses: the input's, completed (weights by distance, transforms by Kabsch), or automatic.
+Result<Rig> resolveRig(const ExampleSet& ex, const PipelineOptions& opt, std::string* summary) {
+  const std::size_t k_count = ex.poses.size();
+  if (!ex.rig || opt.force_auto_rig) {
+    AutoRigOptions auto_options;
+    auto_options.bones = opt.auto_bones;
+    AutoRigReport report;
+    Result<Rig> rig = autoRig(ex.rest_positions, ex.faces, ex.poses, auto_options, &report);
+    if (!rig.ok()) return Status(rig.status().code(), "automatic rig: " + rig.status().message());
+    *summary = "auto: " + std::to_string(report.bones) + " bones from " + std::to_string(k_count) +
+               " poses (LBS error mean " + scientific(report.mean_error) + ", max " + scientific(report.max_error) +
+               " of the box)";
+    return rig;
+  }
+  Rig rig = *ex.rig;
+  ODESKIN_TRY(validateRig(rig, ex.rest_positions.size(), k_count));
+  std::string weights = "given weights";
+  if (rig.influences.vertexCount() == 0) {
+    Result<Influences> influences = distanceWeights(ex.rest_positions, ex.faces, rig.skeleton);
+    if (!influences.ok()) return Status(influences.status().code(), "distance weights: " + influences.status().message());
+    rig.influences = std::move(*influences);
+    weights = "distance weights";
+  }
+  std::string transforms = "given transforms";
+  if (rig.key_poses.empty()) {
+    Result<std::vector<std::vector<RigidTransform>>> fitted =
+        fitBoneTransforms(ex.rest_positions, ex.poses, rig.influences, rig.skeleton);
+    if (!fitted.ok()) return Status(fitted.status().code(), "bone transforms: " + fitted.status().message());
+    rig.key_poses = std::move(*fitted);
+    transforms = "Kabsch transforms";
+  }
+  *summary = "given skeleton: " + std::to_string(rig.skeleton.boneCount()) + " bones, " + weights + ", " + transforms;
+  return rig;
+}
+
+// Material 0 is the default; each overridden part adds one. Part keys are bone names or indices.
+Status assignMaterials(const PipelineOptions& opt, const Skeleton& skeleton, const CurveSet& curves, FitOptions& fit) {
+  fit.materials = {opt.material};
+  std::vector<std::int64_t> part_material(skeleton.boneCount(), 0);
+  for (const auto& [key, material] : opt.part_materials) {
+    std::int64_t bone = -1;
+    for (std::size_t b = 0; b < skeleton.names.size(); ++b) {
+      if (skeleton.names[b] == key) bone = static_cast<std::int64_t>(b);
+    }
+    if (bone < 0 && !key.empty() && key.find_first_not_of("0123456789") == std::string::npos && key.size() < 10) {
+      bone = std::stoll(key);
+    }
+    if (bone < 0 || bone >= static_cast<std::int64_t>(skeleton.boneCount())) {
+      return invalidArgument("materials: part '" + key + "' is neither a bone name nor a bone index below " +
+                             std::to_string(skeleton.boneCount()));
+    }
+    part_material[static_cast<std::size_t>(bone)] = static_cast<std::int64_t>(fit.materials.size());
+    fit.materials.push_back(material);
+  }
+  fit.curve_materials.clear();
+  for (const IsoCurve& curve : curves.curves) {
+    const std::size_t part = curve.part < part_material.size() ? curve.part : 0;
+    fit.curve_materials.push_back(static_cast<std::uint32_t>(part_material[part]));
+  }
+  return okStatus();
+}
+
+}  // namespace
+
+Result<PipelineResult> runFitPipeline(const ExampleSet& ex, const PipelineOptions& opt) {
+  const Clock::time_point start = Clock::now();
+  auto progress = [&](std::string_view stage, double fraction) {
+    if (opt.progress) opt.progress(stage, fraction);
+  };
+  ODESKIN_TRY(checkExamples(ex));
+  if (!(opt.segment_seconds > 0.0) || !std::isfinite(opt.segment_seconds)) {
+    return invalidArgument("fit: segment length must be a positive number of seconds");
+  }
+  PipelineResult result;
+
+  progress("rig", 0.0);
+  Clock::time_point stage = Clock::now();
+  ODESKIN_ASSIGN_OR_RETURN(Rig rig, resolveRig(ex, opt, &result.rig_summary));
+  result.timings.rig = secondsSince(stage);
+
+  progress("curves", 0.25);
+  stage = Clock::now();
+  Result<CurveSet> curves = buildIsoCurves(ex.rest_positions, ex.faces, rig.skeleton, rig.influences);
+  if (!curves.ok()) return Status(curves.status().code(), "iso-curves: " + curves.status().message());
+  ODESKIN_TRY(validateCurveSet(*curves, ex.rest_positions.size()));
+  result.timings.curve_identification = secondsSince(stage);
+  std::set<std::uint32_t> parts;
+  for (const IsoCurve& curve : curves->curves) parts.insert(curve.part);
+  result.part_count = parts.size();
+
+  FitOptions fit;
+  fit.modes = opt.modes;
+  fit.residual_space = opt.residual_space;
+  fit.skinning = opt.skinning;
+  fit.key_tolerance = opt.key_tolerance;
+  fit.pure_fourier = opt.pure_fourier;
+  ODESKIN_TRY(assignMaterials(opt, rig.skeleton, *curves, fit));
+
+  FitInput input;
+  input.rest_positions = ex.rest_positions;
+  input.faces = ex.faces;
+  input.poses = ex.poses;
+  input.influences = rig.influences;
+  input.bone_count = static_cast<std::uint32_t>(rig.skeleton.boneCount());
+  input.bone_pivots = rig.skeleton.heads;
+  input.key_poses = rig.key_poses;
+  input.curves = curves->curves;
+  input.bindings = curves->bindings;
+
+  progress("fit", 0.5);
+  Result<DeformAsset> asset = fitDeformAsset(input, fit, &result.report);
+  if (!asset.ok()) return asset.status();
+  result.asset = std::move(*asset);
+  result.asset.skinning = opt.skinning;
+  result.asset.segment_seconds = opt.segment_seconds;
+  result.asset.render = ex.render;
+  result.asset.bone_parents = rig.skeleton.parents;
+  result.asset.bone_names = rig.skeleton.names;
+  ODESKIN_TRY(validateDeformAsset(result.asset));
+  result.timings.geometric_transform = result.report.seconds_geometric;
+  result.timings.fourier_and_deformation = result.report.seconds_fourier;
+  result.timings.analytic_solve = result.report.seconds_solve;
+  result.timings.total = secondsSince(start);
+  progress("done", 1.0);
+  return result;
+}
+
+}  // namespace odeskin
