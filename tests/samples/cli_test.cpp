@@ -3,6 +3,7 @@
 // and saved to a temporary .odsk; plus the option parsers behind play and fit.
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include "engine/offline/procedural_arm.hpp"
 #include "host/gpu_test_support.hpp"
 #include "samples/odeskin/asset_info.hpp"
+#include "samples/odeskin/fit_options.hpp"
 #include "samples/odeskin/material_options.hpp"
 #include "samples/odeskin/play_command.hpp"
 #include "samples/odeskin/progress.hpp"
@@ -405,6 +407,106 @@ TEST(MaterialOptions, PartsJson) {
   const Result<MaterialChoice> read = readMaterialsJson(dir / "parts.json");
   ASSERT_TRUE(read.ok()) << read.status().toString();
   EXPECT_EQ(read->default_material.zeta, staticMaterial().zeta);
+}
+
+FitCommandOptions objFit() {
+  FitCommandOptions o;
+  o.inputs = {"a.obj", "b.OBJ", "c.obj"};
+  o.output = "out.odsk";
+  return o;
+}
+
+TEST(FitOptions, InputKinds) {
+  std::string problem;
+  FitCommandOptions o = objFit();
+  EXPECT_EQ(fitInputKind(o, &problem), FitInputKind::kObj);
+  EXPECT_TRUE(problem.empty()) << problem;
+  EXPECT_EQ(fitUsageProblem(o), "");
+  o.bind = "rest.obj";
+  o.rig = "auto";
+  o.bones = 4;
+  EXPECT_EQ(fitUsageProblem(o), "");
+  o = objFit();
+  o.rig = "skeleton.tgf";
+  o.bind = "rest.obj";
+  o.weights = "w.dmat";
+  o.transforms = {"1.Tmat", "2.Tmat", "3.Tmat"};
+  EXPECT_EQ(fitInputKind(o, &problem), FitInputKind::kLibigl);
+  EXPECT_EQ(fitUsageProblem(o), "");
+  o = FitCommandOptions{};
+  o.inputs = {"walk.glb"};
+  o.output = "walk.odsk";
+  o.times = {0.0, 0.5};
+  o.animation = "Walk";
+  EXPECT_EQ(fitInputKind(o, &problem), FitInputKind::kGltf);
+  EXPECT_EQ(fitUsageProblem(o), "");
+  o.times.clear();
+  o.targets = {0, 1};
+  EXPECT_EQ(fitUsageProblem(o), "");
+}
+
+TEST(FitOptions, UsageProblems) {
+  struct Case {
+    std::function<void(FitCommandOptions&)> change;
+    std::string message;
+  };
+  const Case cases[] = {
+      {[](FitCommandOptions& o) { o.inputs.clear(); }, "no example poses"},
+      {[](FitCommandOptions& o) { o.inputs.resize(1); }, "at least 2 example poses, got 1"},
+      {[](FitCommandOptions& o) { o.output.clear(); }, "-o ASSET is required"},
+      {[](FitCommandOptions& o) { o.terms = 0; }, "--terms 0 is outside 1..64"},
+      {[](FitCommandOptions& o) { o.terms = 65; }, "--terms 65 is outside 1..64"},
+      {[](FitCommandOptions& o) { o.key_tolerance = -1e-3; }, "--key-tolerance"},
+      {[](FitCommandOptions& o) { o.segment_seconds = 0.0; }, "--segment-seconds must be positive"},
+      {[](FitCommandOptions& o) { o.bones = -2; }, "--bones must be >= 0"},
+      {[](FitCommandOptions& o) { o.material = "rubber"; }, "--material: material 'rubber'"},
+      {[](FitCommandOptions& o) {
+         o.material = "static";
+         o.materials_json = "parts.json";
+       },
+       "not both"},
+      {[](FitCommandOptions& o) { o.rig = "skeleton.bvh"; }, "--rig takes auto or a libigl skeleton"},
+      {[](FitCommandOptions& o) { o.rig = "skeleton.tgf"; }, "needs --bind REST.obj"},
+      {[](FitCommandOptions& o) {
+         o.rig = "skeleton.tgf";
+         o.bind = "rest.obj";
+         o.transforms = {"1.Tmat"};
+       },
+       "1 --transforms files for 3 poses"},
+      {[](FitCommandOptions& o) {
+         o.rig = "skeleton.tgf";
+         o.bones = 3;
+       },
+       "--bones applies to the automatic rig"},
+      {[](FitCommandOptions& o) { o.weights = "w.dmat"; }, "need --rig SKELETON.tgf"},
+      {[](FitCommandOptions& o) { o.times = {0.5}; }, "apply to a .gltf/.glb input"},
+      {[](FitCommandOptions& o) { o.inputs.push_back("d.ply"); }, "d.ply: unknown input format '.ply'"},
+      {[](FitCommandOptions& o) { o.inputs.push_back("walk.glb"); }, "not both or several"},
+      {[](FitCommandOptions& o) { o.inputs = {"walk.gltf"}; }, "needs --times a,b,... or --targets"},
+      {[](FitCommandOptions& o) {
+         o.inputs = {"walk.gltf"};
+         o.times = {1.0};
+         o.bind = "rest.obj";
+       },
+       "--bind applies to OBJ poses"},
+      {[](FitCommandOptions& o) {
+         o.inputs = {"walk.glb"};
+         o.targets = {0};
+         o.rig = "skeleton.tgf";
+       },
+       "a glTF file brings its own skin"},
+  };
+  for (const Case& c : cases) {
+    FitCommandOptions o = objFit();
+    c.change(o);
+    const std::string problem = fitUsageProblem(o);
+    EXPECT_EQ(problem.rfind("fit: ", 0), 0u) << c.message << ": " << problem;
+    EXPECT_NE(problem.find(c.message), std::string::npos) << problem;
+  }
+  FitCommandOptions o = objFit();
+  EXPECT_EQ(fitMaterialText(o), "skin");
+  o.material = "1,2,3,4";
+  EXPECT_EQ(fitMaterialText(o), "1,2,3,4");
 }
 
 TEST(Progress, SilentWhenDisabledRedrawnInPlaceWhenEnabled) {
