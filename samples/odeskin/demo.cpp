@@ -7,6 +7,7 @@
 #include <ostream>
 #include <thread>
 
+#include "engine/io/asset_file.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/kernels/fourier_deform_fast_job.hpp"
 #include "engine/offline/deform_player.hpp"
@@ -78,6 +79,13 @@ Result<DemoResult> runDemo(const DemoOptions& options, std::ostream& log) {
   fit.key_tolerance = kDemoKeyTolerance;
   FitReport report;
   ODESKIN_ASSIGN_OR_RETURN(DeformAsset asset, fitDeformAsset(arm.fit_input, fit, &report));
+  if (!options.asset_path.empty()) {
+    std::error_code ec;
+    if (options.asset_path.has_parent_path()) std::filesystem::create_directories(options.asset_path.parent_path(), ec);
+    if (ec) return ioError(options.asset_path.parent_path().string() + ": cannot create directory: " + ec.message());
+    ODESKIN_TRY(saveAsset(options.asset_path, asset));
+    log << "asset: " << options.asset_path.string() << "\n";
+  }
   ODESKIN_ASSIGN_OR_RETURN(DeformPlayer player, DeformPlayer::create(asset));
   ODESKIN_ASSIGN_OR_RETURN(PackedDeformData packed, packDeformAsset(asset));
   log << "arm: " << asset.vertexCount() << " vertices, " << asset.curveCount() << " curves, N = " << asset.modes

@@ -25,6 +25,7 @@ struct DemoOptions {
   ResidualSpace residual_space = ResidualSpace::kBind;
   unsigned threads = 0;            // CPU worker threads, 0 = all
   bool validation = false;         // Khronos validation layer (when installed)
+  std::filesystem::path asset_path;  // non-empty: also save the fitted arm as a .odsk asset there
 };
 
 struct DemoResult {

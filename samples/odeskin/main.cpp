@@ -1,18 +1,26 @@
 // SPDX-License-Identifier: MIT
-// The odeskin command line. Exit status: 0 success; 1 bad input or runtime failure, with one line
-// "odeskin: error: ..." on stderr; 2 usage error.
+// The odeskin command line: CLI11 wiring only; each verb lives in its own file. Exit status: 0
+// success; 1 bad input or runtime failure, with one line "odeskin: error: ..." on stderr; 2 usage error.
 #include <cstdio>
 #include <iostream>
 #include <map>
 
 #include <CLI/CLI.hpp>
 
+#include "asset_info.hpp"
 #include "demo.hpp"
+#include "engine/offline/fourier_fit.hpp"
+#include "fit_command.hpp"
 #include "host/device_info.hpp"
+#include "play_command.hpp"
+#include "progress.hpp"
 
 namespace {
 
 constexpr double kDemoEndTolerance = 1e-5;  // frame 0 / last frame vs start.obj / end.obj, of the box
+
+const std::map<std::string, odeskin::Backend> kBackends{
+    {"auto", odeskin::Backend::kAuto}, {"cpu", odeskin::Backend::kCpu}, {"vulkan", odeskin::Backend::kVulkan}};
 
 int fail(const odeskin::Status& status) {
   std::cerr << "odeskin: error: " << status.message() << "\n";
@@ -34,29 +42,99 @@ int runDemoCommand(const odeskin::DemoOptions& options) {
   return 0;
 }
 
+#ifdef ODESKIN_WITH_FIT
+CLI::App* addFitCommand(CLI::App& app, odeskin::FitCommandOptions& o, std::string& residual, std::string& skinning) {
+  CLI::App* fit = app.add_subcommand("fit", "Fit a deformer to example poses and save it as a .odsk asset");
+  fit->footer(
+      "Inputs: OBJ poses of one mesh (optionally --bind REST.obj), one .gltf/.glb with --times or --targets,\n"
+      "or OBJ poses with a libigl rig (--rig SKELETON.tgf --bind REST.obj [--weights W.dmat] [--transforms ...]).\n"
+      "Example: odeskin fit horse-01.obj horse-03.obj horse-05.obj -o horse.odsk --terms 9 --timings");
+  fit->add_option("poses", o.inputs, "Example poses: OBJ files, or one .gltf/.glb")->required();
+  fit->add_option("-o,--output", o.output, "The .odsk asset to write")->required();
+  fit->add_option("--rig", o.rig, "auto (derive bones from the poses) or a libigl .tgf skeleton; default: the input's rig, else auto");
+  fit->add_option("--bind", o.bind, "Rest mesh (.obj) of the OBJ poses; default: the first pose");
+  fit->add_option("--weights", o.weights, "Skinning weights (.dmat) for --rig SKELETON.tgf");
+  fit->add_option("--transforms", o.transforms, "One .Tmat per pose for --rig SKELETON.tgf")->delimiter(',');
+  fit->add_option("--mesh", o.mesh, "glTF: the mesh node (default: the first skinned mesh)");
+  fit->add_option("--animation", o.animation, "glTF: animation name or index (default: the first)");
+  fit->add_option("--times", o.times, "glTF: animation times in seconds, one example pose each")->delimiter(',');
+  fit->add_option("--targets", o.targets, "glTF: morph target indices, one example pose each")->delimiter(',');
+  fit->add_option("--terms", o.terms, "Fourier terms N per curve")->check(CLI::Range(1, odeskin::kMaxFourierModes));
+  fit->add_option("--material", o.material, "skin, static, or rho,eta,zeta,xi for every part (default skin)");
+  fit->add_option("--materials", o.materials_json,
+                  "Per-part materials: {\"default\": \"skin\", \"parts\": {\"<bone>\": \"static\" | {\"rho\":..}}}");
+  fit->add_option("--residual", residual, "bind (rotation-aware) or posed (the thesis's)")
+      ->check(CLI::IsMember({"bind", "posed"}));
+  fit->add_option("--skinning", skinning, "lbs or dqs")->check(CLI::IsMember({"lbs", "dqs"}));
+  fit->add_option("--key-tolerance", o.key_tolerance, "Key poses reproduced within this fraction of the box");
+  fit->add_flag("--pure-fourier", o.pure_fourier, "No sparse remainders (the thesis's representation)");
+  fit->add_option("--bones", o.bones, "Automatic rig: bone count (0: chosen from the mesh)");
+  fit->add_option("--segment-seconds", o.segment_seconds, "Playback length of one key-to-key segment");
+  fit->add_flag("--timings", o.timings, "Print the stage breakdown of the thesis's Table 6.3");
+  return fit;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"odeskin: analytic physics-based skin deformation (Bian 2018) on CPU and Vulkan compute"};
   app.require_subcommand(1);
+  app.fallthrough();  // global options may follow the verb
   std::string device = "auto";
+  bool quiet = false;
   app.add_option("--device", device, "Vulkan device: auto, an index or a name substring (env ODESKIN_DEVICE)");
+  app.add_flag("-q,--quiet", quiet, "No summaries, notes or progress bars (errors still go to stderr)");
 
-  CLI::App* info = app.add_subcommand("info", "List Vulkan devices and the limits that matter");
+  std::filesystem::path info_asset;
+  CLI::App* info = app.add_subcommand("info", "Describe a .odsk asset, or without one list the Vulkan devices");
+  info->add_option("asset", info_asset, "A .odsk asset: counts, coefficient and byte sizes, size ratios");
+  info->footer("Example: odeskin info arm.odsk");
 
   odeskin::DemoOptions demo;
-  std::string backend = "auto";
+  std::string demo_backend = "auto";
   std::string residual = "bind";
   CLI::App* demo_cmd = app.add_subcommand("demo", "Fit the procedural arm's two poses and play the in-betweens");
   demo_cmd->add_option("-o,--output", demo.output_dir, "Output folder for start.obj, end.obj, frame_NNNN.obj");
   demo_cmd->add_option("--frames", demo.frames, "Frames from t = 0 to t = 1")->check(CLI::Range(2, 100000));
-  demo_cmd->add_option("--backend", backend, "cpu, vulkan or auto")->check(CLI::IsMember({"auto", "cpu", "vulkan"}));
+  demo_cmd->add_option("--backend", demo_backend, "cpu, vulkan or auto")->check(CLI::IsMember({"auto", "cpu", "vulkan"}));
   demo_cmd->add_option("--modes", demo.modes, "Fourier modes N per curve")->check(CLI::Range(1, 15));
   demo_cmd->add_option("--material", demo.material, "skin (dynamic) or static")->check(CLI::IsMember({"skin", "static"}));
   demo_cmd->add_option("--residual", residual, "bind (rotation-aware) or posed (the thesis's)")
       ->check(CLI::IsMember({"bind", "posed"}));
   demo_cmd->add_option("--threads", demo.threads, "CPU threads (0 = all)");
   demo_cmd->add_flag("--validation", demo.validation, "Enable the Khronos validation layer; fail on any message");
+  demo_cmd->add_option("--save-asset", demo.asset_path, "Also save the fitted arm as a .odsk asset (for play and info)");
+
+  odeskin::PlayOptions play;
+  double play_t = 0.0;
+  double play_fps = 0.0;
+  double play_seconds = 0.0;
+  std::string play_backend = "cpu";
+  CLI::App* play_cmd = app.add_subcommand("play", "Evaluate an asset at a time or over a sequence and write OBJ files");
+  play_cmd->footer(
+      "T runs over [0, K-1] for K example poses: integer T is example pose T, T = 1.5 the middle of the\n"
+      "second segment. A sequence maps seconds to T = seconds / segment length.\n"
+      "Examples: odeskin play arm.odsk --t 0.5 -o mid.obj\n"
+      "          odeskin play arm.odsk --fps 30 --seconds 1 -o frames/arm_%04d.obj --backend vulkan");
+  play_cmd->add_option("asset", play.asset, "The .odsk asset")->required();
+  CLI::Option* t_opt = play_cmd->add_option("--t", play_t, "One frame at global time T in [0, K-1]");
+  CLI::Option* fps_opt = play_cmd->add_option("--fps", play_fps, "A sequence at this frame rate");
+  CLI::Option* seconds_opt =
+      play_cmd->add_option("--seconds", play_seconds, "Sequence length in seconds (default: the whole asset)");
+  t_opt->excludes(fps_opt);
+  seconds_opt->needs(fps_opt);
+  play_cmd->add_option("-o,--output", play.output, "OUT.obj, or a pattern with one frame number: OUT_%04d.obj")->required();
+  play_cmd->add_option("--backend", play_backend, "cpu (double reference), vulkan, or auto")
+      ->check(CLI::IsMember({"auto", "cpu", "vulkan"}));
+  play_cmd->add_flag("--validation", play.playback.validation, "Enable the Khronos validation layer; fail on any message");
+
+#ifdef ODESKIN_WITH_FIT
+  odeskin::FitCommandOptions fit;
+  std::string fit_residual = "bind";
+  std::string fit_skinning = "lbs";
+  CLI::App* fit_cmd = addFitCommand(app, fit, fit_residual, fit_skinning);
+#endif
 
   try {
     app.parse(argc, argv);
@@ -67,17 +145,32 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  odeskin::Console console{std::cout, std::cerr, quiet, odeskin::stderrIsTerminal()};
   if (info->parsed()) {
+    if (!info_asset.empty()) return odeskin::runInfoCommand(info_asset, console);
     odeskin::Status status = odeskin::vk::printDeviceInfo(std::cout, device);
     return status.ok() ? 0 : fail(status);
   }
   if (demo_cmd->parsed()) {
-    static const std::map<std::string, odeskin::Backend> kBackends{
-        {"auto", odeskin::Backend::kAuto}, {"cpu", odeskin::Backend::kCpu}, {"vulkan", odeskin::Backend::kVulkan}};
-    demo.backend = kBackends.at(backend);
+    demo.backend = kBackends.at(demo_backend);
     demo.device = device;
     demo.residual_space = residual == "posed" ? odeskin::ResidualSpace::kPosed : odeskin::ResidualSpace::kBind;
     return runDemoCommand(demo);
   }
+  if (play_cmd->parsed()) {
+    if (t_opt->count() > 0) play.t = play_t;
+    if (fps_opt->count() > 0) play.fps = play_fps;
+    if (seconds_opt->count() > 0) play.seconds = play_seconds;
+    play.playback.backend = kBackends.at(play_backend);
+    play.playback.device = device;
+    return odeskin::runPlayCommand(play, console);
+  }
+#ifdef ODESKIN_WITH_FIT
+  if (fit_cmd->parsed()) {
+    fit.residual_space = fit_residual == "posed" ? odeskin::ResidualSpace::kPosed : odeskin::ResidualSpace::kBind;
+    fit.skinning = fit_skinning == "dqs" ? odeskin::SkinningMode::kDualQuaternion : odeskin::SkinningMode::kLinear;
+    return odeskin::runFitCommand(fit, console);
+  }
+#endif
   return 2;
 }

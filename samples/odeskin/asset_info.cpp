@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+#include "asset_info.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <set>
+#include <string>
+#include <system_error>
+
+#include "engine/io/asset_file.hpp"
+#include "engine/kernels/fourier_deform_job.hpp"
+
+namespace odeskin {
+namespace {
+
+constexpr std::size_t kFloatBytes = 4;
+
+std::string bytesText(std::uintmax_t bytes) {
+  char text[64];
+  if (bytes < 10 * 1024) {
+    std::snprintf(text, sizeof text, "%ju B", bytes);
+  } else if (bytes < 10 * 1024 * 1024) {
+    std::snprintf(text, sizeof text, "%ju B (%.1f KiB)", bytes, static_cast<double>(bytes) / 1024.0);
+  } else {
+    std::snprintf(text, sizeof text, "%ju B (%.1f MiB)", bytes, static_cast<double>(bytes) / (1024.0 * 1024.0));
+  }
+  return text;
+}
+
+std::string ratioText(double ratio) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", ratio);
+  return text;
+}
+
+}  // namespace
+
+AssetStats assetStats(const DeformAsset& asset, std::uintmax_t file_bytes) {
+  AssetStats s;
+  s.vertices = asset.vertexCount();
+  s.render_vertices = asset.render.empty() ? s.vertices : asset.render.topology_of_render.size();
+  s.faces = asset.render.empty() ? asset.faces.faceCount() : asset.render.faces.faceCount();
+  s.curves = asset.curveCount();
+  std::set<std::uint32_t> parts;
+  for (const IsoCurve& curve : asset.curves) parts.insert(curve.part);
+  s.parts = parts.size();
+  s.terms = asset.modes;
+  s.key_poses = asset.key_poses.size();
+  s.segments = asset.segments.size();
+  s.bones = asset.bone_count;
+  s.materials = asset.materials.size();
+  s.seconds = static_cast<double>(s.segments) * asset.segment_seconds;
+  s.coefficient_floats = s.segments * s.curves * coefficientsPerCurve(asset.modes) * 3;
+  for (const DeformSegment& seg : asset.segments) s.remainders += seg.remainders.size();
+  s.file_bytes = file_bytes;
+  Result<PackedDeformData> packed = packDeformAsset(asset);
+  s.gpu_bytes = packed.ok() ? packed->byteSize() : 0;
+  s.pose_bytes = s.key_poses * s.vertices * 3 * kFloatBytes;
+  s.baked_frames = static_cast<std::size_t>(std::llround(s.seconds * kBakedFps)) + 1;
+  s.baked_bytes = s.baked_frames * s.vertices * 3 * kFloatBytes;
+  s.ratio_to_poses = s.pose_bytes > 0 ? static_cast<double>(file_bytes) / static_cast<double>(s.pose_bytes) : 0.0;
+  s.ratio_to_baked = s.baked_bytes > 0 ? static_cast<double>(file_bytes) / static_cast<double>(s.baked_bytes) : 0.0;
+  return s;
+}
+
+void printAssetStats(std::ostream& out, const std::filesystem::path& path, const AssetStats& s) {
+  out << "asset:          " << path.string() << "\n";
+  out << "vertices:       " << s.vertices;
+  if (s.render_vertices != s.vertices) out << " (" << s.render_vertices << " render vertices)";
+  out << "\nfaces:          " << s.faces << "\n";
+  out << "curves:         " << s.curves << "\n";
+  out << "parts:          " << s.parts << (s.curves > 0 && s.parts == 0 ? " (curves not stored)" : "") << "\n";
+  out << "terms N:        " << s.terms << " (" << coefficientsPerCurve(s.terms) << " coefficients per curve)\n";
+  out << "key poses:      " << s.key_poses << " (" << s.segments << " segment" << (s.segments == 1 ? "" : "s") << ", "
+      << s.seconds << " s)\n";
+  out << "bones:          " << s.bones << "\n";
+  out << "materials:      " << s.materials << "\n";
+  out << "coefficients:   " << s.coefficient_floats << " floats (segments x curves x (2N+2) x 3)\n";
+  out << "remainders:     " << s.remainders << "\n";
+  out << "file bytes:     " << bytesText(s.file_bytes) << "\n";
+  out << "GPU bytes:      " << bytesText(s.gpu_bytes) << "\n";
+  out << "every pose:     " << bytesText(s.pose_bytes) << " (K x V x 3 float32); asset / that = "
+      << ratioText(s.ratio_to_poses) << "\n";
+  out << "baked 30 fps:   " << bytesText(s.baked_bytes) << " (" << s.baked_frames
+      << " frames x V x 3 float32); asset / that = " << ratioText(s.ratio_to_baked) << "\n";
+}
+
+int runInfoCommand(const std::filesystem::path& path, Console& console) {
+  Result<DeformAsset> asset = loadAsset(path);
+  if (!asset.ok()) return reportFailure(console, asset.status());
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec) return reportFailure(console, ioError(path.string() + ": " + ec.message()));
+  printAssetStats(console.out, path, assetStats(*asset, bytes));
+  return kExitOk;
+}
+
+}  // namespace odeskin

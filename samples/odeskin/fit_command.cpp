@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+#include "fit_command.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <system_error>
+
+#include "engine/io/asset_file.hpp"
+#include "engine/io/gltf_reader.hpp"
+#include "engine/io/libigl_io.hpp"
+#include "engine/io/obj_reader.hpp"
+#include "engine/pipeline/fit_pipeline.hpp"
+#include "material_options.hpp"
+#include "progress.hpp"
+
+namespace odeskin {
+namespace {
+
+std::string scientific(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2e", x);
+  return text;
+}
+
+Result<ExampleSet> readExamples(const FitCommandOptions& o) {
+  std::string ignored;
+  switch (fitInputKind(o, &ignored)) {
+    case FitInputKind::kGltf: {
+      GltfPoseRequest request;
+      request.mesh = o.mesh;
+      request.animation = o.animation;
+      request.times = o.times;
+      request.morph_targets = o.targets;
+      return readGltfExamples(o.inputs.front(), request);
+    }
+    case FitInputKind::kLibigl: {
+      const std::filesystem::path* weights = o.weights.empty() ? nullptr : &o.weights;
+      return readLibiglExamples(o.bind, o.inputs, o.rig, weights, o.transforms);
+    }
+    case FitInputKind::kObj:
+      break;
+  }
+  return readObjSequence(o.inputs, o.bind.empty() ? nullptr : &o.bind);
+}
+
+void printSummary(std::ostream& out, const FitCommandOptions& o, const ExampleSet& examples,
+                  const PipelineResult& result, std::uintmax_t bytes) {
+  const DeformAsset& a = result.asset;
+  out << "fitted " << examples.poses.size() << " poses: " << a.vertexCount() << " vertices, " << a.faces.faceCount()
+      << " faces";
+  if (!a.render.empty()) out << " (" << a.render.topology_of_render.size() << " render vertices)";
+  out << "\nrig: " << result.rig_summary << "\n";
+  out << "curves: " << a.curveCount() << " in " << result.part_count << " part" << (result.part_count == 1 ? "" : "s")
+      << ", N = " << a.modes << ", " << a.materials.size() << " material" << (a.materials.size() == 1 ? "" : "s") << "\n";
+  double worst = 0.0;
+  for (double e : result.report.key_error) worst = std::max(worst, e);
+  out << "key error: max " << scientific(worst) << " of the box";
+  if (result.report.key_error.size() <= 12) {
+    out << " (";
+    for (std::size_t k = 0; k < result.report.key_error.size(); ++k) {
+      out << (k ? ", " : "") << scientific(result.report.key_error[k]);
+    }
+    out << ")";
+  }
+  out << (o.pure_fourier ? ", pure Fourier" : "") << "\n";
+  out << "remainders: " << result.report.remainder_count << " (series error before them: max "
+      << scientific(result.report.max_series_error) << ", rms " << scientific(result.report.rms_series_error)
+      << " of the box)\n";
+  out << "wrote " << o.output.string() << " (" << bytes << " bytes)\n";
+}
+
+void printTimings(std::ostream& out, const StageTimings& t) {
+  struct Row {
+    const char* stage;
+    double seconds;
+  };
+  // The stages of the thesis's Table 6.3, in its order, after the rig (not a stage there).
+  const Row rows[] = {{"rig (bones, weights, key transforms)", t.rig},
+                      {"curve identification", t.curve_identification},
+                      {"geometric transform", t.geometric_transform},
+                      {"Fourier representation + deformation calculation", t.fourier_and_deformation},
+                      {"analytic solve + skin deformer", t.analytic_solve},
+                      {"total", t.total}};
+  out << "stage timings (thesis Table 6.3):\n";
+  for (const Row& row : rows) {
+    char line[128];
+    std::snprintf(line, sizeof line, "  %-50s %10.3f ms\n", row.stage, 1e3 * row.seconds);
+    out << line;
+  }
+}
+
+}  // namespace
+
+int runFitCommand(const FitCommandOptions& o, Console& console) {
+  if (const std::string problem = fitUsageProblem(o); !problem.empty()) return reportUsage(console, problem);
+
+  PipelineOptions pipeline;
+  pipeline.modes = o.terms;
+  pipeline.residual_space = o.residual_space;
+  pipeline.skinning = o.skinning;
+  pipeline.material = *parseMaterial(fitMaterialText(o));
+  if (!o.materials_json.empty()) {
+    Result<MaterialChoice> choice = readMaterialsJson(o.materials_json, pipeline.material);
+    if (!choice.ok()) return reportFailure(console, choice.status());
+    pipeline.material = choice->default_material;
+    pipeline.part_materials = choice->parts;
+  }
+  pipeline.key_tolerance = o.key_tolerance;
+  pipeline.pure_fourier = o.pure_fourier;
+  pipeline.force_auto_rig = o.rig == "auto";
+  pipeline.auto_bones = o.bones;
+  pipeline.segment_seconds = o.segment_seconds;
+
+  Result<ExampleSet> examples = readExamples(o);
+  if (!examples.ok()) return reportFailure(console, examples.status());
+
+  ProgressBar bar(console.err, "fit", 0, !console.quiet && console.interactive);
+  pipeline.progress = [&bar](std::string_view stage, double fraction) { bar.fraction(stage, fraction); };
+  Result<PipelineResult> result = runFitPipeline(*examples, pipeline);
+  bar.finish();
+  if (!result.ok()) return reportFailure(console, result.status());
+
+  std::error_code ec;
+  if (o.output.has_parent_path()) {
+    std::filesystem::create_directories(o.output.parent_path(), ec);
+    if (ec) return reportFailure(console, ioError(o.output.parent_path().string() + ": cannot create directory: " + ec.message()));
+  }
+  if (Status saved = saveAsset(o.output, result->asset); !saved.ok()) return reportFailure(console, saved);
+  const std::uintmax_t bytes = std::filesystem::file_size(o.output, ec);
+  if (!console.quiet) printSummary(console.out, o, *examples, *result, ec ? 0 : bytes);
+  if (o.timings) printTimings(console.out, result->timings);
+  return kExitOk;
+}
+
+}  // namespace odeskin

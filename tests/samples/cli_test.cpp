@@ -1,0 +1,546 @@
+// SPDX-License-Identifier: MIT
+// The odeskin verbs play and info, called as the program calls them, on the procedural arm fitted
+// and saved to a temporary .odsk; plus the option parsers behind play and fit.
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "engine/io/asset_file.hpp"
+#include "engine/io/obj_reader.hpp"
+#include "engine/offline/procedural_arm.hpp"
+#include "host/gpu_test_support.hpp"
+#include "samples/odeskin/asset_info.hpp"
+#include "samples/odeskin/fit_options.hpp"
+#include "samples/odeskin/material_options.hpp"
+#include "samples/odeskin/play_command.hpp"
+#include "samples/odeskin/progress.hpp"
+
+namespace odeskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kKeyTolerance = 1e-4;     // of the box: --t k reproduces example pose k
+constexpr double kBackendTolerance = 1e-5; // of the box: cpu and vulkan outputs agree
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("odeskin_cli_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+double maxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) worst = std::max(worst, glm::length(a[i] - b[i]));
+  return worst;
+}
+
+std::vector<Vec3> readPositions(const fs::path& path) {
+  Result<ObjMesh> mesh = readObj(path);
+  EXPECT_TRUE(mesh.ok()) << mesh.status().toString();
+  return mesh.ok() ? mesh->positions : std::vector<Vec3>{};
+}
+
+// Runs a command with captured streams.
+struct Captured {
+  std::ostringstream out;
+  std::ostringstream err;
+  Console console{out, err, false, false};
+};
+
+// The procedural arm (skin material, default key tolerance), saved once for every test.
+class Cli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
+    ASSERT_TRUE(arm.ok()) << arm.status().toString();
+    FitOptions fit;
+    fit.materials = {skinMaterial()};
+    Result<DeformAsset> asset = fitDeformAsset(arm->fit_input, fit);
+    ASSERT_TRUE(asset.ok()) << asset.status().toString();
+    arm_ = new ProceduralArm(std::move(arm).value());
+    asset_ = new DeformAsset(std::move(asset).value());
+    dir_ = new fs::path(scratch("assets"));
+    ASSERT_TRUE(saveAsset(assetPath(), *asset_).ok());
+  }
+  static void TearDownTestSuite() {
+    delete arm_;
+    delete asset_;
+    delete dir_;
+  }
+  static fs::path assetPath() { return *dir_ / "arm.odsk"; }
+  static double box() { return longestBoxSide(arm_->end_positions); }
+
+  static int play(const PlayOptions& options, Captured& io, PlayReport* report = nullptr) {
+    return runPlayCommand(options, io.console, report);
+  }
+  static PlayOptions atTime(double t, const fs::path& output) {
+    PlayOptions o;
+    o.asset = assetPath();
+    o.t = t;
+    o.output = output.string();
+    return o;
+  }
+
+  static ProceduralArm* arm_;
+  static DeformAsset* asset_;
+  static fs::path* dir_;
+};
+ProceduralArm* Cli::arm_ = nullptr;
+DeformAsset* Cli::asset_ = nullptr;
+fs::path* Cli::dir_ = nullptr;
+
+TEST_F(Cli, PlayAtKeyTimesReproducesTheExamplePoses) {
+  const fs::path dir = scratch("keys");
+  Captured io;
+  ASSERT_EQ(play(atTime(0.0, dir / "t0.obj"), io), kExitOk) << io.err.str();
+  ASSERT_EQ(play(atTime(1.0, dir / "nested" / "folder" / "t1.obj"), io), kExitOk) << io.err.str();
+  ASSERT_EQ(play(atTime(0.5, dir / "mid.obj"), io), kExitOk) << io.err.str();
+  EXPECT_LE(maxDistance(readPositions(dir / "t0.obj"), arm_->start_positions), kKeyTolerance * box());
+  EXPECT_LE(maxDistance(readPositions(dir / "nested" / "folder" / "t1.obj"), arm_->end_positions), kKeyTolerance * box());
+  // The middle really moves: it is neither pose.
+  const std::vector<Vec3> mid = readPositions(dir / "mid.obj");
+  EXPECT_GT(maxDistance(mid, arm_->start_positions), 0.05 * box());
+  EXPECT_GT(maxDistance(mid, arm_->end_positions), 0.05 * box());
+  // Faces are the asset's.
+  Result<ObjMesh> mesh = readObj(dir / "mid.obj");
+  ASSERT_TRUE(mesh.ok());
+  EXPECT_EQ(mesh->faces.indices, asset_->faces.indices);
+  EXPECT_NE(io.out.str().find("t = 0.5 (segment 0, tau 0.5)"), std::string::npos) << io.out.str();
+  EXPECT_TRUE(io.err.str().empty()) << io.err.str();  // not a terminal: no progress bar
+}
+
+TEST_F(Cli, PlaySequenceMapsSecondsToKeyTime) {
+  const fs::path dir = scratch("sequence");
+  PlayOptions o;
+  o.asset = assetPath();
+  o.fps = 4.0;
+  o.output = (dir / "frames" / "arm_%03d.obj").string();
+  Captured io;
+  PlayReport report;
+  ASSERT_EQ(play(o, io, &report), kExitOk) << io.err.str();
+  // 1 s (one segment of the default length) at 4 fps: t = 0, 0.25, ..., 1.
+  ASSERT_EQ(report.files.size(), 5u);
+  EXPECT_EQ(report.files[2], dir / "frames" / "arm_002.obj");
+  EXPECT_DOUBLE_EQ(report.times[1], 0.25);
+  for (const fs::path& file : report.files) EXPECT_TRUE(fs::exists(file)) << file;
+  EXPECT_FALSE(fs::exists(dir / "frames" / "arm_005.obj"));
+  EXPECT_LE(maxDistance(readPositions(report.files.back()), arm_->end_positions), kKeyTolerance * box());
+  // The sequence's frame 2 is the single frame at t = 0.5, bit for bit.
+  ASSERT_EQ(play(atTime(0.5, dir / "mid.obj"), io), kExitOk);
+  EXPECT_EQ(readPositions(dir / "mid.obj"), readPositions(report.files[2]));
+
+  // --seconds past the end clamps to the last key.
+  o.seconds = 1.5;
+  o.output = (dir / "long_%d.obj").string();
+  ASSERT_EQ(play(o, io, &report), kExitOk) << io.err.str();
+  ASSERT_EQ(report.files.size(), 7u);
+  EXPECT_EQ(report.files.back(), dir / "long_6.obj");
+  EXPECT_DOUBLE_EQ(report.times.back(), 1.0);
+}
+
+TEST_F(Cli, PlayUsesTheSegmentLengthAndTheRenderLayout) {
+  const fs::path dir = scratch("layout");
+  DeformAsset asset = *asset_;
+  asset.segment_seconds = 2.0;
+  // Split vertex 0 into a second render vertex used by the first face.
+  for (std::uint32_t i = 0; i < asset.vertexCount(); ++i) asset.render.topology_of_render.push_back(i);
+  asset.render.topology_of_render.push_back(0);
+  asset.render.faces = asset.faces;
+  asset.render.faces.indices[0] = static_cast<std::uint32_t>(asset.vertexCount());
+  ASSERT_TRUE(saveAsset(dir / "layout.odsk", asset).ok());
+  PlayOptions o;
+  o.asset = dir / "layout.odsk";
+  o.fps = 2.0;
+  o.output = (dir / "f%02d.obj").string();
+  Captured io;
+  PlayReport report;
+  ASSERT_EQ(play(o, io, &report), kExitOk) << io.err.str();
+  ASSERT_EQ(report.files.size(), 5u);  // 2 s at 2 fps
+  EXPECT_DOUBLE_EQ(report.times[1], 0.25);
+  Result<ObjMesh> last = readObj(report.files.back());
+  ASSERT_TRUE(last.ok()) << last.status().toString();
+  ASSERT_EQ(last->positions.size(), asset.vertexCount() + 1);
+  EXPECT_EQ(last->positions.back(), last->positions.front());
+  EXPECT_EQ(last->faces.indices, asset.render.faces.indices);
+  last->positions.pop_back();
+  EXPECT_LE(maxDistance(last->positions, arm_->end_positions), kKeyTolerance * box());
+}
+
+TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
+  const fs::path dir = scratch("usage");
+  struct Case {
+    PlayOptions options;
+    std::string message;
+  };
+  std::vector<Case> cases;
+  cases.push_back({atTime(1.5, dir / "x.obj"), "--t 1.5 is outside [0, 1]"});
+  cases.push_back({atTime(-0.1, dir / "x.obj"), "outside [0, 1]"});
+  cases.push_back({atTime(std::nan(""), dir / "x.obj"), "--t must be a number"});
+  cases.push_back({atTime(0.5, dir / "x.glb"), "glTF output is not available"});
+  cases.push_back({atTime(0.5, dir / "x.ply"), "unknown output format"});
+  cases.push_back({atTime(0.5, ""), "-o OUT is required"});
+  PlayOptions both = atTime(0.5, dir / "x.obj");
+  both.fps = 30.0;
+  cases.push_back({both, "either --t T"});
+  PlayOptions neither = atTime(0.5, dir / "x.obj");
+  neither.t.reset();
+  cases.push_back({neither, "either --t T"});
+  PlayOptions fps = neither;
+  fps.fps = 0.0;
+  fps.output = (dir / "x%d.obj").string();
+  cases.push_back({fps, "--fps must be positive"});
+  fps.fps = 30.0;
+  fps.seconds = -1.0;
+  cases.push_back({fps, "--seconds must be zero or positive"});
+  fps.seconds = 1e9;
+  cases.push_back({fps, "more than 1000000 frames"});
+  fps.seconds.reset();
+  fps.output = (dir / "x.obj").string();
+  cases.push_back({fps, "needs a frame number"});
+  fps.output = (dir / "x%d_%d.obj").string();
+  cases.push_back({fps, "more than one % conversion"});
+  for (const Case& c : cases) {
+    Captured io;
+    EXPECT_EQ(play(c.options, io), kExitUsage) << c.message;
+    EXPECT_EQ(io.err.str().rfind("odeskin: error: play: ", 0), 0u) << io.err.str();
+    EXPECT_NE(io.err.str().find(c.message), std::string::npos) << io.err.str();
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << "a rejected command wrote something";
+}
+
+TEST_F(Cli, MissingOrCorruptAssetFailsWithExitCode1) {
+  const fs::path dir = scratch("corrupt");
+  Captured io;
+  PlayOptions o = atTime(0.5, dir / "x.obj");
+  o.asset = dir / "absent.odsk";
+  EXPECT_EQ(play(o, io), kExitFailure);
+  EXPECT_EQ(io.err.str().rfind("odeskin: error: " + o.asset.string() + ": ", 0), 0u) << io.err.str();
+
+  std::ifstream in(assetPath(), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);
+  o.asset = dir / "corrupt.odsk";
+  std::ofstream(o.asset, std::ios::binary) << bytes;
+  Captured io2;
+  EXPECT_EQ(play(o, io2), kExitFailure);
+  EXPECT_NE(io2.err.str().find("corrupt.odsk: checksum mismatch"), std::string::npos) << io2.err.str();
+  Captured io3;
+  EXPECT_EQ(runInfoCommand(o.asset, io3.console), kExitFailure);
+  EXPECT_NE(io3.err.str().find("corrupt.odsk: checksum mismatch"), std::string::npos) << io3.err.str();
+  EXPECT_FALSE(fs::exists(dir / "x.obj"));
+}
+
+TEST_F(Cli, InfoNumbers) {
+  const std::uintmax_t bytes = fs::file_size(assetPath());
+  const AssetStats s = assetStats(*asset_, bytes);
+  const std::size_t v = arm_->start_positions.size();
+  EXPECT_EQ(s.vertices, v);
+  EXPECT_EQ(s.render_vertices, v);
+  EXPECT_EQ(s.faces, asset_->faces.faceCount());
+  EXPECT_EQ(s.curves, 21u);
+  EXPECT_EQ(s.parts, 1u);  // the arm's curves all belong to part 0
+  EXPECT_EQ(s.terms, 9);
+  EXPECT_EQ(s.key_poses, 2u);
+  EXPECT_EQ(s.segments, 1u);
+  EXPECT_EQ(s.bones, 2u);
+  EXPECT_EQ(s.coefficient_floats, 1u * 21u * 20u * 3u);
+  EXPECT_EQ(s.remainders, asset_->segments[0].remainders.size());
+  EXPECT_EQ(s.file_bytes, bytes);
+  EXPECT_EQ(s.pose_bytes, 2 * v * 3 * 4);
+  EXPECT_EQ(s.baked_frames, 31u);  // 1 s at 30 fps, both ends
+  EXPECT_EQ(s.baked_bytes, 31 * v * 3 * 4);
+  EXPECT_DOUBLE_EQ(s.ratio_to_poses, static_cast<double>(bytes) / static_cast<double>(2 * v * 12));
+  EXPECT_DOUBLE_EQ(s.ratio_to_baked, static_cast<double>(bytes) / static_cast<double>(31 * v * 12));
+  EXPECT_GT(s.gpu_bytes, 0u);
+
+  // Three keys of 2.5 s each: 5 s at 30 fps is 151 frames.
+  DeformAsset longer = *asset_;
+  longer.segment_seconds = 2.5;
+  longer.key_poses.push_back(longer.key_poses[0]);
+  longer.segments.push_back(longer.segments[0]);
+  const AssetStats l = assetStats(longer, bytes);
+  EXPECT_EQ(l.segments, 2u);
+  EXPECT_EQ(l.baked_frames, 151u);
+  EXPECT_EQ(l.coefficient_floats, 2u * 21u * 20u * 3u);
+  EXPECT_EQ(l.pose_bytes, 3 * v * 12);
+
+  Captured io;
+  ASSERT_EQ(runInfoCommand(assetPath(), io.console), kExitOk) << io.err.str();
+  const std::string text = io.out.str();
+  EXPECT_NE(text.find("vertices:       " + std::to_string(v) + "\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("terms N:        9"), std::string::npos) << text;
+  EXPECT_NE(text.find("coefficients:   1260 floats"), std::string::npos) << text;
+  EXPECT_NE(text.find("31 frames x V x 3 float32"), std::string::npos) << text;
+  EXPECT_NE(text.find("file bytes:     " + std::to_string(bytes) + " B"), std::string::npos) << text;
+}
+
+class CliOnGpu : public testing::GpuTest {};
+
+TEST_F(CliOnGpu, CpuAndVulkanOutputsAgree) {
+  Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
+  ASSERT_TRUE(arm.ok());
+  FitOptions fit;
+  fit.materials = {skinMaterial()};
+  Result<DeformAsset> asset = fitDeformAsset(arm->fit_input, fit);
+  ASSERT_TRUE(asset.ok());
+  const fs::path dir = scratch("backends");
+  ASSERT_TRUE(saveAsset(dir / "arm.odsk", *asset).ok());
+  PlayOptions o;
+  o.asset = dir / "arm.odsk";
+  o.fps = 5.0;
+  o.output = (dir / "cpu" / "%d.obj").string();
+  o.playback.backend = Backend::kCpu;
+  Captured io;
+  PlayReport cpu;
+  ASSERT_EQ(runPlayCommand(o, io.console, &cpu), kExitOk) << io.err.str();
+  o.output = (dir / "vulkan" / "%d.obj").string();
+  o.playback.backend = Backend::kVulkan;
+  o.playback.validation = true;
+  PlayReport gpu;
+  ASSERT_EQ(runPlayCommand(o, io.console, &gpu), kExitOk) << io.err.str();
+  EXPECT_EQ(gpu.device.rfind("vulkan: ", 0), 0u) << gpu.device;
+  ASSERT_EQ(cpu.files.size(), 6u);
+  ASSERT_EQ(gpu.files.size(), cpu.files.size());
+  const double box = longestBoxSide(arm->end_positions);
+  for (std::size_t f = 0; f < cpu.files.size(); ++f) {
+    EXPECT_LE(maxDistance(readPositions(cpu.files[f]), readPositions(gpu.files[f])), kBackendTolerance * box) << f;
+  }
+}
+
+TEST(FramePattern, AcceptsExactlyOneIntegerConversion) {
+  const std::pair<const char*, const char*> good[] = {{"a_%d.obj", "a_7.obj"},       {"a_%04d.obj", "a_0007.obj"},
+                                                      {"%3i.obj", "  7.obj"},         {"100%%_%u.obj", "100%_7.obj"},
+                                                      {"dir_%02d/m.obj", "dir_07/m.obj"}};
+  for (const auto& [pattern, expected] : good) {
+    Result<FramePattern> p = FramePattern::parse(pattern);
+    ASSERT_TRUE(p.ok()) << pattern << ": " << p.status().toString();
+    EXPECT_EQ(p->format(7), expected);
+  }
+  EXPECT_EQ(FramePattern::parse("f%02d.obj")->format(1234), "f1234.obj");  // width is a minimum
+  for (const char* bad : {"a.obj", "a_%%.obj", "%d_%d.obj", "%s.obj", "%.2f.obj", "%-4d.obj", "%x.obj", "a_%",
+                          "%99d.obj", "%ld.obj"}) {
+    const Result<FramePattern> p = FramePattern::parse(bad);
+    EXPECT_EQ(p.status().code(), StatusCode::kInvalidArgument) << bad;
+    EXPECT_NE(p.status().message().find(bad), std::string::npos) << p.status().message();
+  }
+}
+
+TEST(SequenceSeconds, IncludesBothEnds) {
+  EXPECT_EQ(sequenceSeconds(30.0, 1.0).size(), 31u);
+  EXPECT_EQ(sequenceSeconds(30.0, 0.0).size(), 1u);
+  EXPECT_EQ(sequenceSeconds(10.0, 0.3).size(), 4u);  // 0.3 * 10 is 2.9999999999999996
+  EXPECT_EQ(sequenceSeconds(3.0, 1.0).size(), 4u);
+  EXPECT_DOUBLE_EQ(sequenceSeconds(3.0, 1.0).back(), 1.0);
+  EXPECT_TRUE(sequenceSeconds(1e6, 1e3).empty());  // over the frame limit
+}
+
+TEST(MaterialOptions, Presets) {
+  const Material skin = *parseMaterial("skin");
+  EXPECT_EQ(skin.rho, skinMaterial().rho);
+  EXPECT_EQ(skin.xi, skinMaterial().xi);
+  EXPECT_EQ(parseMaterial("static")->zeta, staticMaterial().zeta);
+  const Result<Material> numbers = parseMaterial("1050,0.619,1e4,2.5e-6");
+  ASSERT_TRUE(numbers.ok()) << numbers.status().toString();
+  EXPECT_EQ(numbers->rho, 1050.0);
+  EXPECT_EQ(numbers->eta, 0.619);
+  EXPECT_EQ(numbers->zeta, 1e4);
+  EXPECT_EQ(numbers->xi, 2.5e-6);
+  EXPECT_EQ(numbers->bending, BendingSign::kThesis);
+  for (const char* bad : {"", "rubber", "1,2,3", "1,2,3,4,5", "1,2,x,4", "1,,3,4", "1,2,3,inf", "1,2,3,4 x", "1e999,0,1,0"}) {
+    const Result<Material> m = parseMaterial(bad);
+    EXPECT_EQ(m.status().code(), StatusCode::kInvalidArgument) << "'" << bad << "'";
+  }
+}
+
+TEST(MaterialOptions, PartsJson) {
+  const Result<MaterialChoice> choice = parseMaterialsJson(R"({
+      "default": "static",
+      "parts": {"forearm": "skin", "1": {"rho": 1, "eta": 2, "zeta": 3, "xi": 4, "bending": "stiffening"},
+                "hand": "5,6,7,8"}})",
+                                                           "parts.json");
+  ASSERT_TRUE(choice.ok()) << choice.status().toString();
+  EXPECT_EQ(choice->default_material.zeta, staticMaterial().zeta);
+  EXPECT_EQ(choice->default_material.rho, staticMaterial().rho);
+  ASSERT_EQ(choice->parts.size(), 3u);
+  EXPECT_EQ(choice->parts.at("forearm").rho, skinMaterial().rho);
+  const Material& one = choice->parts.at("1");
+  EXPECT_EQ(one.rho, 1.0);
+  EXPECT_EQ(one.eta, 2.0);
+  EXPECT_EQ(one.zeta, 3.0);
+  EXPECT_EQ(one.xi, 4.0);
+  EXPECT_EQ(one.bending, BendingSign::kStiffening);
+  EXPECT_EQ(choice->parts.at("hand").xi, 8.0);
+  // Without "default", the fallback (the --material value) stays.
+  const Result<MaterialChoice> fallback = parseMaterialsJson(R"({"parts": {}})", "p", staticMaterial());
+  ASSERT_TRUE(fallback.ok());
+  EXPECT_EQ(fallback->default_material.zeta, staticMaterial().zeta);
+  EXPECT_TRUE(fallback->parts.empty());
+
+  EXPECT_EQ(parseMaterialsJson("{\"parts\": ", "broken.json").status().code(), StatusCode::kParseError);
+  const std::pair<const char*, const char*> bad[] = {
+      {R"([1, 2])", "expected an object"},
+      {R"({"defaults": "skin"})", "unknown key \"defaults\""},
+      {R"({"default": "rubber"})", "rubber"},
+      {R"({"default": 3})", "a material is"},
+      {R"({"parts": []})", "\"parts\" must be an object"},
+      {R"({"parts": {"": "skin"}})", "empty name"},
+      {R"({"parts": {"arm": {"rho": 1, "eta": 2, "zeta": 3}}})", "\"xi\" is missing"},
+      {R"({"parts": {"arm": {"rho": 1, "eta": 2, "zeta": 3, "xi": "4"}}})", "\"xi\" must be a finite number"},
+      {R"({"parts": {"arm": {"rho": 1, "eta": 2, "zeta": 3, "xi": 4, "nu": 5}}})", "unknown key \"nu\""},
+      {R"({"parts": {"arm": {"rho": 1, "eta": 2, "zeta": 3, "xi": 4, "bending": "soft"}}})", "bending"},
+  };
+  for (const auto& [text, message] : bad) {
+    const Result<MaterialChoice> r = parseMaterialsJson(text, "parts.json");
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << text;
+    EXPECT_EQ(r.status().message().rfind("parts.json: ", 0), 0u) << r.status().message();
+    EXPECT_NE(r.status().message().find(message), std::string::npos) << r.status().message();
+  }
+  const fs::path dir = scratch("materials");
+  EXPECT_EQ(readMaterialsJson(dir / "absent.json").status().code(), StatusCode::kIoError);
+  std::ofstream(dir / "parts.json") << R"({"default": "static"})";
+  const Result<MaterialChoice> read = readMaterialsJson(dir / "parts.json");
+  ASSERT_TRUE(read.ok()) << read.status().toString();
+  EXPECT_EQ(read->default_material.zeta, staticMaterial().zeta);
+}
+
+FitCommandOptions objFit() {
+  FitCommandOptions o;
+  o.inputs = {"a.obj", "b.OBJ", "c.obj"};
+  o.output = "out.odsk";
+  return o;
+}
+
+TEST(FitOptions, InputKinds) {
+  std::string problem;
+  FitCommandOptions o = objFit();
+  EXPECT_EQ(fitInputKind(o, &problem), FitInputKind::kObj);
+  EXPECT_TRUE(problem.empty()) << problem;
+  EXPECT_EQ(fitUsageProblem(o), "");
+  o.bind = "rest.obj";
+  o.rig = "auto";
+  o.bones = 4;
+  EXPECT_EQ(fitUsageProblem(o), "");
+  o = objFit();
+  o.rig = "skeleton.tgf";
+  o.bind = "rest.obj";
+  o.weights = "w.dmat";
+  o.transforms = {"1.Tmat", "2.Tmat", "3.Tmat"};
+  EXPECT_EQ(fitInputKind(o, &problem), FitInputKind::kLibigl);
+  EXPECT_EQ(fitUsageProblem(o), "");
+  o = FitCommandOptions{};
+  o.inputs = {"walk.glb"};
+  o.output = "walk.odsk";
+  o.times = {0.0, 0.5};
+  o.animation = "Walk";
+  EXPECT_EQ(fitInputKind(o, &problem), FitInputKind::kGltf);
+  EXPECT_EQ(fitUsageProblem(o), "");
+  o.times.clear();
+  o.targets = {0, 1};
+  EXPECT_EQ(fitUsageProblem(o), "");
+}
+
+TEST(FitOptions, UsageProblems) {
+  struct Case {
+    std::function<void(FitCommandOptions&)> change;
+    std::string message;
+  };
+  const Case cases[] = {
+      {[](FitCommandOptions& o) { o.inputs.clear(); }, "no example poses"},
+      {[](FitCommandOptions& o) { o.inputs.resize(1); }, "at least 2 example poses, got 1"},
+      {[](FitCommandOptions& o) { o.output.clear(); }, "-o ASSET is required"},
+      {[](FitCommandOptions& o) { o.terms = 0; }, "--terms 0 is outside 1..64"},
+      {[](FitCommandOptions& o) { o.terms = 65; }, "--terms 65 is outside 1..64"},
+      {[](FitCommandOptions& o) { o.key_tolerance = -1e-3; }, "--key-tolerance"},
+      {[](FitCommandOptions& o) { o.segment_seconds = 0.0; }, "--segment-seconds must be positive"},
+      {[](FitCommandOptions& o) { o.bones = -2; }, "--bones must be >= 0"},
+      {[](FitCommandOptions& o) { o.material = "rubber"; }, "--material: material 'rubber'"},
+      {[](FitCommandOptions& o) {
+         o.material = "static";
+         o.materials_json = "parts.json";
+       },
+       "not both"},
+      {[](FitCommandOptions& o) { o.rig = "skeleton.bvh"; }, "--rig takes auto or a libigl skeleton"},
+      {[](FitCommandOptions& o) { o.rig = "skeleton.tgf"; }, "needs --bind REST.obj"},
+      {[](FitCommandOptions& o) {
+         o.rig = "skeleton.tgf";
+         o.bind = "rest.obj";
+         o.transforms = {"1.Tmat"};
+       },
+       "1 --transforms files for 3 poses"},
+      {[](FitCommandOptions& o) {
+         o.rig = "skeleton.tgf";
+         o.bones = 3;
+       },
+       "--bones applies to the automatic rig"},
+      {[](FitCommandOptions& o) { o.weights = "w.dmat"; }, "need --rig SKELETON.tgf"},
+      {[](FitCommandOptions& o) { o.times = {0.5}; }, "apply to a .gltf/.glb input"},
+      {[](FitCommandOptions& o) { o.inputs.push_back("d.ply"); }, "d.ply: unknown input format '.ply'"},
+      {[](FitCommandOptions& o) { o.inputs.push_back("walk.glb"); }, "not both or several"},
+      {[](FitCommandOptions& o) { o.inputs = {"walk.gltf"}; }, "needs --times a,b,... or --targets"},
+      {[](FitCommandOptions& o) {
+         o.inputs = {"walk.gltf"};
+         o.times = {1.0};
+         o.bind = "rest.obj";
+       },
+       "--bind applies to OBJ poses"},
+      {[](FitCommandOptions& o) {
+         o.inputs = {"walk.glb"};
+         o.targets = {0};
+         o.rig = "skeleton.tgf";
+       },
+       "a glTF file brings its own skin"},
+  };
+  for (const Case& c : cases) {
+    FitCommandOptions o = objFit();
+    c.change(o);
+    const std::string problem = fitUsageProblem(o);
+    EXPECT_EQ(problem.rfind("fit: ", 0), 0u) << c.message << ": " << problem;
+    EXPECT_NE(problem.find(c.message), std::string::npos) << problem;
+  }
+  FitCommandOptions o = objFit();
+  EXPECT_EQ(fitMaterialText(o), "skin");
+  o.material = "1,2,3,4";
+  EXPECT_EQ(fitMaterialText(o), "1,2,3,4");
+}
+
+TEST(Progress, SilentWhenDisabledRedrawnInPlaceWhenEnabled) {
+  std::ostringstream quiet;
+  {
+    ProgressBar bar(quiet, "play", 10, false);
+    for (std::size_t i = 1; i <= 10; ++i) bar.step(i);
+    bar.fraction("fit", 0.5);
+  }
+  EXPECT_TRUE(quiet.str().empty());
+
+  std::ostringstream shown;
+  ProgressBar bar(shown, "play", 4, true);
+  bar.step(1);
+  const std::string first = shown.str();
+  EXPECT_EQ(first.rfind("\rplay [", 0), 0u) << first;
+  EXPECT_NE(first.find("1/4"), std::string::npos) << first;
+  EXPECT_NE(first.find("ETA"), std::string::npos) << first;
+  bar.step(4);  // the last step always draws
+  EXPECT_NE(shown.str().find("4/4"), std::string::npos) << shown.str();
+  EXPECT_EQ(shown.str().find('\n'), std::string::npos);  // never scrolls
+  bar.finish();
+  EXPECT_EQ(shown.str().back(), '\r');
+  bar.fraction("curves", 0.25);
+  EXPECT_NE(shown.str().find("curves ["), std::string::npos);
+  EXPECT_NE(shown.str().find(" 25%"), std::string::npos) << shown.str();
+}
+
+TEST(Progress, Durations) {
+  EXPECT_EQ(formatDuration(1.5), "1.5 s");
+  EXPECT_EQ(formatDuration(125.0), "2 min 05 s");
+  EXPECT_EQ(formatDuration(3725.0), "1 h 02 min");
+  EXPECT_EQ(formatDuration(-1.0), "?");
+}
+
+}  // namespace
+}  // namespace odeskin
