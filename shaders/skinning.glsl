@@ -56,8 +56,9 @@ vec3 skinPointDq(uint vertex, vec3 p) {
   }
   float norm = length(real);
   if (!(norm > ODESKIN_DQS_MIN_BLEND_NORM)) return skinPointLbs(vertex, p);
-  vec4 r = real / norm;
-  vec4 e = dual / norm;
+  float inv_norm = 1.0 / norm;
+  vec4 r = real * inv_norm;
+  vec4 e = dual * inv_norm;
   vec3 t = 2.0 * (r.w * e.xyz - e.w * r.xyz + cross(r.xyz, e.xyz));
   float xx = r.x * r.x, yy = r.y * r.y, zz = r.z * r.z;
   float xy = r.x * r.y, xz = r.x * r.z, yz = r.y * r.z;
