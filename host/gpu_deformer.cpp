@@ -77,15 +77,23 @@ Result<GpuDeformer> GpuDeformer::create(const vk::Device& device, const PackedDe
                            vk::Buffer::create(device, sliceBytes(out_bytes), vk::kOutputBufferUsage));
   statics.push_back({ODESKIN_BINDING_OUT_POSITIONS, deformer.out_positions_.handle()});
 
-  // Per-frame buffer: bones, then the basis at the next offset the device allows for a binding.
+  // Per-frame buffer: bones, the basis, then the bones' dual quaternions, each at the next offset
+  // the device allows for a binding. The dual quaternion slice is bound (and small) in either
+  // skinning mode, so one pipeline layout serves both; it is only written for dual quaternions.
+  const VkDeviceSize alignment = device.limits().minStorageBufferOffsetAlignment;
   const VkDeviceSize bones_bytes = sliceBytes(static_cast<std::size_t>(data.bone_count) * sizeof(gpu::BoneMatrix));
   const VkDeviceSize basis_bytes = sliceBytes(deformer.basis_count_ * sizeof(gpu::ModeBasis));
-  deformer.basis_offset_ = alignUp(bones_bytes, device.limits().minStorageBufferOffsetAlignment);
+  const VkDeviceSize dual_quat_bytes = sliceBytes(static_cast<std::size_t>(data.bone_count) * sizeof(gpu::DualQuat));
+  deformer.basis_offset_ = alignUp(bones_bytes, alignment);
+  deformer.dual_quat_offset_ = alignUp(deformer.basis_offset_ + basis_bytes, alignment);
+  deformer.dual_quaternion_ = data.skinning == SkinningMode::kDualQuaternion;
+  if (deformer.dual_quaternion_) deformer.dual_quats_.resize(data.bone_count);
   const vk::FrameBinding frame_bindings[] = {
       {ODESKIN_BINDING_BONES, 0, bones_bytes},
       {ODESKIN_BINDING_MODE_BASIS, deformer.basis_offset_, basis_bytes},
+      {ODESKIN_BINDING_BONE_DUAL_QUATS, deformer.dual_quat_offset_, dual_quat_bytes},
   };
-  if (bones_bytes > device.limits().maxStorageBufferRange) {
+  if (bones_bytes > device.limits().maxStorageBufferRange || dual_quat_bytes > device.limits().maxStorageBufferRange) {
     return unavailable("fourier deform gpu: " + std::to_string(data.bone_count) +
                        " bones exceed maxStorageBufferRange");
   }
@@ -94,7 +102,7 @@ Result<GpuDeformer> GpuDeformer::create(const vk::Device& device, const PackedDe
   desc.spirv = kFourierDeformSpirv;
   desc.static_bindings = statics;
   desc.frame_bindings = frame_bindings;
-  desc.frame_bytes = deformer.basis_offset_ + basis_bytes;
+  desc.frame_bytes = deformer.dual_quat_offset_ + dual_quat_bytes;
   desc.push_constant_bytes = sizeof(gpu::DeformPushConstants);
   desc.frames_in_flight = 2;
   ODESKIN_ASSIGN_OR_RETURN(deformer.dispatcher_, vk::ComputeDispatcher::create(device, desc));
@@ -127,6 +135,10 @@ Status GpuDeformer::submit(const GpuDeformFrame& frame) {
   if (!frame.bones.empty()) std::memcpy(inputs.data(), frame.bones.data(), frame.bones.size_bytes());
   if (!frame.basis.empty()) {
     std::memcpy(inputs.data() + basis_offset_, frame.basis.data(), frame.basis.size_bytes());
+  }
+  if (dual_quaternion_ && !frame.bones.empty()) {
+    toGpuDualQuaternions(frame.bones, dual_quats_);
+    std::memcpy(inputs.data() + dual_quat_offset_, dual_quats_.data(), dual_quats_.size() * sizeof(gpu::DualQuat));
   }
   const std::uint32_t groups = (vertex_count_ + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
   return dispatcher_.submitFrame(&push_constants_[frame.segment], groups);

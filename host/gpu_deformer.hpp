@@ -2,7 +2,9 @@
 // GPU dispatcher of FourierDeformFastJob (shaders/fourier_deform.comp; thesis Eq 6.30 corrected,
 // MATH.md 5.6): the packed data is uploaded once, then each frame writes the same per-frame fields
 // as the CPU job (segment, bones, basis) into a double-buffered mapped buffer and runs ONE dispatch
-// of ceil(V / 64) workgroups into an output buffer a renderer can bind as vertex input.
+// of ceil(V / 64) workgroups into an output buffer a renderer can bind as vertex input. With
+// data.skinning = kDualQuaternion each frame also converts the bones to dual quaternions on the
+// host (toGpuDualQuaternions, as FourierDeformFastJob does) and writes them beside the bones.
 #pragma once
 
 #include <cstdint>
@@ -72,6 +74,9 @@ class GpuDeformer {
   std::uint32_t bone_count_ = 0;
   std::size_t basis_count_ = 0;
   VkDeviceSize basis_offset_ = 0;  // of the basis slice inside each per-frame buffer
+  VkDeviceSize dual_quat_offset_ = 0;  // of the bone dual quaternion slice
+  bool dual_quaternion_ = false;       // data.skinning == kDualQuaternion
+  std::vector<gpu::DualQuat> dual_quats_;  // bone_count when dual_quaternion_: per-frame scratch
   std::vector<gpu::DeformPushConstants> push_constants_;  // one per segment, computed once
   // The dispatcher is declared last so it is destroyed first: it waits for in-flight frames
   // before the buffers they read go away.

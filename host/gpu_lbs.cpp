@@ -24,8 +24,8 @@ Result<GpuLbs> GpuLbs::create(const vk::Device& device, const PackedDeformData& 
   lbs.device_ = &device;
   lbs.vertex_count_ = data.vertex_count;
   lbs.bone_count_ = data.bone_count;
-  // lbs.comp reads vertex_count and influence_layout of the shared push block; segment 0 is only
-  // a placeholder (deformPushConstants tolerates segment_count = 0).
+  // lbs.comp reads vertex_count, influence_layout and skinning of the shared push block; segment 0
+  // is only a placeholder (deformPushConstants tolerates segment_count = 0).
   lbs.push_constants_ = deformPushConstants(data, 0);
 
   std::vector<vk::StaticBinding> statics;
@@ -44,17 +44,27 @@ Result<GpuLbs> GpuLbs::create(const vk::Device& device, const PackedDeformData& 
                            vk::Buffer::create(device, out_bytes < 16 ? 16 : out_bytes, vk::kOutputBufferUsage));
   statics.push_back({ODESKIN_BINDING_OUT_POSITIONS, lbs.out_positions_.handle()});
 
+  // Per-frame buffer: bones, then their dual quaternions (bound in either mode, written for DQS).
   const std::size_t raw_bones = static_cast<std::size_t>(data.bone_count) * sizeof(gpu::BoneMatrix);
   const VkDeviceSize bones_bytes = raw_bones < 16 ? 16 : raw_bones;
-  if (bones_bytes > device.limits().maxStorageBufferRange) {
+  const std::size_t raw_dual_quats = static_cast<std::size_t>(data.bone_count) * sizeof(gpu::DualQuat);
+  const VkDeviceSize dual_quat_bytes = raw_dual_quats < 16 ? 16 : raw_dual_quats;
+  if (bones_bytes > device.limits().maxStorageBufferRange || dual_quat_bytes > device.limits().maxStorageBufferRange) {
     return unavailable("lbs gpu: " + std::to_string(data.bone_count) + " bones exceed maxStorageBufferRange");
   }
-  const vk::FrameBinding frame_bindings[] = {{ODESKIN_BINDING_BONES, 0, bones_bytes}};
+  const VkDeviceSize alignment = device.limits().minStorageBufferOffsetAlignment;
+  lbs.dual_quat_offset_ = alignment == 0 ? bones_bytes : (bones_bytes + alignment - 1) / alignment * alignment;
+  lbs.dual_quaternion_ = data.skinning == SkinningMode::kDualQuaternion;
+  if (lbs.dual_quaternion_) lbs.dual_quats_.resize(data.bone_count);
+  const vk::FrameBinding frame_bindings[] = {
+      {ODESKIN_BINDING_BONES, 0, bones_bytes},
+      {ODESKIN_BINDING_BONE_DUAL_QUATS, lbs.dual_quat_offset_, dual_quat_bytes},
+  };
   vk::ComputeDispatcherDesc desc;
   desc.spirv = kLbsSpirv;
   desc.static_bindings = statics;
   desc.frame_bindings = frame_bindings;
-  desc.frame_bytes = bones_bytes;
+  desc.frame_bytes = lbs.dual_quat_offset_ + dual_quat_bytes;
   desc.push_constant_bytes = sizeof(gpu::DeformPushConstants);
   desc.frames_in_flight = 2;
   ODESKIN_ASSIGN_OR_RETURN(lbs.dispatcher_, vk::ComputeDispatcher::create(device, desc));
@@ -74,6 +84,10 @@ Status GpuLbs::submit(const GpuLbsFrame& frame) {
   if (vertex_count_ == 0) return okStatus();
   ODESKIN_ASSIGN_OR_RETURN(std::span<std::byte> inputs, dispatcher_.beginFrame());
   if (!frame.bones.empty()) std::memcpy(inputs.data(), frame.bones.data(), frame.bones.size_bytes());
+  if (dual_quaternion_ && !frame.bones.empty()) {
+    toGpuDualQuaternions(frame.bones, dual_quats_);
+    std::memcpy(inputs.data() + dual_quat_offset_, dual_quats_.data(), dual_quats_.size() * sizeof(gpu::DualQuat));
+  }
   const std::uint32_t groups = (vertex_count_ + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
   return dispatcher_.submitFrame(&push_constants_, groups);
 }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
-// GPU dispatcher of LbsFastJob (shaders/lbs.comp; thesis Eq 6.1): plain linear blend skinning of
-// the same packed data, the baseline of every speed ratio. Same frame ring as GpuDeformer.
+// GPU dispatcher of LbsFastJob (shaders/lbs.comp; thesis Eq 6.1): plain skinning of the same
+// packed data, the baseline of every speed ratio; linear blend, or dual-quaternion skinning when
+// data.skinning says so (bones converted per frame on the host, as in GpuDeformer). Same frame
+// ring as GpuDeformer.
 #pragma once
 
 #include <cstdint>
@@ -47,6 +49,9 @@ class GpuLbs {
   std::uint32_t vertex_count_ = 0;
   std::uint32_t bone_count_ = 0;
   gpu::DeformPushConstants push_constants_{};
+  VkDeviceSize dual_quat_offset_ = 0;      // of the bone dual quaternion slice in the frame buffer
+  bool dual_quaternion_ = false;           // data.skinning == kDualQuaternion
+  std::vector<gpu::DualQuat> dual_quats_;  // bone_count when dual_quaternion_: per-frame scratch
   std::vector<vk::Buffer> inputs_;
   vk::Buffer out_positions_;
   vk::ComputeDispatcher dispatcher_;  // last: destroyed first, after waiting for its frames

@@ -4,6 +4,7 @@
 // engine/kernels/fourier_deform_fast_job.cpp (float):
 //   D_i = (1 - w) S_a(v) + w S_b(v),  S_c(v) = sum_m (gamma_n d_cm + psi_n rdot_cm) phi_m(v)
 //   bind:  out = sum_b w_b M_b (X + r^s + D + gamma_0 eps);  posed: out = LBS(X) + r^s + D + gamma_0 eps
+// with LBS or dual-quaternion skinning (Kavan et al. 2008) by pc.skinning (skinning.glsl).
 // Time bases are float64 host values per (material, mode) (MATH.md 1.6); the GPU only sums.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -23,8 +24,11 @@ layout(std430, set = 0, binding = ODESKIN_BINDING_INFLUENCES) readonly buffer In
 layout(std430, set = 0, binding = ODESKIN_BINDING_BONES) readonly buffer Bones { BoneMatrix bones[]; };
 layout(std430, set = 0, binding = ODESKIN_BINDING_MODE_BASIS) readonly buffer Basis { ModeBasis basis[]; };
 layout(std430, set = 0, binding = ODESKIN_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { Float4 out_positions[]; };
+layout(std430, set = 0, binding = ODESKIN_BINDING_BONE_DUAL_QUATS) readonly buffer BoneDualQuats { DualQuat bone_dual_quats[]; };
 
 layout(push_constant) uniform Push { DeformPushConstants pc; };
+
+#include "skinning.glsl"
 
 const float kTwoPi = 6.28318530717958647692;
 
@@ -58,29 +62,6 @@ vec3 curveSeries(uint curve, float v, float c1, float s1) {
     cn = c_next;
   }
   return sum;
-}
-
-vec3 skinPoint(uint vertex, vec3 p) {
-  vec3 out_p = vec3(0.0);
-  uint begin;
-  uint end;
-  if (pc.influence_layout == ODESKIN_INFLUENCES_SPARSE) {
-    begin = influence_offsets[vertex];
-    end = influence_offsets[vertex + 1u];
-  } else {
-    begin = vertex * pc.influence_layout;
-    end = begin + pc.influence_layout;
-  }
-  vec4 h = vec4(p, 1.0);
-  for (uint k = begin; k < end; ++k) {
-    Influence inf = influences[k];
-    BoneMatrix m = bones[inf.bone];
-    vec3 q = vec3(dot(vec4(m.row0.x, m.row0.y, m.row0.z, m.row0.w), h),
-                  dot(vec4(m.row1.x, m.row1.y, m.row1.z, m.row1.w), h),
-                  dot(vec4(m.row2.x, m.row2.y, m.row2.z, m.row2.w), h));
-    out_p += inf.weight * q;
-  }
-  return out_p;
 }
 
 void main() {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Linear blend skinning, out_i = sum_b w_ib M_b X_i (thesis Eq 6.1). Mirrors
-// engine/kernels/lbs_job.cpp (reference) and lbs_fast_job in fourier_deform_fast_job.cpp (float).
+// Linear blend skinning, out_i = sum_b w_ib M_b X_i (thesis Eq 6.1), or dual-quaternion skinning
+// (Kavan et al. 2008) by pc.skinning (skinning.glsl). Mirrors engine/kernels/lbs_job.cpp
+// (reference) and LbsFastJob in fourier_deform_fast_job.cpp (float).
 // Same bindings and push constants as fourier_deform.comp; only the skinning ones are declared.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -13,30 +14,15 @@ layout(std430, set = 0, binding = ODESKIN_BINDING_INFLUENCE_OFFSETS) readonly bu
 layout(std430, set = 0, binding = ODESKIN_BINDING_INFLUENCES) readonly buffer Influences { Influence influences[]; };
 layout(std430, set = 0, binding = ODESKIN_BINDING_BONES) readonly buffer Bones { BoneMatrix bones[]; };
 layout(std430, set = 0, binding = ODESKIN_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { Float4 out_positions[]; };
+layout(std430, set = 0, binding = ODESKIN_BINDING_BONE_DUAL_QUATS) readonly buffer BoneDualQuats { DualQuat bone_dual_quats[]; };
 
 layout(push_constant) uniform Push { DeformPushConstants pc; };
+
+#include "skinning.glsl"
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.vertex_count) return;
-  uint begin;
-  uint end;
-  if (pc.influence_layout == ODESKIN_INFLUENCES_SPARSE) {
-    begin = influence_offsets[i];
-    end = influence_offsets[i + 1u];
-  } else {
-    begin = i * pc.influence_layout;
-    end = begin + pc.influence_layout;
-  }
-  vec4 h = vec4(rest_positions[i].x, rest_positions[i].y, rest_positions[i].z, 1.0);
-  vec3 p = vec3(0.0);
-  for (uint k = begin; k < end; ++k) {
-    Influence inf = influences[k];
-    BoneMatrix m = bones[inf.bone];
-    vec3 q = vec3(dot(vec4(m.row0.x, m.row0.y, m.row0.z, m.row0.w), h),
-                  dot(vec4(m.row1.x, m.row1.y, m.row1.z, m.row1.w), h),
-                  dot(vec4(m.row2.x, m.row2.y, m.row2.z, m.row2.w), h));
-    p += inf.weight * q;
-  }
+  vec3 p = skinPoint(i, vec3(rest_positions[i].x, rest_positions[i].y, rest_positions[i].z));
   out_positions[i] = Float4(p.x, p.y, p.z, 1.0);
 }

@@ -26,7 +26,15 @@ using uint = std::uint32_t;
 #define ODESKIN_RESIDUAL_BIND 0u
 #define ODESKIN_RESIDUAL_POSED 1u
 
-// Descriptor set 0 bindings of fourier_deform.comp and lbs_skin.comp.
+// How bones deform a vertex (push constant `skinning`, SkinningMode in types.hpp): linear blend
+// skinning from BoneMatrix rows, or dual-quaternion skinning (Kavan et al. 2008) from DualQuat.
+#define ODESKIN_SKINNING_LINEAR 0u
+#define ODESKIN_SKINNING_DUAL_QUATERNION 1u
+// Dual-quaternion blends whose real part is not longer than this are skinned by LBS instead
+// (kMinDualQuaternionBlendNorm in engine/kernels/dual_quaternion.hpp explains why none should be).
+#define ODESKIN_DQS_MIN_BLEND_NORM 1e-6
+
+// Descriptor set 0 bindings of fourier_deform.comp and lbs.comp.
 #define ODESKIN_BINDING_REST_POSITIONS 0     // Float4[V]: xyz rest position, w unused
 #define ODESKIN_BINDING_VERTEX_BINDINGS 1    // VertexBinding[V]
 #define ODESKIN_BINDING_SEGMENT_VERTICES 2   // SegmentVertex[S*V]
@@ -39,6 +47,11 @@ using uint = std::uint32_t;
 #define ODESKIN_BINDING_BONES 9              // per frame: BoneMatrix[bone_count]
 #define ODESKIN_BINDING_MODE_BASIS 10        // per frame: ModeBasis[material_count * (N+1)]
 #define ODESKIN_BINDING_OUT_POSITIONS 11     // Float4[V]: deformed xyz, w = 1
+// Per frame: DualQuat[bone_count], the same bones as ODESKIN_BINDING_BONES as unit dual quaternions
+// (toGpuDualQuaternions in engine/kernels/packed_deform.hpp, computed on the host from the
+// BoneMatrix rows). A second buffer rather than columns of BoneMatrix: LBS keeps its 48-byte
+// rows, and the slice is always bound but only written and read with ODESKIN_SKINNING_DUAL_QUATERNION.
+#define ODESKIN_BINDING_BONE_DUAL_QUATS 12
 
 struct Float4 {
   float x;
@@ -76,6 +89,13 @@ struct BoneMatrix {
   Float4 row2;
 };
 
+// Unit dual quaternion real + eps dual of a rigid bone transform, each stored (x, y, z, w): for
+// x -> R x + t, real is R's quaternion and dual = 1/2 (0, t) real.
+struct DualQuat {
+  Float4 real;
+  Float4 dual;
+};
+
 // Time basis of one (material, mode n) pair at the frame's tau: a_n = gamma d_n + psi rate_n.
 struct ModeBasis {
   float gamma;
@@ -98,7 +118,7 @@ struct DeformPushConstants {
   uint influence_layout;   // ODESKIN_INFLUENCES_SPARSE, 4 or 8
   uint residual_space;     // ODESKIN_RESIDUAL_BIND or ODESKIN_RESIDUAL_POSED
   uint use_rates;          // 0: rates buffer ignored
-  uint pad0;
+  uint skinning;           // ODESKIN_SKINNING_LINEAR or ODESKIN_SKINNING_DUAL_QUATERNION
   uint pad1;
 };
 

@@ -13,8 +13,10 @@ static_assert(sizeof(VertexBinding) == 16 && offsetof(VertexBinding, v) == 12);
 static_assert(sizeof(SegmentVertex) == 16 && offsetof(SegmentVertex, remainder_index) == 12);
 static_assert(sizeof(Influence) == 8);
 static_assert(sizeof(BoneMatrix) == 48);
+static_assert(sizeof(DualQuat) == 32 && offsetof(DualQuat, dual) == 16);
 static_assert(sizeof(ModeBasis) == 8);
 static_assert(sizeof(DeformPushConstants) == 48 && sizeof(DeformPushConstants) <= 128);
+static_assert(offsetof(DeformPushConstants, skinning) == 40);
 
 inline constexpr uint kWorkgroupSize = ODESKIN_WORKGROUP_SIZE;
 inline constexpr uint kNoRemainder = ODESKIN_NO_REMAINDER;

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -69,9 +70,65 @@ glm::vec3 skinPoint(const PackedDeformData& d, std::span<const gpu::BoneMatrix> 
   return out;
 }
 
+// Kavan et al. 2008, Algorithm 1, in the order of operations of skinPointDq() in
+// shaders/skinning.glsl: pivot = the first largest weight, bones on the pivot's side, blend,
+// divide by |real|, then x -> R x + t from the unit dual quaternion. A degenerate blend (see
+// kMinDualQuaternionBlendNorm) takes the LBS path.
 template <std::uint32_t kSlots>
-void deformRange(const FourierDeformFastJob& job, const gpu::DeformPushConstants& pc, std::size_t begin,
-                 std::size_t end) {
+glm::vec3 skinPointDq(const PackedDeformData& d, std::span<const gpu::BoneMatrix> bones,
+                      std::span<const gpu::DualQuat> dual_quats, std::size_t i, const glm::vec3& p) {
+  std::size_t begin;
+  std::size_t end;
+  if constexpr (kSlots == 0) {
+    begin = d.influence_offsets[i];
+    end = d.influence_offsets[i + 1];
+  } else {
+    begin = i * kSlots;
+    end = begin + kSlots;
+  }
+  if (begin == end) return skinPoint<kSlots>(d, bones, i, p);
+  std::size_t pivot = begin;
+  for (std::size_t k = begin + 1; k < end; ++k) {
+    if (d.influences[k].weight > d.influences[pivot].weight) pivot = k;
+  }
+  const glm::vec4 pivot_real = vec(dual_quats[d.influences[pivot].bone].real);
+  glm::vec4 real(0.0f);
+  glm::vec4 dual(0.0f);
+  for (std::size_t k = begin; k < end; ++k) {
+    const gpu::Influence inf = d.influences[k];
+    const gpu::DualQuat& q = dual_quats[inf.bone];
+    const glm::vec4 q_real = vec(q.real);
+    const float w = glm::dot(q_real, pivot_real) < 0.0f ? -inf.weight : inf.weight;
+    real += w * q_real;
+    dual += w * vec(q.dual);
+  }
+  const float norm = glm::length(real);
+  if (!(norm > static_cast<float>(ODESKIN_DQS_MIN_BLEND_NORM))) return skinPoint<kSlots>(d, bones, i, p);
+  const float inv_norm = 1.0f / norm;  // one division instead of eight
+  const glm::vec4 r = real * inv_norm;
+  const glm::vec4 e = dual * inv_norm;
+  const glm::vec3 rv(r.x, r.y, r.z);
+  const glm::vec3 ev(e.x, e.y, e.z);
+  const glm::vec3 t = 2.0f * (r.w * ev - e.w * rv + glm::cross(rv, ev));
+  const float xx = r.x * r.x, yy = r.y * r.y, zz = r.z * r.z;
+  const float xy = r.x * r.y, xz = r.x * r.z, yz = r.y * r.z;
+  const float wx = r.w * r.x, wy = r.w * r.y, wz = r.w * r.z;
+  const glm::vec3 c0(1.0f - 2.0f * (yy + zz), 2.0f * (xy + wz), 2.0f * (xz - wy));
+  const glm::vec3 c1(2.0f * (xy - wz), 1.0f - 2.0f * (xx + zz), 2.0f * (yz + wx));
+  const glm::vec3 c2(2.0f * (xz + wy), 2.0f * (yz - wx), 1.0f - 2.0f * (xx + yy));
+  return c0 * p.x + c1 * p.y + c2 * p.z + t;
+}
+
+// The vertex's skinning in the mode of `dual_quats`: empty = LBS.
+template <std::uint32_t kSlots>
+glm::vec3 skin(const PackedDeformData& d, std::span<const gpu::BoneMatrix> bones,
+               std::span<const gpu::DualQuat> dual_quats, std::size_t i, const glm::vec3& p) {
+  return dual_quats.empty() ? skinPoint<kSlots>(d, bones, i, p) : skinPointDq<kSlots>(d, bones, dual_quats, i, p);
+}
+
+template <std::uint32_t kSlots>
+void deformRange(const FourierDeformFastJob& job, const gpu::DeformPushConstants& pc,
+                 std::span<const gpu::DualQuat> dual_quats, std::size_t begin, std::size_t end) {
   const PackedDeformData& d = *job.data;
   const gpu::SegmentVertex* segment = d.segment_vertices.data() + static_cast<std::size_t>(pc.segment) * pc.vertex_count;
   for (std::size_t i = begin; i < end; ++i) {
@@ -91,18 +148,28 @@ void deformRange(const FourierDeformFastJob& job, const gpu::DeformPushConstants
     }
     const glm::vec3 rest = xyz(d.rest_positions[i]);
     const glm::vec3 p = pc.residual_space == ODESKIN_RESIDUAL_BIND
-                            ? skinPoint<kSlots>(d, job.bones, i, rest + residual)
-                            : skinPoint<kSlots>(d, job.bones, i, rest) + residual;
+                            ? skin<kSlots>(d, job.bones, dual_quats, i, rest + residual)
+                            : skin<kSlots>(d, job.bones, dual_quats, i, rest) + residual;
     job.out_positions[i] = gpu::Float4{p.x, p.y, p.z, 1.0f};
   }
 }
 
 template <std::uint32_t kSlots>
-void lbsRange(const LbsFastJob& job, std::size_t begin, std::size_t end) {
+void lbsRange(const LbsFastJob& job, std::span<const gpu::DualQuat> dual_quats, std::size_t begin, std::size_t end) {
   for (std::size_t i = begin; i < end; ++i) {
-    const glm::vec3 p = skinPoint<kSlots>(*job.data, job.bones, i, xyz(job.data->rest_positions[i]));
+    const glm::vec3 p = skin<kSlots>(*job.data, job.bones, dual_quats, i, xyz(job.data->rest_positions[i]));
     job.out_positions[i] = gpu::Float4{p.x, p.y, p.z, 1.0f};
   }
+}
+
+// The frame's bones as dual quaternions when `d` skins with them, else empty.
+std::vector<gpu::DualQuat> frameDualQuats(const PackedDeformData& d, std::span<const gpu::BoneMatrix> bones) {
+  std::vector<gpu::DualQuat> dual_quats;
+  if (d.skinning == SkinningMode::kDualQuaternion) {
+    dual_quats.resize(bones.size());
+    toGpuDualQuaternions(bones, dual_quats);
+  }
+  return dual_quats;
 }
 
 // Runs body(begin, end) over [0, count) on `threads` workers (0 = all). A single thread runs
@@ -129,6 +196,10 @@ Status checkLayout(const PackedDeformData& d, const char* job) {
   const std::uint32_t layout = d.influence_layout;
   if (layout != ODESKIN_INFLUENCES_SPARSE && layout != 4 && layout != 8) {
     return invalidArgument(std::string(job) + ": influence_layout " + std::to_string(layout) + " is not 0, 4 or 8");
+  }
+  if (d.skinning != SkinningMode::kLinear && d.skinning != SkinningMode::kDualQuaternion) {
+    return invalidArgument(std::string(job) + ": unknown skinning mode " +
+                           std::to_string(static_cast<std::uint32_t>(d.skinning)));
   }
   if (d.rest_positions.size() != d.vertex_count) return invalidArgument(std::string(job) + ": rest_positions size");
   if (layout == ODESKIN_INFLUENCES_SPARSE) {
@@ -180,11 +251,12 @@ Status FourierDeformFastJob::validate() const {
 Status FourierDeformFastJob::run() const {
   ODESKIN_TRY(validate());
   const gpu::DeformPushConstants pc = deformPushConstants(*data, segment);
+  const std::vector<gpu::DualQuat> dual_quats = frameDualQuats(*data, bones);
   parallelRange(data->vertex_count, threads, [&](std::size_t begin, std::size_t end) {
     switch (data->influence_layout) {
-      case 4: deformRange<4>(*this, pc, begin, end); break;
-      case 8: deformRange<8>(*this, pc, begin, end); break;
-      default: deformRange<0>(*this, pc, begin, end); break;
+      case 4: deformRange<4>(*this, pc, dual_quats, begin, end); break;
+      case 8: deformRange<8>(*this, pc, dual_quats, begin, end); break;
+      default: deformRange<0>(*this, pc, dual_quats, begin, end); break;
     }
   });
   return okStatus();
@@ -206,11 +278,12 @@ Status LbsFastJob::validate() const {
 
 Status LbsFastJob::run() const {
   ODESKIN_TRY(validate());
+  const std::vector<gpu::DualQuat> dual_quats = frameDualQuats(*data, bones);
   parallelRange(data->vertex_count, threads, [&](std::size_t begin, std::size_t end) {
     switch (data->influence_layout) {
-      case 4: lbsRange<4>(*this, begin, end); break;
-      case 8: lbsRange<8>(*this, begin, end); break;
-      default: lbsRange<0>(*this, begin, end); break;
+      case 4: lbsRange<4>(*this, dual_quats, begin, end); break;
+      case 8: lbsRange<8>(*this, dual_quats, begin, end); break;
+      default: lbsRange<0>(*this, dual_quats, begin, end); break;
     }
   });
   return okStatus();

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
+#include "dual_quaternion.hpp"
 #include "lbs_job.hpp"
 
 namespace odeskin {
@@ -51,6 +53,10 @@ Status FourierDeformJob::validate() const {
   if (modes < 1 || modes > kMaxModes) {
     return outOfRange("fourier deform: modes N = " + std::to_string(modes) + " outside 1.." +
                       std::to_string(kMaxModes));
+  }
+  if (skinning != SkinningMode::kLinear && skinning != SkinningMode::kDualQuaternion) {
+    return invalidArgument("fourier deform: unknown skinning mode " +
+                           std::to_string(static_cast<std::uint32_t>(skinning)));
   }
   const std::size_t vertex_count = rest_positions.size();
   const std::size_t curve_count = curve_materials.size();
@@ -104,6 +110,14 @@ Status FourierDeformJob::validate() const {
 Status FourierDeformJob::run() const {
   ODESKIN_TRY(validate());
   const std::size_t per_material = static_cast<std::size_t>(modes) + 1;
+  const bool dual_quaternion = skinning == SkinningMode::kDualQuaternion;
+  std::vector<DualQuaternion> dual_quaternions;
+  if (dual_quaternion) dual_quaternions = toDualQuaternions(bones);
+  // Linear blend skinning keeps its own sum (skinPoint), so kLinear output is unchanged bit for bit.
+  auto skin = [&](std::size_t i, const Vec3& x) {
+    return dual_quaternion ? skinTransform(skinning, influences, bones, dual_quaternions, i).apply(x)
+                           : skinPoint(influences, bones, i, x);
+  };
   for (std::size_t i = 0; i < rest_positions.size(); ++i) {
     const CurveBinding& b = bindings[i];
     const Vec3 series_a = jobSeries(*this, b.curve_a, b.v);
@@ -113,9 +127,8 @@ Status FourierDeformJob::run() const {
     if (!remainder_indices.empty() && remainder_indices[i] != kNoRemainder) {
       residual += basis[curve_materials[b.curve_a] * per_material].gamma * remainders[remainder_indices[i]];
     }
-    out_positions[i] = residual_space == ResidualSpace::kBind
-                           ? skinPoint(influences, bones, i, rest_positions[i] + residual)
-                           : skinPoint(influences, bones, i, rest_positions[i]) + residual;
+    out_positions[i] = residual_space == ResidualSpace::kBind ? skin(i, rest_positions[i] + residual)
+                                                              : skin(i, rest_positions[i]) + residual;
   }
   return okStatus();
 }

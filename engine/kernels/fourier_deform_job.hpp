@@ -4,6 +4,8 @@
 //   D_i(tau) = (1 - w) S_a(v) + w S_b(v),  S_c(v) = sum_m [gamma_n(m) d_cm + psi_n(m) rdot_cm] phi_m(v)
 //   bind:  out_i = sum_b w_ib M_b (X_i + r_i^s + D_i(tau) + gamma_0(tau) eps_i)
 //   posed: out_i = sum_b w_ib M_b X_i + r_i^s + D_i(tau) + gamma_0(tau) eps_i
+// where `sum_b w_ib M_b x` is linear blend skinning, or, with SkinningMode::kDualQuaternion, the
+// vertex's blended rigid transform (Kavan et al. 2008; skinTransform in dual_quaternion.hpp).
 // with phi_m the MATH.md 4.2 basis plus the open-curve trend phi_{2N+1}(v) = v (mode 0), eps_i the
 // sparse remainder (PIPELINE.md 4) following mode 0 of curve_a's material. Mirrored by
 // fourier_deform_fast_job (float) and shaders/fourier_deform.comp.
@@ -32,6 +34,7 @@ Vec3 curveSeries(std::span<const Vec3> coefficients, std::span<const Vec3> rates
 struct FourierDeformJob {
   int modes = 0;  // N, 1..64
   ResidualSpace residual_space = ResidualSpace::kBind;
+  SkinningMode skinning = SkinningMode::kLinear;  // kDualQuaternion: bones are taken as rigid
 
   std::span<const Vec3> rest_positions;          // V, required: bind mesh X
   std::span<const CurveBinding> bindings;        // V, required
@@ -48,7 +51,8 @@ struct FourierDeformJob {
   std::span<Vec3> out_positions;                 // V, required
 
   // kInvalidArgument naming the first field that breaks its contract (sizes, curve or material or
-  // bone or remainder index out of range, w outside [0, 1], non-finite basis value);
+  // bone or remainder index out of range, w outside [0, 1], non-finite basis value, unknown
+  // skinning mode);
   // kOutOfRange for N outside 1..64.
   Status validate() const;
   // validate(), then writes out_positions.

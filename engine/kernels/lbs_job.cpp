@@ -2,6 +2,9 @@
 #include "lbs_job.hpp"
 
 #include <string>
+#include <vector>
+
+#include "dual_quaternion.hpp"
 
 namespace odeskin {
 
@@ -12,11 +15,21 @@ Status LbsJob::validate() const {
                            std::to_string(vertex_count) + " vertices");
   }
   if (bones.empty() && vertex_count > 0) return invalidArgument("lbs: bones is empty");
+  if (skinning != SkinningMode::kLinear && skinning != SkinningMode::kDualQuaternion) {
+    return invalidArgument("lbs: unknown skinning mode " + std::to_string(static_cast<std::uint32_t>(skinning)));
+  }
   return validateInfluences(influences, vertex_count, static_cast<std::uint32_t>(bones.size()));
 }
 
 Status LbsJob::run() const {
   ODESKIN_TRY(validate());
+  if (skinning == SkinningMode::kDualQuaternion) {
+    const std::vector<DualQuaternion> dual_quaternions = toDualQuaternions(bones);
+    for (std::size_t i = 0; i < rest_positions.size(); ++i) {
+      out_positions[i] = skinTransform(skinning, influences, bones, dual_quaternions, i).apply(rest_positions[i]);
+    }
+    return okStatus();
+  }
   for (std::size_t i = 0; i < rest_positions.size(); ++i) {
     out_positions[i] = skinPoint(influences, bones, i, rest_positions[i]);
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // CPU reference kernel (double): linear blend skinning, out_i = sum_b w_ib M_b X_i
-// (Magnenat-Thalmann et al. 1988; thesis Eq 6.1). Mirrored by lbs_fast_job and shaders/lbs.comp.
+// (Magnenat-Thalmann et al. 1988; thesis Eq 6.1), or dual-quaternion skinning (Kavan et al. 2008,
+// dual_quaternion.hpp). Mirrored by LbsFastJob (fourier_deform_fast_job.hpp) and shaders/lbs.comp.
 #pragma once
 
 #include <span>
@@ -16,8 +17,9 @@ struct LbsJob {
   InfluencesView influences;             // V rows, required
   std::span<const BoneTransform> bones;  // B, required
   std::span<Vec3> out_positions;         // V, required
+  SkinningMode skinning = SkinningMode::kLinear;  // kDualQuaternion: bones are taken as rigid
 
-  // kInvalidArgument naming the field: sizes, bone index out of range.
+  // kInvalidArgument naming the field: sizes, bone index out of range, unknown skinning mode.
   Status validate() const;
   Status run() const;
 };

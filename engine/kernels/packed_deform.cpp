@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "packed_deform.hpp"
 
+#include "dual_quaternion.hpp"
+
 namespace odeskin {
 
 std::size_t PackedDeformData::byteSize() const {
@@ -34,6 +36,27 @@ void toGpuBasis(std::span<const ModeBasisValue> basis, std::span<gpu::ModeBasis>
   }
 }
 
+gpu::DualQuat toGpuDualQuaternion(const gpu::BoneMatrix& bone) {
+  const gpu::Float4 rows[3] = {bone.row0, bone.row1, bone.row2};
+  BoneTransform m;
+  for (int r = 0; r < 3; ++r) {
+    m[0][r] = rows[r].x;
+    m[1][r] = rows[r].y;
+    m[2][r] = rows[r].z;
+    m[3][r] = rows[r].w;
+  }
+  const DualQuaternion q = DualQuaternion::fromRigid(m);
+  auto f4 = [](const glm::dquat& v) {
+    return gpu::Float4{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
+                       static_cast<float>(v.w)};
+  };
+  return gpu::DualQuat{f4(q.real), f4(q.dual)};
+}
+
+void toGpuDualQuaternions(std::span<const gpu::BoneMatrix> bones, std::span<gpu::DualQuat> out) {
+  for (std::size_t b = 0; b < bones.size() && b < out.size(); ++b) out[b] = toGpuDualQuaternion(bones[b]);
+}
+
 gpu::DeformPushConstants deformPushConstants(const PackedDeformData& data, std::uint32_t segment) {
   gpu::DeformPushConstants pc{};
   pc.vertex_count = data.vertex_count;
@@ -46,6 +69,8 @@ gpu::DeformPushConstants deformPushConstants(const PackedDeformData& data, std::
   pc.influence_layout = data.influence_layout;
   pc.residual_space = data.residual_space == ResidualSpace::kBind ? ODESKIN_RESIDUAL_BIND : ODESKIN_RESIDUAL_POSED;
   pc.use_rates = data.rates.empty() ? 0u : 1u;
+  pc.skinning = data.skinning == SkinningMode::kDualQuaternion ? ODESKIN_SKINNING_DUAL_QUATERNION
+                                                                : ODESKIN_SKINNING_LINEAR;
   return pc;
 }
 

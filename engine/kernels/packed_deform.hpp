@@ -21,6 +21,8 @@ struct PackedDeformData {
   std::uint32_t segment_count = 0;   // S
   std::uint32_t influence_layout = ODESKIN_INFLUENCES_SPARSE;  // 0 (sparse rows), 4 or 8 (slots)
   ResidualSpace residual_space = ResidualSpace::kBind;
+  // kDualQuaternion: the fast path and the GPU also need toGpuDualQuaternions of each frame's bones.
+  SkinningMode skinning = SkinningMode::kLinear;
 
   std::vector<gpu::Float4> rest_positions;          // V
   std::vector<gpu::VertexBinding> bindings;         // V
@@ -43,6 +45,11 @@ gpu::Float4 toGpuFloat4(const Vec3& v, float w = 0.0f);
 // Converts per-frame values for the fast path and the GPU.
 void toGpuBones(std::span<const BoneTransform> bones, std::span<gpu::BoneMatrix> out);
 void toGpuBasis(std::span<const ModeBasisValue> basis, std::span<gpu::ModeBasis> out);
+// The unit dual quaternion of each bone's rigid part (DualQuaternion::fromRigid, in double, then
+// rounded), for dual-quaternion skinning. Taken from the float rows the GPU gets, so the fast path
+// and the shader blend exactly the same numbers.
+gpu::DualQuat toGpuDualQuaternion(const gpu::BoneMatrix& bone);
+void toGpuDualQuaternions(std::span<const gpu::BoneMatrix> bones, std::span<gpu::DualQuat> out);
 
 // Push constants for segment `segment` of `data` (shared by the fast path and the dispatcher).
 gpu::DeformPushConstants deformPushConstants(const PackedDeformData& data, std::uint32_t segment);

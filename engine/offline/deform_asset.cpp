@@ -108,6 +108,7 @@ Result<PackedDeformData> packDeformAsset(const DeformAsset& a, std::uint32_t inf
   p.bone_count = a.bone_count;
   p.segment_count = static_cast<std::uint32_t>(a.segments.size());
   p.residual_space = a.residual_space;
+  p.skinning = a.skinning;
   p.rest_positions.reserve(p.vertex_count);
   for (const Vec3& x : a.rest_positions) p.rest_positions.push_back(toGpuFloat4(x, 1.0f));
   for (const CurveBinding& b : a.bindings) {

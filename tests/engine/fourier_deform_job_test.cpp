@@ -134,6 +134,73 @@ TEST(FourierDeformJob, ZeroBasisAndIdentityBonesGiveRestPlusBase) {
   }
 }
 
+TEST(FourierDeformJob, UnknownSkinningModeIsInvalid) {
+  Tiny t;
+  auto j = t.job();
+  j.skinning = static_cast<SkinningMode>(7);
+  EXPECT_EQ(j.validate().code(), StatusCode::kInvalidArgument);
+}
+
+// Kavan et al. 2008, Algorithm 1, written out with quaternion products and nothing from
+// dual_quaternion.hpp: the vertex's rigid bones as r_b + eps 1/2 t_b r_b, signs against the
+// largest weight, the normalised blend applied as r x r* + 2 vec(d r*).
+Vec3 directDqs(const Influences& in, std::span<const BoneTransform> bones, std::size_t i, const Vec3& x) {
+  auto real = [&](std::uint32_t b) { return glm::quat_cast(glm::dmat3(bones[b])); };
+  auto dual = [&](std::uint32_t b) {
+    const Vec3 t = bones[b][3];
+    return 0.5 * (glm::dquat(0.0, t.x, t.y, t.z) * real(b));
+  };
+  std::uint32_t pivot = in.offsets[i];
+  for (std::uint32_t k = in.offsets[i]; k < in.offsets[i + 1]; ++k) {
+    if (in.weights[k] > in.weights[pivot]) pivot = k;
+  }
+  glm::dquat r(0.0, 0.0, 0.0, 0.0), d(0.0, 0.0, 0.0, 0.0);
+  for (std::uint32_t k = in.offsets[i]; k < in.offsets[i + 1]; ++k) {
+    const std::uint32_t b = in.bones[k];
+    const double sign = glm::dot(real(b), real(in.bones[pivot])) < 0.0 ? -1.0 : 1.0;
+    r += sign * in.weights[k] * real(b);
+    d += sign * in.weights[k] * dual(b);
+  }
+  const double norm = glm::length(r);
+  r = r / norm;
+  d = d / norm;
+  const glm::dquat t = 2.0 * (d * glm::conjugate(r));
+  return r * x + Vec3(t.x, t.y, t.z);
+}
+
+TEST(FourierDeformJob, DualQuaternionSkinningMatchesTheDirectFormula) {
+  for (ResidualSpace space : {ResidualSpace::kBind, ResidualSpace::kPosed}) {
+    DeformAsset a = testing::randomAsset(400, 9, 5, 6, 4, 2, 31);
+    a.residual_space = space;
+    const std::vector<ModeBasisValue> basis = testing::randomBasis(2 * 6, 17);
+    // X + r + D: the job with identity bones in bind space.
+    std::vector<BoneTransform> identity(6, BoneTransform(1.0));
+    std::vector<Vec3> corrected(a.vertexCount());
+    FourierDeformJob rest = referenceJob(a, 1, basis, identity, corrected);
+    rest.residual_space = ResidualSpace::kBind;
+    ASSERT_TRUE(rest.run().ok());
+
+    const std::vector<BoneTransform> bones = testing::randomBones(6, 23);
+    std::vector<Vec3> out(a.vertexCount());
+    FourierDeformJob job = referenceJob(a, 1, basis, bones, out);
+    job.skinning = SkinningMode::kDualQuaternion;
+    ASSERT_TRUE(job.run().ok());
+    std::vector<Vec3> lbs(a.vertexCount());
+    ASSERT_TRUE(referenceJob(a, 1, basis, bones, lbs).run().ok());
+    double worst = 0.0, lbs_gap = 0.0;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const Vec3& x = a.rest_positions[i];
+      const Vec3 expected = space == ResidualSpace::kBind ? directDqs(a.influences, bones, i, corrected[i])
+                                                          : directDqs(a.influences, bones, i, x) + (corrected[i] - x);
+      worst = std::max(worst, glm::length(out[i] - expected));
+      lbs_gap = std::max(lbs_gap, glm::length(lbs[i] - expected));
+    }
+    EXPECT_LT(worst, 1e-12) << (space == ResidualSpace::kBind ? "bind" : "posed");
+    // The modes really differ on these bones (up to 57 degrees apart), so the check above can fail.
+    EXPECT_GT(lbs_gap, 1e-2);
+  }
+}
+
 TEST(FourierDeformJob, BlendIsLinearInW) {
   // Moving w from 0 to 1 moves the vertex linearly from curve a's series to curve b's.
   DeformAsset a = testing::randomAsset(1, 2, 3, 1, 1, 1, 5);
@@ -152,16 +219,20 @@ TEST(FourierDeformJob, BlendIsLinearInW) {
 // The fast path follows the shader in float32; against the double reference its error is a few
 // float ulps of the largest term, so 2e-5 absolute on unit-size data leaves a wide margin while a
 // wrong index or sign (errors of 1e-2 and more) cannot pass.
-void expectFastMatchesReference(std::uint32_t layout, ResidualSpace space, unsigned threads) {
+void expectFastMatchesReference(std::uint32_t layout, ResidualSpace space, unsigned threads,
+                                SkinningMode skinning = SkinningMode::kLinear) {
   DeformAsset a = testing::randomAsset(5000, 40, 9, 12, layout == 0 ? 7 : layout, 3, 21);
   a.residual_space = space;
+  a.skinning = skinning;
   Result<PackedDeformData> packed = packDeformAsset(a, layout);
   ASSERT_TRUE(packed.ok()) << packed.status().toString();
   const std::vector<ModeBasisValue> basis = testing::randomBasis(3 * 10, 3);
   const std::vector<BoneTransform> bones = testing::randomBones(12, 4);
   for (std::uint32_t segment = 0; segment < 2; ++segment) {
     std::vector<Vec3> expected(a.vertexCount());
-    ASSERT_TRUE(referenceJob(a, segment, basis, bones, expected).run().ok());
+    FourierDeformJob reference = referenceJob(a, segment, basis, bones, expected);
+    reference.skinning = skinning;
+    ASSERT_TRUE(reference.run().ok());
     std::vector<gpu::BoneMatrix> gpu_bones(12);
     std::vector<gpu::ModeBasis> gpu_basis(basis.size());
     toGpuBones(bones, gpu_bones);
@@ -182,19 +253,31 @@ void expectFastMatchesReference(std::uint32_t layout, ResidualSpace space, unsig
 TEST(FourierDeformFastJob, MatchesReferenceSparseBind) { expectFastMatchesReference(0, ResidualSpace::kBind, 1); }
 TEST(FourierDeformFastJob, MatchesReferenceFourSlots) { expectFastMatchesReference(4, ResidualSpace::kBind, 0); }
 TEST(FourierDeformFastJob, MatchesReferenceEightSlotsPosed) { expectFastMatchesReference(8, ResidualSpace::kPosed, 2); }
+TEST(FourierDeformFastJob, DualQuaternionMatchesReferenceSparseBind) {
+  expectFastMatchesReference(0, ResidualSpace::kBind, 1, SkinningMode::kDualQuaternion);
+}
+TEST(FourierDeformFastJob, DualQuaternionMatchesReferenceFourSlotsPosed) {
+  expectFastMatchesReference(4, ResidualSpace::kPosed, 0, SkinningMode::kDualQuaternion);
+}
+TEST(FourierDeformFastJob, DualQuaternionMatchesReferenceEightSlots) {
+  expectFastMatchesReference(8, ResidualSpace::kBind, 2, SkinningMode::kDualQuaternion);
+}
 
 TEST(FourierDeformFastJob, BitIdenticalAcrossThreadCounts) {
-  DeformAsset a = testing::randomAsset(20000, 30, 9, 8, 5, 2, 8);
-  Result<PackedDeformData> packed = packDeformAsset(a, 0);
-  ASSERT_TRUE(packed.ok());
-  std::vector<gpu::BoneMatrix> bones(8);
-  toGpuBones(testing::randomBones(8, 1), bones);
-  std::vector<gpu::ModeBasis> basis(20);
-  toGpuBasis(testing::randomBasis(20, 2), basis);
-  std::vector<gpu::Float4> one(a.vertexCount()), many(a.vertexCount());
-  ASSERT_TRUE((FourierDeformFastJob{&*packed, 1, bones, basis, one, 1}).run().ok());
-  ASSERT_TRUE((FourierDeformFastJob{&*packed, 1, bones, basis, many, 0}).run().ok());
-  EXPECT_EQ(0, std::memcmp(one.data(), many.data(), one.size() * sizeof(gpu::Float4)));
+  for (SkinningMode skinning : {SkinningMode::kLinear, SkinningMode::kDualQuaternion}) {
+    DeformAsset a = testing::randomAsset(20000, 30, 9, 8, 5, 2, 8);
+    a.skinning = skinning;
+    Result<PackedDeformData> packed = packDeformAsset(a, 0);
+    ASSERT_TRUE(packed.ok());
+    std::vector<gpu::BoneMatrix> bones(8);
+    toGpuBones(testing::randomBones(8, 1), bones);
+    std::vector<gpu::ModeBasis> basis(20);
+    toGpuBasis(testing::randomBasis(20, 2), basis);
+    std::vector<gpu::Float4> one(a.vertexCount()), many(a.vertexCount());
+    ASSERT_TRUE((FourierDeformFastJob{&*packed, 1, bones, basis, one, 1}).run().ok());
+    ASSERT_TRUE((FourierDeformFastJob{&*packed, 1, bones, basis, many, 0}).run().ok());
+    EXPECT_EQ(0, std::memcmp(one.data(), many.data(), one.size() * sizeof(gpu::Float4)));
+  }
 }
 
 TEST(FourierDeformFastJob, ValidatesSizes) {
@@ -213,6 +296,8 @@ TEST(FourierDeformFastJob, ValidatesSizes) {
             StatusCode::kInvalidArgument);
   EXPECT_EQ((FourierDeformFastJob{&*packed, 0, bones, basis, std::span(out).first(9), 1}).validate().code(),
             StatusCode::kInvalidArgument);
+  packed->skinning = static_cast<SkinningMode>(2);
+  EXPECT_EQ((FourierDeformFastJob{&*packed, 0, bones, basis, out, 1}).validate().code(), StatusCode::kInvalidArgument);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "engine/kernels/lbs_job.hpp"
 
+#include <cmath>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -45,6 +46,24 @@ TEST(LbsJob, HandComputedBlend) {
   EXPECT_NEAR(glm::determinant(a), 0.5, 1e-15);
 }
 
+TEST(LbsJob, DualQuaternionHandComputedBlend) {
+  // The LBS case above with dual quaternions: the eighth turn, still at radius 1.
+  std::vector<Vec3> rest{Vec3(1.0, 0.0, 0.0)};
+  Influences in;
+  in.offsets = {0, 2};
+  in.bones = {0, 1};
+  in.weights = {0.5, 0.5};
+  const RigidTransform quarter = rotationAbout(Vec3(0.0), Vec3(0.0, 0.0, 1.0), std::numbers::pi / 2);
+  std::vector<BoneTransform> bones{BoneTransform(1.0), quarter.matrix()};
+  std::vector<Vec3> out(1);
+  ASSERT_TRUE((LbsJob{rest, in, bones, out, SkinningMode::kDualQuaternion}).run().ok());
+  EXPECT_NEAR(out[0].x, std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(out[0].y, std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(out[0].z, 0.0, 1e-15);
+  EXPECT_EQ((LbsJob{rest, in, bones, out, static_cast<SkinningMode>(3)}).validate().code(),
+            StatusCode::kInvalidArgument);
+}
+
 TEST(LbsJob, IdentityBonesGiveRestPose) {
   DeformAsset a = testing::randomAsset(500, 3, 2, 6, 4, 1, 2);
   std::vector<BoneTransform> bones(6, BoneTransform(1.0));
@@ -53,11 +72,12 @@ TEST(LbsJob, IdentityBonesGiveRestPose) {
   for (std::size_t i = 0; i < out.size(); ++i) ASSERT_LT(glm::length(out[i] - a.rest_positions[i]), 1e-14);
 }
 
-TEST(LbsFastJob, MatchesReferenceInEveryLayout) {
+void expectLbsFastMatchesReference(SkinningMode skinning) {
   DeformAsset a = testing::randomAsset(3000, 3, 2, 10, 4, 1, 6);
+  a.skinning = skinning;
   const std::vector<BoneTransform> bones = testing::randomBones(10, 7);
   std::vector<Vec3> expected(a.vertexCount());
-  ASSERT_TRUE((LbsJob{a.rest_positions, a.influences, bones, expected}).run().ok());
+  ASSERT_TRUE((LbsJob{a.rest_positions, a.influences, bones, expected, skinning}).run().ok());
   std::vector<gpu::BoneMatrix> gpu_bones(10);
   toGpuBones(bones, gpu_bones);
   for (std::uint32_t layout : {0u, 4u, 8u}) {
@@ -69,6 +89,11 @@ TEST(LbsFastJob, MatchesReferenceInEveryLayout) {
       ASSERT_LT(glm::length(Vec3(out[i].x, out[i].y, out[i].z) - expected[i]), 1e-5) << "layout " << layout << " vertex " << i;
     }
   }
+}
+
+TEST(LbsFastJob, MatchesReferenceInEveryLayout) { expectLbsFastMatchesReference(SkinningMode::kLinear); }
+TEST(LbsFastJob, DualQuaternionMatchesReferenceInEveryLayout) {
+  expectLbsFastMatchesReference(SkinningMode::kDualQuaternion);
 }
 
 }  // namespace

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 // CPU/GPU parity of shaders/fourier_deform.comp and shaders/lbs.comp against FourierDeformFastJob
 // and LbsFastJob on synthetic data: sizes 0, 1, 63, 65 (not multiples of the 64-wide workgroup)
-// and 1000, every influence layout, both residual spaces. Tolerance 1e-5 absolute: both follow the
-// same float order of operations; the gap is GPU cos/sin and fused multiply-adds.
+// and 1000, every influence layout, both residual spaces, both skinning modes. Tolerance 1e-5
+// absolute: both follow the same float order of operations; the gap is GPU cos/sin, sqrt and
+// fused multiply-adds.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -21,6 +24,9 @@ using testing::RandomPackedOptions;
 
 constexpr float kTolerance = 1e-5f;
 
+// Max |expected - actual| over every expectClose call since it was last reset.
+float g_worst_parity = 0.0f;
+
 // Max |expected - actual| over xyz, reported with the worst vertex.
 void expectClose(const std::vector<gpu::Float4>& expected, const std::vector<gpu::Float4>& actual,
                  const std::string& what) {
@@ -36,6 +42,7 @@ void expectClose(const std::vector<gpu::Float4>& expected, const std::vector<gpu
     }
   }
   if (expected.empty()) return;
+  g_worst_parity = std::max(g_worst_parity, worst);
   const gpu::Float4& e = expected[worst_index];
   const gpu::Float4& a = actual[worst_index];
   EXPECT_LE(worst, kTolerance) << what << ": worst vertex " << worst_index << " expected (" << e.x << ", " << e.y
@@ -45,16 +52,17 @@ void expectClose(const std::vector<gpu::Float4>& expected, const std::vector<gpu
 
 std::string describe(const RandomPackedOptions& o) {
   return "V=" + std::to_string(o.vertex_count) + " layout=" + std::to_string(o.influence_layout) +
-         (o.residual_space == ResidualSpace::kBind ? " bind" : " posed") + (o.rates ? " rates" : " no-rates");
+         (o.residual_space == ResidualSpace::kBind ? " bind" : " posed") + (o.rates ? " rates" : " no-rates") +
+         (o.skinning == SkinningMode::kDualQuaternion ? " dqs" : " lbs");
 }
 
-std::vector<RandomPackedOptions> parityCases() {
+std::vector<RandomPackedOptions> parityCases(SkinningMode skinning = SkinningMode::kLinear) {
   std::vector<RandomPackedOptions> cases;
   std::uint32_t seed = 10;
   for (std::uint32_t v : {0u, 1u, 63u, 65u, 1000u}) {
     for (std::uint32_t layout : {0u, 4u, 8u}) {
       for (ResidualSpace space : {ResidualSpace::kBind, ResidualSpace::kPosed}) {
-        cases.push_back({v, layout, space, /*rates=*/(seed % 3) != 0, seed});
+        cases.push_back({v, layout, space, /*rates=*/(seed % 3) != 0, seed, skinning});
         ++seed;
       }
     }
@@ -62,10 +70,10 @@ std::vector<RandomPackedOptions> parityCases() {
   return cases;
 }
 
-TEST_F(GpuTest, FourierDeformMatchesFastJob) {
-  for (const RandomPackedOptions& options : parityCases()) {
+void checkFourierDeformParity(vk::Device& device, SkinningMode skinning) {
+  for (const RandomPackedOptions& options : parityCases(skinning)) {
     const PackedDeformData data = testing::randomPackedData(options);
-    Result<GpuDeformer> gpu = GpuDeformer::create(device(), data);
+    Result<GpuDeformer> gpu = GpuDeformer::create(device, data);
     ASSERT_TRUE(gpu.ok()) << describe(options) << ": " << gpu.status().toString();
     for (std::uint32_t segment = 0; segment < data.segment_count; ++segment) {
       const auto bones = testing::randomBones(data.bone_count, options.seed * 7 + segment);
@@ -90,10 +98,10 @@ TEST_F(GpuTest, FourierDeformMatchesFastJob) {
   }
 }
 
-TEST_F(GpuTest, LbsMatchesFastJob) {
-  for (const RandomPackedOptions& options : parityCases()) {
+void checkLbsParity(vk::Device& device, SkinningMode skinning) {
+  for (const RandomPackedOptions& options : parityCases(skinning)) {
     const PackedDeformData data = testing::randomPackedData(options);
-    Result<GpuLbs> gpu = GpuLbs::create(device(), data);
+    Result<GpuLbs> gpu = GpuLbs::create(device, data);
     ASSERT_TRUE(gpu.ok()) << describe(options) << ": " << gpu.status().toString();
     const auto bones = testing::randomBones(data.bone_count, options.seed);
     std::vector<gpu::Float4> expected(data.vertex_count);
@@ -107,6 +115,39 @@ TEST_F(GpuTest, LbsMatchesFastJob) {
     ASSERT_TRUE(gpu->readPositions(actual).ok());
     expectClose(expected, actual, "lbs " + describe(options));
   }
+}
+
+TEST_F(GpuTest, FourierDeformMatchesFastJob) { checkFourierDeformParity(device(), SkinningMode::kLinear); }
+TEST_F(GpuTest, LbsMatchesFastJob) { checkLbsParity(device(), SkinningMode::kLinear); }
+
+TEST_F(GpuTest, DualQuaternionFourierDeformMatchesFastJob) {
+  g_worst_parity = 0.0f;
+  checkFourierDeformParity(device(), SkinningMode::kDualQuaternion);
+  std::printf("dual quaternion deform: max |fast - gpu| = %.3e\n", static_cast<double>(g_worst_parity));
+}
+
+TEST_F(GpuTest, DualQuaternionLbsMatchesFastJob) {
+  g_worst_parity = 0.0f;
+  checkLbsParity(device(), SkinningMode::kDualQuaternion);
+  std::printf("dual quaternion skinning: max |fast - gpu| = %.3e\n", static_cast<double>(g_worst_parity));
+}
+
+// The two modes give different positions on these bones, so the parity above tests DQS itself.
+TEST_F(GpuTest, SkinningModeChangesTheGpuOutput) {
+  RandomPackedOptions options{1000, 0, ResidualSpace::kBind, true, 7};
+  const auto bones = testing::randomBones(7, 3);
+  std::vector<gpu::Float4> lbs(options.vertex_count), dqs(options.vertex_count);
+  for (SkinningMode mode : {SkinningMode::kLinear, SkinningMode::kDualQuaternion}) {
+    options.skinning = mode;
+    const PackedDeformData data = testing::randomPackedData(options);
+    Result<GpuLbs> gpu = GpuLbs::create(device(), data);
+    ASSERT_TRUE(gpu.ok()) << gpu.status().toString();
+    ASSERT_TRUE(gpu->run(GpuLbsFrame{bones}).ok());
+    ASSERT_TRUE(gpu->readPositions(mode == SkinningMode::kLinear ? lbs : dqs).ok());
+  }
+  float gap = 0.0f;
+  for (std::size_t i = 0; i < lbs.size(); ++i) gap = std::max(gap, std::fabs(lbs[i].x - dqs[i].x));
+  EXPECT_GT(gap, 1e-2f);
 }
 
 // Frames submitted back to back without waiting: each writes its own input slot, and the output

@@ -18,6 +18,7 @@ struct RandomPackedOptions {
   ResidualSpace residual_space = ResidualSpace::kBind;
   bool rates = true;
   std::uint32_t seed = 1;
+  SkinningMode skinning = SkinningMode::kLinear;
 };
 
 inline PackedDeformData randomPackedData(const RandomPackedOptions& o) {
@@ -33,6 +34,7 @@ inline PackedDeformData randomPackedData(const RandomPackedOptions& o) {
   d.segment_count = 2;
   d.influence_layout = o.influence_layout;
   d.residual_space = o.residual_space;
+  d.skinning = o.skinning;
   const std::uint32_t v_count = d.vertex_count;
   const std::uint32_t m = d.coefficientsPerCurve();
 
@@ -81,7 +83,8 @@ inline PackedDeformData randomPackedData(const RandomPackedOptions& o) {
   return d;
 }
 
-// Affine bones near the identity (rotation-ish plus shear plus translation).
+// Affine bones near the identity (rotation-ish plus shear plus translation). Dual-quaternion
+// skinning takes their nearest rotations (toGpuDualQuaternions).
 inline std::vector<gpu::BoneMatrix> randomBones(std::uint32_t count, std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-0.3f, 0.3f);

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: MIT
+// Skinning of one point, shared by fourier_deform.comp and lbs.comp: linear blend skinning (thesis
+// Eq 6.1) or dual-quaternion skinning (Kavan et al. 2008, Algorithm 1), chosen by pc.skinning.
+// Mirrors skinPoint / skinPointDq in engine/kernels/fourier_deform_fast_job.cpp operation for
+// operation (reference: engine/kernels/dual_quaternion.cpp). The including shader declares pc and
+// the influence_offsets, influences, bones and bone_dual_quats buffers.
+
+vec4 vec(Float4 f) { return vec4(f.x, f.y, f.z, f.w); }
+
+void influenceRange(uint vertex, out uint begin, out uint end) {
+  if (pc.influence_layout == ODESKIN_INFLUENCES_SPARSE) {
+    begin = influence_offsets[vertex];
+    end = influence_offsets[vertex + 1u];
+  } else {
+    begin = vertex * pc.influence_layout;
+    end = begin + pc.influence_layout;
+  }
+}
+
+vec3 skinPointLbs(uint vertex, vec3 p) {
+  uint begin;
+  uint end;
+  influenceRange(vertex, begin, end);
+  vec4 h = vec4(p, 1.0);
+  vec3 out_p = vec3(0.0);
+  for (uint k = begin; k < end; ++k) {
+    Influence inf = influences[k];
+    BoneMatrix m = bones[inf.bone];
+    vec3 q = vec3(dot(vec(m.row0), h), dot(vec(m.row1), h), dot(vec(m.row2), h));
+    out_p += inf.weight * q;
+  }
+  return out_p;
+}
+
+// Bones taken on the side of the first largest weight's quaternion (q and -q are one rotation),
+// blended, divided by |real|, applied as x -> R x + t. A degenerate blend skins by LBS.
+vec3 skinPointDq(uint vertex, vec3 p) {
+  uint begin;
+  uint end;
+  influenceRange(vertex, begin, end);
+  if (begin == end) return skinPointLbs(vertex, p);
+  uint pivot = begin;
+  for (uint k = begin + 1u; k < end; ++k) {
+    if (influences[k].weight > influences[pivot].weight) pivot = k;
+  }
+  vec4 pivot_real = vec(bone_dual_quats[influences[pivot].bone].real);
+  vec4 real = vec4(0.0);
+  vec4 dual = vec4(0.0);
+  for (uint k = begin; k < end; ++k) {
+    Influence inf = influences[k];
+    DualQuat q = bone_dual_quats[inf.bone];
+    vec4 q_real = vec(q.real);
+    float w = dot(q_real, pivot_real) < 0.0 ? -inf.weight : inf.weight;
+    real += w * q_real;
+    dual += w * vec(q.dual);
+  }
+  float norm = length(real);
+  if (!(norm > ODESKIN_DQS_MIN_BLEND_NORM)) return skinPointLbs(vertex, p);
+  float inv_norm = 1.0 / norm;
+  vec4 r = real * inv_norm;
+  vec4 e = dual * inv_norm;
+  vec3 t = 2.0 * (r.w * e.xyz - e.w * r.xyz + cross(r.xyz, e.xyz));
+  float xx = r.x * r.x, yy = r.y * r.y, zz = r.z * r.z;
+  float xy = r.x * r.y, xz = r.x * r.z, yz = r.y * r.z;
+  float wx = r.w * r.x, wy = r.w * r.y, wz = r.w * r.z;
+  vec3 c0 = vec3(1.0 - 2.0 * (yy + zz), 2.0 * (xy + wz), 2.0 * (xz - wy));
+  vec3 c1 = vec3(2.0 * (xy - wz), 1.0 - 2.0 * (xx + zz), 2.0 * (yz + wx));
+  vec3 c2 = vec3(2.0 * (xz + wy), 2.0 * (yz - wx), 1.0 - 2.0 * (xx + yy));
+  return c0 * p.x + c1 * p.y + c2 * p.z + t;
+}
+
+vec3 skinPoint(uint vertex, vec3 p) {
+  return pc.skinning == ODESKIN_SKINNING_DUAL_QUATERNION ? skinPointDq(vertex, p) : skinPointLbs(vertex, p);
+}
