@@ -19,15 +19,38 @@ struct GltfPoseRequest {
   std::string mesh;                 // mesh node name, or empty: the first skinned mesh node (else the first mesh)
   std::string animation;            // name or index as text; empty: the first animation
   std::vector<double> times;        // seconds: one example pose per time (skinned with the animated joints)
-  std::vector<int> morph_targets;   // each: the bind mesh plus that target at weight 1, skinned at the bind pose
+  std::vector<int> morph_targets;   // each: the bind mesh with that target's weight set to 1, in bind space
   bool include_bind_pose = true;    // pose 0 is the bind mesh (the mesh with its default morph weights)
 };
 
-// Example poses of one mesh. Pose positions are computed as glTF specifies (morph, then skin with
-// joint global transform x inverse bind matrix); the rig's key poses are those joint matrices as
-// rigid transforms (kInvalidArgument naming the joint if one scales or shears beyond 1e-4).
-// Fewer than 2 poses, a missing skin when times are asked for, an unknown animation, an
-// extensionsRequired entry we do not implement (named), a bad accessor: errors naming the file.
+// Example poses of one mesh, in this order: the bind pose (if asked), one pose per time, one per
+// morph target; labels "<file> bind", "<file> <animation name> at <t> s" ("animation <i>" when it
+// has no name), "<file> target <k>".
+//
+// Geometry: every primitive of the node's mesh (TRIANGLES only, indexed or not), concatenated into
+// render vertices; render vertices with exactly equal POSITION are welded into topology vertices
+// (see gltf_weld.hpp for why exact): rest_positions / faces are over topology vertices (triangles
+// that weld to a segment are left out), render = {render vertex -> topology vertex, all triangles
+// over render vertices}. The mesh node's own transform is ignored (glTF: a skinned mesh is placed
+// by its joints only; an unskinned one is read in mesh space). Bind space is mesh space with the
+// default morph weights applied (node.weights, else mesh.weights, else zeros): rest_positions.
+//
+// Poses at times are computed as glTF specifies: morph (animated "weights" of the mesh node, else
+// the defaults), then linear blend skinning with S_j = G_j x IBM_j, G_j the joint node's global
+// transform under the animation's translation/rotation/scale channels. Morph-target and bind poses
+// are not skinned.
+//
+// Rig (skinned meshes only): skeleton from the skin's joints (gltf_skin.hpp), influences from
+// JOINTS_n/WEIGHTS_n of each topology vertex's first render vertex, normalised per vertex; key
+// poses: the rigid part of every S_j (polar decomposition), identity for bind and morph poses.
+//
+// Errors name the file. kInvalidArgument: fewer than 2 poses, a non-finite time, times without a
+// skin, an unknown animation (the message lists the available ones), a morph target out of range,
+// an unknown mesh node name, an extensionsRequired entry odeskin does not handle (named; see
+// gltf_load.hpp), a skin matrix that scales or shears by more than 1e-4 (naming joint and pose).
+// kIoError: a missing or unreadable file. kParseError: tinygltf refuses the file (its message
+// follows), or the data break the glTF rules odeskin relies on (accessor bounds and formats,
+// joint indices, zero weight sums, welded copies of a vertex with different weights or deltas...).
 Result<ExampleSet> readGltfExamples(const std::filesystem::path& path, const GltfPoseRequest& request);
 
 }  // namespace odeskin

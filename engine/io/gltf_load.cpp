@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: MIT
+#include "gltf_load.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <exception>
+#include <fstream>
+#include <limits>
+#include <string_view>
+#include <system_error>
+
+namespace odeskin::gltf {
+namespace {
+
+constexpr std::array<std::string_view, 6> kGeometryNeutralExtensions{
+    "KHR_texture_transform", "KHR_texture_basisu", "EXT_texture_webp",
+    "EXT_texture_avif",      "KHR_lights_punctual", "KHR_materials_"};
+
+bool handled(std::string_view name) {
+  if (name == "KHR_mesh_quantization") return true;
+  return std::any_of(kGeometryNeutralExtensions.begin(), kGeometryNeutralExtensions.end(), [&](std::string_view e) {
+    return e.back() == '_' ? name.starts_with(e) : name == e;
+  });
+}
+
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+std::string trimmed(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+Result<tinygltf::Model> loadModel(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return ioError(path.string() + ": no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) return ioError(path.string() + ": not a regular file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return ioError(path.string() + ": cannot read its size: " + ec.message());
+  if (size > static_cast<std::uintmax_t>(std::numeric_limits<std::int32_t>::max())) {
+    return ioError(path.string() + ": " + std::to_string(size) + " bytes, over the 2 GiB tinygltf 2.7 can read");
+  }
+  std::array<char, 4> magic{};
+  {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) return ioError(path.string() + ": cannot open for reading");
+    file.read(magic.data(), magic.size());
+  }
+  const bool binary = std::string_view(magic.data(), magic.size()) == "glTF";
+
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skipImage, nullptr);
+  std::string err;
+  std::string warn;
+  bool ok = false;
+  try {
+    ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
+                : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
+  } catch (const std::exception& e) {
+    err = e.what();
+    ok = false;
+  }
+  if (!ok) {
+    err = trimmed(err);
+    return parseError(path.string() + ": tinygltf cannot read it: " + (err.empty() ? "no reason given" : err));
+  }
+  return model;
+}
+
+Status checkRequiredExtensions(const tinygltf::Model& model) {
+  for (const std::string& name : model.extensionsRequired) {
+    if (!handled(name)) {
+      return invalidArgument("requires extension " + name + ", which odeskin does not implement");
+    }
+  }
+  return okStatus();
+}
+
+bool usesMeshQuantization(const tinygltf::Model& model) {
+  auto has = [](const std::vector<std::string>& list) {
+    return std::find(list.begin(), list.end(), "KHR_mesh_quantization") != list.end();
+  };
+  return has(model.extensionsUsed) || has(model.extensionsRequired);
+}
+
+}  // namespace odeskin::gltf

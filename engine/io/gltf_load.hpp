@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+// Loading a .gltf or .glb file through tinygltf (internal to odeskin_gltf), and the
+// extensionsRequired check tinygltf leaves to its caller.
+#pragma once
+
+#include <filesystem>
+
+#include <tiny_gltf.h>
+
+#include "../core/result.hpp"
+
+namespace odeskin::gltf {
+
+// GLB or JSON glTF by the file's first four bytes ("glTF" is GLB), whatever its extension. Images
+// are not decoded (odeskin reads geometry only; this also keeps KTX2/WebP images from failing the
+// load). kIoError naming the path: missing, unreadable, or over 2 GiB (tinygltf 2.7 has no size
+// guard). kParseError naming the path with tinygltf's message when it refuses the file.
+Result<tinygltf::Model> loadModel(const std::filesystem::path& path);
+
+// kInvalidArgument naming the first extensionsRequired entry odeskin does not handle. Handled:
+// KHR_mesh_quantization (decoded), and extensions confined to materials, textures and lights
+// (KHR_materials_*, KHR_texture_transform, KHR_texture_basisu, EXT_texture_webp, EXT_texture_avif,
+// KHR_lights_punctual), which cannot change geometry, skins, morph targets or animation.
+Status checkRequiredExtensions(const tinygltf::Model& model);
+
+// Whether the file declares KHR_mesh_quantization (used or required).
+bool usesMeshQuantization(const tinygltf::Model& model);
+
+}  // namespace odeskin::gltf

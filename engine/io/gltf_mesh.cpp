@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: MIT
+#include "gltf_mesh.hpp"
+
+#include <array>
+#include <limits>
+#include <string>
+
+#include "gltf_accessor.hpp"
+
+namespace odeskin::gltf {
+namespace {
+
+constexpr std::array kFloatOnly{kFloat};
+// KHR_mesh_quantization: POSITION in every 8-bit and 16-bit variant, deltas in the signed ones.
+constexpr std::array kQuantizedPositions{kFloat, kByte, kByteNorm, kUByte, kUByteNorm,
+                                         kShort, kShortNorm, kUShort, kUShortNorm};
+constexpr std::array kQuantizedDeltas{kFloat, kByte, kByteNorm, kShort, kShortNorm};
+constexpr std::array kIndexFormats{kUByte, kUShort, kUInt};
+constexpr std::array kJointFormats{kUByte, kUShort};
+constexpr std::array kWeightFormats{kFloat, kUByteNorm, kUShortNorm};
+
+bool has(const std::map<std::string, int>& attributes, const std::string& name) {
+  return attributes.find(name) != attributes.end();
+}
+
+// Appends one primitive's triangles, offset by `first` render vertices.
+Status readTriangles(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
+                     std::size_t vertex_count, std::uint32_t first, std::vector<std::uint32_t>& triangles) {
+  if (prim.indices < 0) {
+    if (vertex_count % 3 != 0) {
+      return parseError(where + ": " + std::to_string(vertex_count) + " unindexed vertices are not whole triangles");
+    }
+    for (std::size_t i = 0; i < vertex_count; ++i) triangles.push_back(first + static_cast<std::uint32_t>(i));
+    return okStatus();
+  }
+  ODESKIN_ASSIGN_OR_RETURN(AccessorData indices,
+                           readAccessor(model, prim.indices, {where + " indices", TINYGLTF_TYPE_SCALAR, kIndexFormats}));
+  if (indices.count % 3 != 0) {
+    return parseError(where + ": " + std::to_string(indices.count) + " indices are not whole triangles");
+  }
+  for (std::size_t k = 0; k < indices.count; ++k) {
+    const double i = indices.values[k];
+    if (i >= static_cast<double>(vertex_count)) {
+      return parseError(where + ": index " + std::to_string(static_cast<std::uint64_t>(i)) + " (entry " +
+                        std::to_string(k) + ") >= vertex count " + std::to_string(vertex_count));
+    }
+    triangles.push_back(first + static_cast<std::uint32_t>(i));
+  }
+  return okStatus();
+}
+
+std::size_t influenceSets(const tinygltf::Primitive& prim, const std::string& where, Status& status) {
+  std::size_t n = 0;
+  while (has(prim.attributes, "JOINTS_" + std::to_string(n)) || has(prim.attributes, "WEIGHTS_" + std::to_string(n))) {
+    if (!has(prim.attributes, "JOINTS_" + std::to_string(n)) || !has(prim.attributes, "WEIGHTS_" + std::to_string(n))) {
+      status = parseError(where + ": JOINTS_" + std::to_string(n) + " and WEIGHTS_" + std::to_string(n) +
+                          " must come together");
+    }
+    ++n;
+  }
+  return n;
+}
+
+// Appends JOINTS_s / WEIGHTS_s, s < sets, of one primitive's `n` vertices.
+Status readInfluences(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
+                      std::size_t n, std::size_t sets, MeshData& out) {
+  std::vector<AccessorData> joints(sets);
+  std::vector<AccessorData> weights(sets);
+  for (std::size_t s = 0; s < sets; ++s) {
+    const std::string j = "JOINTS_" + std::to_string(s);
+    const std::string w = "WEIGHTS_" + std::to_string(s);
+    ODESKIN_ASSIGN_OR_RETURN(joints[s], readAccessor(model, prim.attributes.at(j),
+                                                     {where + " " + j, TINYGLTF_TYPE_VEC4, kJointFormats, n}));
+    ODESKIN_ASSIGN_OR_RETURN(weights[s], readAccessor(model, prim.attributes.at(w),
+                                                      {where + " " + w, TINYGLTF_TYPE_VEC4, kWeightFormats, n}));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t s = 0; s < sets; ++s) {
+      for (std::size_t c = 0; c < 4; ++c) {
+        out.joints.push_back(static_cast<std::uint32_t>(joints[s].at(i, c)));
+        out.weights.push_back(weights[s].at(i, c));
+      }
+    }
+  }
+  return okStatus();
+}
+
+// Appends every morph target's POSITION deltas of one primitive's `n` vertices.
+Status readTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
+                   std::size_t n, bool quantized, MeshData& out) {
+  const std::span<const AccessorFormat> delta_formats =
+      quantized ? std::span<const AccessorFormat>(kQuantizedDeltas) : std::span<const AccessorFormat>(kFloatOnly);
+  for (std::size_t t = 0; t < out.target_deltas.size(); ++t) {
+    std::vector<Vec3>& deltas = out.target_deltas[t];
+    const auto position = prim.targets[t].find("POSITION");
+    if (position == prim.targets[t].end()) {
+      deltas.resize(deltas.size() + n, Vec3(0.0));
+      continue;
+    }
+    ODESKIN_ASSIGN_OR_RETURN(AccessorData d, readAccessor(model, position->second,
+                                                          {where + " target " + std::to_string(t) + " POSITION",
+                                                           TINYGLTF_TYPE_VEC3, delta_formats, n}));
+    for (std::size_t i = 0; i < n; ++i) deltas.emplace_back(d.at(i, 0), d.at(i, 1), d.at(i, 2));
+  }
+  return okStatus();
+}
+
+}  // namespace
+
+Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool quantized) {
+  const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(mesh_index)];
+  const std::string mesh_name = "mesh " + std::to_string(mesh_index);
+  if (mesh.primitives.empty()) return parseError(mesh_name + " has no primitives");
+  MeshData out;
+  const std::size_t target_count = mesh.primitives.front().targets.size();
+  out.target_deltas.resize(target_count);
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const tinygltf::Primitive& prim = mesh.primitives[p];
+    const std::string where = mesh_name + " primitive " + std::to_string(p);
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
+      return parseError(where + " has mode " + std::to_string(prim.mode) + "; only TRIANGLES (4) is read");
+    }
+    const auto position = prim.attributes.find("POSITION");
+    if (position == prim.attributes.end()) return parseError(where + " has no POSITION");
+    const std::span<const AccessorFormat> position_formats =
+        quantized ? std::span<const AccessorFormat>(kQuantizedPositions) : std::span<const AccessorFormat>(kFloatOnly);
+    ODESKIN_ASSIGN_OR_RETURN(AccessorData positions, readAccessor(model, position->second,
+                                                                  {where + " POSITION", TINYGLTF_TYPE_VEC3, position_formats}));
+    const std::size_t n = positions.count;
+    if (out.positions.size() + n > std::numeric_limits<std::uint32_t>::max()) {
+      return parseError(mesh_name + " has more than 2^32 - 1 vertices");
+    }
+    const auto first = static_cast<std::uint32_t>(out.positions.size());
+    for (std::size_t i = 0; i < n; ++i) out.positions.emplace_back(positions.at(i, 0), positions.at(i, 1), positions.at(i, 2));
+    ODESKIN_TRY(readTriangles(model, prim, where, n, first, out.triangles));
+
+    Status status;
+    const std::size_t sets = influenceSets(prim, where, status);
+    ODESKIN_TRY(status);
+    if (p == 0) out.influence_sets = sets;
+    if (sets != out.influence_sets) {
+      return parseError(where + " has " + std::to_string(sets) + " JOINTS_n/WEIGHTS_n sets, primitive 0 has " +
+                        std::to_string(out.influence_sets));
+    }
+    ODESKIN_TRY(readInfluences(model, prim, where, n, sets, out));
+    if (prim.targets.size() != target_count) {
+      return parseError(where + " has " + std::to_string(prim.targets.size()) + " morph targets, primitive 0 has " +
+                        std::to_string(target_count));
+    }
+    ODESKIN_TRY(readTargets(model, prim, where, n, quantized, out));
+  }
+  return out;
+}
+
+}  // namespace odeskin::gltf

@@ -1,0 +1,275 @@
+// SPDX-License-Identifier: MIT
+#include "gltf_reader.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "../kernels/lbs_job.hpp"
+#include "gltf_animation.hpp"
+#include "gltf_load.hpp"
+#include "gltf_mesh.hpp"
+#include "gltf_nodes.hpp"
+#include "gltf_pose.hpp"
+#include "gltf_skin.hpp"
+#include "gltf_weld.hpp"
+
+namespace odeskin {
+namespace {
+
+using namespace gltf;
+
+// A key pose must be rigid: skin matrices that scale or shear more than this are refused.
+constexpr double kRigidTolerance = 1e-4;
+// Welded copies of a vertex must move together under each morph target: relative to the bounding
+// box diagonal, looser than float round-off (6e-8) and far below a visible tear.
+constexpr double kWeldedDeltaTolerance = 1e-5;
+
+std::string nodeLabel(const tinygltf::Model& model, int node) {
+  const std::string& name = model.nodes[static_cast<std::size_t>(node)].name;
+  return "node " + std::to_string(node) + (name.empty() ? "" : " '" + name + "'");
+}
+
+// The node whose mesh we read: by name, else the first skinned mesh node, else the first mesh node.
+Result<int> chooseMeshNode(const tinygltf::Model& model, const std::string& name) {
+  int first_mesh = -1;
+  int first_skinned = -1;
+  std::string mesh_nodes;
+  for (int i = 0; i < static_cast<int>(model.nodes.size()); ++i) {
+    const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(i)];
+    if (node.mesh < 0) continue;
+    if (!name.empty() && node.name == name) return i;
+    mesh_nodes += (mesh_nodes.empty() ? "'" : ", '") + node.name + "'";
+    if (first_mesh < 0) first_mesh = i;
+    if (first_skinned < 0 && node.skin >= 0) first_skinned = i;
+  }
+  if (!name.empty()) {
+    return invalidArgument("no mesh node named '" + name + "' (mesh nodes: " + (mesh_nodes.empty() ? "none" : mesh_nodes) + ")");
+  }
+  if (first_mesh < 0) return parseError("no node has a mesh");
+  return first_skinned >= 0 ? first_skinned : first_mesh;
+}
+
+// Animation by name, else by index written as text; empty: the first.
+Result<int> chooseAnimation(const tinygltf::Model& model, const std::string& wanted) {
+  std::string available;
+  for (std::size_t i = 0; i < model.animations.size(); ++i) {
+    if (!wanted.empty() && model.animations[i].name == wanted) return static_cast<int>(i);
+    available += (available.empty() ? "" : ", ") + std::to_string(i) + " '" + model.animations[i].name + "'";
+  }
+  if (model.animations.empty()) return invalidArgument("poses at times need an animation, and the file has none");
+  if (wanted.empty()) return 0;
+  int index = -1;
+  const auto [ptr, ec] = std::from_chars(wanted.data(), wanted.data() + wanted.size(), index);
+  if (ec == std::errc() && ptr == wanted.data() + wanted.size() && index >= 0 &&
+      index < static_cast<int>(model.animations.size())) {
+    return index;
+  }
+  return invalidArgument("unknown animation '" + wanted + "' (available: " + available + ")");
+}
+
+// node.weights, else mesh.weights, else zeros (spec 3.7.2.2).
+Result<std::vector<double>> defaultWeights(const tinygltf::Model& model, int node_index, std::size_t targets) {
+  const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(node_index)];
+  const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(node.mesh)];
+  const std::vector<double>& w = !node.weights.empty() ? node.weights : mesh.weights;
+  if (w.empty()) return std::vector<double>(targets, 0.0);
+  if (w.size() != targets) {
+    return parseError(nodeLabel(model, node_index) + ": " + std::to_string(w.size()) + " default morph weights for " +
+                      std::to_string(targets) + " targets");
+  }
+  for (double x : w) {
+    if (!std::isfinite(x)) return parseError(nodeLabel(model, node_index) + ": a default morph weight is not finite");
+  }
+  return w;
+}
+
+// Each target's deltas on topology vertices; copies of a welded vertex must agree.
+Result<std::vector<std::vector<Vec3>>> topologyDeltas(const MeshData& mesh, const Welded& welded) {
+  Vec3 lo(0.0);
+  Vec3 hi(0.0);
+  if (!welded.positions.empty()) lo = hi = welded.positions.front();
+  for (const Vec3& p : welded.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const double tolerance = kWeldedDeltaTolerance * std::max(glm::length(hi - lo), 1e-300);
+  std::vector<std::vector<Vec3>> out(mesh.target_deltas.size());
+  for (std::size_t t = 0; t < out.size(); ++t) {
+    const std::vector<Vec3>& render = mesh.target_deltas[t];
+    out[t].resize(welded.positions.size());
+    for (std::size_t v = 0; v < welded.positions.size(); ++v) out[t][v] = render[welded.first_render[v]];
+    for (std::size_t r = 0; r < render.size(); ++r) {
+      const std::uint32_t v = welded.topology_of_render[r];
+      if (glm::length(render[r] - out[t][v]) > tolerance) {
+        return parseError("morph target " + std::to_string(t) + " moves render vertices " +
+                          std::to_string(welded.first_render[v]) + " and " + std::to_string(r) +
+                          " (welded into topology vertex " + std::to_string(v) + ") apart");
+      }
+    }
+  }
+  return out;
+}
+
+std::string formatTime(double t) {
+  std::ostringstream s;
+  s.precision(9);
+  s << t;
+  return s.str();
+}
+
+struct Skinned {
+  SkinData skin;
+  std::vector<int> parents;
+  std::vector<NodeTransform> rest;
+};
+
+// The pose at `time_s`: morph with the animated (or default) weights, then skin with
+// S_j = G_j x IBM_j; `key_pose` gets the rigid part of every S_j.
+Status animatedPose(const tinygltf::Model& model, const Skinned& s, const Clip& clip, double time_s, int mesh_node,
+                    const std::vector<Vec3>& base, const std::vector<std::vector<Vec3>>& deltas,
+                    std::vector<double> weights, const Influences& influences, const std::string& label,
+                    std::vector<Vec3>& pose, std::vector<RigidTransform>& key_pose) {
+  std::vector<NodeTransform> nodes = s.rest;
+  applyClip(clip, time_s, nodes, mesh_node, weights);
+  const std::vector<glm::dmat4> global = globalMatrices(nodes, s.parents);
+  const std::size_t bones = s.skin.joint_nodes.size();
+  std::vector<BoneTransform> skin(bones);
+  key_pose.resize(bones);
+  for (std::size_t j = 0; j < bones; ++j) {
+    const glm::dmat4 m = global[static_cast<std::size_t>(s.skin.joint_nodes[j])] * s.skin.inverse_bind[j];
+    skin[j] = BoneTransform(m);
+    double deviation = 0.0;
+    const std::optional<RigidTransform> rigid = rigidPart(m, deviation);
+    if (!rigid || deviation > kRigidTolerance) {
+      return invalidArgument("joint " + std::to_string(j) + " '" + s.skin.skeleton.names[j] + "' in pose '" + label +
+                             "' " + (rigid ? "scales or shears by " + std::to_string(deviation) : std::string("reflects")) +
+                             "; key poses must be rigid" +
+                             (usesMeshQuantization(model) ? " (a KHR_mesh_quantization scale in the inverse bind "
+                                                            "matrices is not supported)"
+                                                          : ""));
+    }
+    key_pose[j] = *rigid;
+  }
+  const std::vector<Vec3> morphed = morph(base, deltas, weights);
+  pose.resize(morphed.size());
+  LbsJob job{morphed, influences, skin, pose};
+  return job.run();
+}
+
+// The skin of node `mesh_node` and the rig it gives (skeleton and influences; key poses come later).
+Result<Skinned> readSkinned(const tinygltf::Model& model, int mesh_node, const MeshData& mesh, const Welded& welded,
+                            Rig& rig) {
+  const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(mesh_node)];
+  Skinned s;
+  ODESKIN_ASSIGN_OR_RETURN(s.parents, nodeParents(model));
+  ODESKIN_ASSIGN_OR_RETURN(s.rest, restTransforms(model));
+  ODESKIN_ASSIGN_OR_RETURN(s.skin, readSkin(model, node.skin, s.parents));
+  if (mesh.influence_sets == 0) {
+    return parseError(nodeLabel(model, mesh_node) + " has a skin but mesh " + std::to_string(node.mesh) +
+                      " has no JOINTS_0/WEIGHTS_0");
+  }
+  rig.skeleton = s.skin.skeleton;
+  ODESKIN_ASSIGN_OR_RETURN(rig.influences,
+                           topologyInfluences(mesh, welded, static_cast<std::uint32_t>(s.skin.joint_nodes.size())));
+  return s;
+}
+
+// One pose (with its key pose and label) per requested time of the requested animation.
+Status appendAnimatedPoses(const tinygltf::Model& model, const GltfPoseRequest& request, const std::string& file,
+                           const Skinned& skinned, int mesh_node, const std::vector<Vec3>& base,
+                           const std::vector<std::vector<Vec3>>& deltas, const std::vector<double>& default_weights,
+                           ExampleSet& out) {
+  ODESKIN_ASSIGN_OR_RETURN(const int animation, chooseAnimation(model, request.animation));
+  ODESKIN_ASSIGN_OR_RETURN(const Clip clip, loadClip(model, animation));
+  const std::string name = clip.name.empty() ? "animation " + std::to_string(animation) : clip.name;
+  for (double t : request.times) {
+    const std::string label = file + " " + name + " at " + formatTime(t) + " s";
+    std::vector<Vec3> pose;
+    std::vector<RigidTransform> key_pose;
+    ODESKIN_TRY(animatedPose(model, skinned, clip, t, mesh_node, base, deltas, default_weights, out.rig->influences,
+                             label, pose, key_pose));
+    out.poses.push_back(std::move(pose));
+    out.pose_labels.push_back(label);
+    out.rig->key_poses.push_back(std::move(key_pose));
+  }
+  return okStatus();
+}
+
+Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseRequest& request, const std::string& file) {
+  ODESKIN_TRY(checkRequiredExtensions(model));
+  ODESKIN_ASSIGN_OR_RETURN(const int mesh_node, chooseMeshNode(model, request.mesh));
+  const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(mesh_node)];
+  if (node.mesh >= static_cast<int>(model.meshes.size())) {
+    return parseError(nodeLabel(model, mesh_node) + ": mesh " + std::to_string(node.mesh) + " does not exist");
+  }
+  if (node.skin >= static_cast<int>(model.skins.size())) {
+    return parseError(nodeLabel(model, mesh_node) + ": skin " + std::to_string(node.skin) + " does not exist");
+  }
+  if (!request.times.empty() && node.skin < 0) {
+    return invalidArgument(nodeLabel(model, mesh_node) + " has no skin, so it has no poses at times");
+  }
+
+  ODESKIN_ASSIGN_OR_RETURN(MeshData mesh, readMesh(model, node.mesh, usesMeshQuantization(model)));
+  const std::size_t targets = mesh.target_deltas.size();
+  for (int k : request.morph_targets) {
+    if (k < 0 || static_cast<std::size_t>(k) >= targets) {
+      return invalidArgument("morph target " + std::to_string(k) + " requested; mesh " + std::to_string(node.mesh) +
+                             " has " + std::to_string(targets));
+    }
+  }
+  const Welded welded = weldEqualPositions(mesh.positions);
+  ODESKIN_ASSIGN_OR_RETURN(std::vector<std::vector<Vec3>> deltas, topologyDeltas(mesh, welded));
+  ODESKIN_ASSIGN_OR_RETURN(const std::vector<double> default_weights, defaultWeights(model, mesh_node, targets));
+
+  ExampleSet out;
+  out.faces = topologyTriangles(mesh.triangles, welded.topology_of_render);
+  out.render.topology_of_render = welded.topology_of_render;
+  out.render.faces = triangleFaces(mesh.triangles);
+  out.rest_positions = morph(welded.positions, deltas, default_weights);
+
+  std::optional<Skinned> skinned;
+  if (node.skin >= 0) {
+    out.rig.emplace();
+    ODESKIN_ASSIGN_OR_RETURN(skinned, readSkinned(model, mesh_node, mesh, welded, *out.rig));
+  }
+  const std::vector<RigidTransform> identity(skinned ? skinned->skin.joint_nodes.size() : 0);
+
+  if (request.include_bind_pose) {
+    out.poses.push_back(out.rest_positions);
+    out.pose_labels.push_back(file + " bind");
+    if (out.rig) out.rig->key_poses.push_back(identity);
+  }
+  if (!request.times.empty()) {
+    ODESKIN_TRY(appendAnimatedPoses(model, request, file, *skinned, mesh_node, welded.positions, deltas,
+                                    default_weights, out));
+  }
+  for (int k : request.morph_targets) {
+    std::vector<double> w = default_weights;
+    w[static_cast<std::size_t>(k)] = 1.0;
+    out.poses.push_back(morph(welded.positions, deltas, w));
+    out.pose_labels.push_back(file + " target " + std::to_string(k));
+    if (out.rig) out.rig->key_poses.push_back(identity);
+  }
+  if (out.rig) ODESKIN_TRY(validateRig(*out.rig, out.rest_positions.size(), out.poses.size()));
+  return out;
+}
+
+}  // namespace
+
+Result<ExampleSet> readGltfExamples(const std::filesystem::path& path, const GltfPoseRequest& request) {
+  const std::size_t poses =
+      (request.include_bind_pose ? 1 : 0) + request.times.size() + request.morph_targets.size();
+  if (poses < 2) {
+    return invalidArgument(path.string() + ": " + std::to_string(poses) + " example poses requested, at least 2 are needed");
+  }
+  for (double t : request.times) {
+    if (!std::isfinite(t)) return invalidArgument(path.string() + ": a requested time is not finite");
+  }
+  ODESKIN_ASSIGN_OR_RETURN(const tinygltf::Model model, loadModel(path));
+  Result<ExampleSet> examples = buildExamples(model, request, path.filename().string());
+  if (!examples.ok()) return Status(examples.status().code(), path.string() + ": " + examples.status().message());
+  return examples;
+}
+
+}  // namespace odeskin

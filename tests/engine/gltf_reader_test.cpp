@@ -1,0 +1,844 @@
+// SPDX-License-Identifier: MIT
+// The glTF reader against small models written here through tinygltf (.gltf with base64 buffers
+// and .glb): a two-joint tube with a UV seam, bent by an animation, with a morph target.
+#include "engine/io/gltf_reader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+namespace odeskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kByteType = TINYGLTF_COMPONENT_TYPE_BYTE;
+constexpr int kUByteType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+constexpr int kShortType = TINYGLTF_COMPONENT_TYPE_SHORT;
+constexpr int kUShortType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+constexpr int kUIntType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+constexpr int kFloatType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+
+// ---------------------------------------------------------------------------------------------
+// Writing models
+
+std::vector<unsigned char> pack(const std::vector<double>& values, int component_type) {
+  std::vector<unsigned char> out;
+  auto put = [&out](auto v) {
+    unsigned char bytes[sizeof v];
+    std::memcpy(bytes, &v, sizeof v);
+    out.insert(out.end(), bytes, bytes + sizeof v);
+  };
+  for (double x : values) {
+    switch (component_type) {
+      case kByteType: put(static_cast<std::int8_t>(x)); break;
+      case kUByteType: put(static_cast<std::uint8_t>(x)); break;
+      case kShortType: put(static_cast<std::int16_t>(x)); break;
+      case kUShortType: put(static_cast<std::uint16_t>(x)); break;
+      case kUIntType: put(static_cast<std::uint32_t>(x)); break;
+      default: put(static_cast<float>(x)); break;
+    }
+  }
+  return out;
+}
+
+std::size_t componentsOf(int type) {
+  return type == TINYGLTF_TYPE_MAT4 ? 16 : static_cast<std::size_t>(tinygltf::GetNumComponentsInType(type));
+}
+
+// One buffer; every call appends a 4-byte aligned bufferView (and an accessor over it).
+struct Builder {
+  tinygltf::Model model;
+
+  Builder() {
+    model.buffers.emplace_back();
+    model.asset.version = "2.0";
+    model.asset.generator = "odeskin gltf_reader_test";
+  }
+
+  int view(const std::vector<unsigned char>& bytes) {
+    std::vector<unsigned char>& data = model.buffers[0].data;
+    while (data.size() % 4 != 0) data.push_back(0);
+    tinygltf::BufferView v;
+    v.buffer = 0;
+    v.byteOffset = data.size();
+    v.byteLength = bytes.size();
+    data.insert(data.end(), bytes.begin(), bytes.end());
+    model.bufferViews.push_back(v);
+    return static_cast<int>(model.bufferViews.size()) - 1;
+  }
+
+  // An accessor over a new bufferView holding `values` (all components, element after element).
+  int accessor(const std::vector<double>& values, int component_type, int type, bool normalized = false) {
+    tinygltf::Accessor a;
+    a.bufferView = view(pack(values, component_type));
+    a.componentType = component_type;
+    a.type = type;
+    a.normalized = normalized;
+    a.count = values.size() / componentsOf(type);
+    model.accessors.push_back(a);
+    return static_cast<int>(model.accessors.size()) - 1;
+  }
+
+  // A float VEC3 accessor of `count` zeros (no bufferView, or `base` as its bufferView data)
+  // with `values` substituted at `indices` through a sparse accessor.
+  int sparseVec3(std::size_t count, const std::vector<double>* base, const std::vector<std::uint32_t>& indices,
+                 const std::vector<double>& values, int index_type) {
+    tinygltf::Accessor a;
+    a.bufferView = base ? view(pack(*base, kFloatType)) : -1;
+    a.componentType = kFloatType;
+    a.type = TINYGLTF_TYPE_VEC3;
+    a.count = count;
+    a.sparse.isSparse = true;
+    a.sparse.count = static_cast<int>(indices.size());
+    a.sparse.indices.bufferView = view(pack(std::vector<double>(indices.begin(), indices.end()), index_type));
+    a.sparse.indices.byteOffset = 0;
+    a.sparse.indices.componentType = index_type;
+    a.sparse.values.bufferView = view(pack(values, kFloatType));
+    a.sparse.values.byteOffset = 0;
+    model.accessors.push_back(a);
+    return static_cast<int>(model.accessors.size()) - 1;
+  }
+};
+
+fs::path tempDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  fs::path dir = fs::temp_directory_path() / "odeskin_gltf_reader_test" / (std::string(info->test_suite_name()) + "." + info->name());
+  fs::create_directories(dir);
+  return dir;
+}
+
+fs::path write(const tinygltf::Model& model, const std::string& name, bool binary) {
+  const fs::path path = tempDir() / name;
+  tinygltf::TinyGLTF writer;
+  EXPECT_TRUE(writer.WriteGltfSceneToFile(&model, path.string(), true, true, true, binary)) << path;
+  return path;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The tube: rings y = 0, 1, 2 of a square (x, z) = (1, 0), (0, 1), (-1, 0), (0, -1), plus a fifth
+// column that repeats column 0 with u = 1 (the UV seam). Joint "root" (node 1) at the origin,
+// joint "tip" (node 2) at y = 1; ring 0 follows root, ring 2 tip, ring 1 both.
+
+constexpr std::array<std::array<double, 2>, 5> kSquare{{{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
+constexpr int kColumns = 5;
+const Vec3 kTipJoint(0.0, 1.0, 0.0);
+const Vec3 kDelta(0.25, 0.0, 0.125);      // the morph target's displacement of ring 2
+const Vec3 kBaseDelta(0.5, 0.0, 0.0);     // under the sparse values: ring 1 (ring 2 is overridden)
+const double kHalfTurnZ = static_cast<float>(std::sqrt(0.5));  // quarter turn about z, as stored
+
+struct Prim {
+  std::vector<Vec3> positions;
+  std::vector<int> ring;
+  std::vector<int> column;
+  std::vector<std::array<double, 4>> joints0, weights0, joints1, weights1;  // as stored
+  std::vector<std::uint32_t> indices;                                        // empty: unindexed
+};
+
+struct TubeOptions {
+  int joint_type = kUByteType;
+  int weight_type = kFloatType;  // float, or unsigned byte / short stored normalized
+  std::array<double, 2> ring1_weights{1.0, 3.0};  // stored weights of joints 0 and 1 on ring 1
+  bool two_sets = false;          // joint 1's weight in JOINTS_1/WEIGHTS_1
+  bool two_primitives = false;    // rings 0-1 indexed, rings 1-2 unindexed
+  std::string interpolation = "LINEAR";
+  bool sparse_over_base = false;  // the morph target's sparse values lie over a bufferView
+  int sparse_index_type = kUShortType;
+  int position_type = kFloatType;
+  bool position_normalized = false;
+  double position_scale = 1.0;    // stored = position x scale (for quantized positions)
+  std::function<void(Prim&)> tweak;
+};
+
+double fullWeight(int type) { return type == kUByteType ? 255.0 : type == kUShortType ? 65535.0 : 1.0; }
+
+void addVertex(Prim& p, int ring, int column, const TubeOptions& o) {
+  p.positions.emplace_back(kSquare[static_cast<std::size_t>(column)][0], ring, kSquare[static_cast<std::size_t>(column)][1]);
+  p.ring.push_back(ring);
+  p.column.push_back(column);
+  const double full = fullWeight(o.weight_type);
+  const std::array<double, 2> w = ring == 0 ? std::array<double, 2>{full, 0.0}
+                                  : ring == 2 ? std::array<double, 2>{0.0, full}
+                                              : o.ring1_weights;
+  if (o.two_sets) {
+    p.joints0.push_back({0, 0, 0, 0});
+    p.weights0.push_back({w[0], 0, 0, 0});
+    p.joints1.push_back({1, 0, 0, 0});
+    p.weights1.push_back({w[1], 0, 0, 0});
+  } else {
+    p.joints0.push_back({0, 1, 0, 0});
+    p.weights0.push_back({w[0], w[1], 0, 0});
+  }
+}
+
+// Two triangles per quad between rings r, r + 1 and columns c, c + 1 (ring-major vertex numbering
+// from `first_ring`).
+std::vector<std::array<int, 2>> quadCorners(int first_ring) {
+  std::vector<std::array<int, 2>> corners;  // (ring, column)
+  for (int c = 0; c < kColumns - 1; ++c) {
+    const std::array<std::array<int, 2>, 6> tri{{{first_ring, c},
+                                                 {first_ring, c + 1},
+                                                 {first_ring + 1, c + 1},
+                                                 {first_ring, c},
+                                                 {first_ring + 1, c + 1},
+                                                 {first_ring + 1, c}}};
+    corners.insert(corners.end(), tri.begin(), tri.end());
+  }
+  return corners;
+}
+
+Prim indexedRings(int first, int last, const TubeOptions& o) {
+  Prim p;
+  for (int r = first; r <= last; ++r) {
+    for (int c = 0; c < kColumns; ++c) addVertex(p, r, c, o);
+  }
+  for (int r = first; r < last; ++r) {
+    for (const auto& [ring, column] : quadCorners(r)) {
+      p.indices.push_back(static_cast<std::uint32_t>((ring - first) * kColumns + column));
+    }
+  }
+  return p;
+}
+
+Prim unindexedRings(int first, const TubeOptions& o) {
+  Prim p;
+  for (const auto& [ring, column] : quadCorners(first)) addVertex(p, ring, column, o);
+  return p;
+}
+
+std::vector<double> flat(const std::vector<std::array<double, 4>>& v) {
+  std::vector<double> out;
+  for (const auto& a : v) out.insert(out.end(), a.begin(), a.end());
+  return out;
+}
+
+tinygltf::Primitive emit(Builder& b, const Prim& p, const TubeOptions& o, bool sparse_target) {
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  std::vector<double> positions;
+  std::vector<double> uvs;
+  for (std::size_t i = 0; i < p.positions.size(); ++i) {
+    for (int k = 0; k < 3; ++k) positions.push_back(p.positions[i][k] * o.position_scale);
+    uvs.push_back(p.column[i] / 4.0);
+    uvs.push_back(p.ring[i] / 2.0);
+  }
+  prim.attributes["POSITION"] = b.accessor(positions, o.position_type, TINYGLTF_TYPE_VEC3, o.position_normalized);
+  prim.attributes["TEXCOORD_0"] = b.accessor(uvs, kFloatType, TINYGLTF_TYPE_VEC2);
+  const bool normalized = o.weight_type != kFloatType;
+  prim.attributes["JOINTS_0"] = b.accessor(flat(p.joints0), o.joint_type, TINYGLTF_TYPE_VEC4);
+  prim.attributes["WEIGHTS_0"] = b.accessor(flat(p.weights0), o.weight_type, TINYGLTF_TYPE_VEC4, normalized);
+  if (o.two_sets) {
+    prim.attributes["JOINTS_1"] = b.accessor(flat(p.joints1), o.joint_type, TINYGLTF_TYPE_VEC4);
+    prim.attributes["WEIGHTS_1"] = b.accessor(flat(p.weights1), o.weight_type, TINYGLTF_TYPE_VEC4, normalized);
+  }
+  if (!p.indices.empty()) {
+    prim.indices = b.accessor(std::vector<double>(p.indices.begin(), p.indices.end()), kUShortType, TINYGLTF_TYPE_SCALAR);
+  }
+  // The morph target moves ring 2, stored sparse; a primitive without ring 2 gets a zero accessor.
+  std::vector<std::uint32_t> moved;
+  std::vector<double> values;
+  std::vector<double> base(3 * p.positions.size(), 0.0);
+  for (std::size_t i = 0; i < p.positions.size(); ++i) {
+    if (p.ring[i] == 2) {
+      moved.push_back(static_cast<std::uint32_t>(i));
+      values.insert(values.end(), {kDelta.x, kDelta.y, kDelta.z});
+      base[3 * i] = base[3 * i + 1] = base[3 * i + 2] = 9.0;  // must be overridden
+    } else if (p.ring[i] == 1) {
+      base[3 * i] = kBaseDelta.x;
+    }
+  }
+  int target = -1;
+  if (!sparse_target) {
+    tinygltf::Accessor zeros;
+    zeros.componentType = kFloatType;
+    zeros.type = TINYGLTF_TYPE_VEC3;
+    zeros.count = p.positions.size();
+    b.model.accessors.push_back(zeros);
+    target = static_cast<int>(b.model.accessors.size()) - 1;
+  } else {
+    target = b.sparseVec3(p.positions.size(), o.sparse_over_base ? &base : nullptr, moved, values, o.sparse_index_type);
+  }
+  prim.targets.push_back({{"POSITION", target}});
+  return prim;
+}
+
+void addNode(tinygltf::Model& m, const std::string& name, std::vector<double> translation, std::vector<int> children) {
+  tinygltf::Node n;
+  n.name = name;
+  n.translation = std::move(translation);
+  n.children = std::move(children);
+  m.nodes.push_back(n);
+}
+
+void addChannel(Builder& b, tinygltf::Animation& a, int node, const std::string& path, const std::string& interpolation,
+                const std::vector<double>& times, const std::vector<double>& values, int type) {
+  tinygltf::AnimationSampler s;
+  s.input = b.accessor(times, kFloatType, TINYGLTF_TYPE_SCALAR);
+  s.output = b.accessor(values, kFloatType, type);
+  s.interpolation = interpolation;
+  a.samplers.push_back(s);
+  tinygltf::AnimationChannel c;
+  c.sampler = static_cast<int>(a.samplers.size()) - 1;
+  c.target_node = node;
+  c.target_path = path;
+  a.channels.push_back(c);
+}
+
+// Rotation keys of "bend" (joint tip, times 0 and 2 s): identity to a quarter turn about z. For
+// CUBICSPLINE each keyframe is in-tangent, value, out-tangent (glTF quaternions x y z w).
+std::vector<double> rotationKeys(const std::string& interpolation) {
+  const double s = kHalfTurnZ;
+  if (interpolation == "CUBICSPLINE") {
+    return {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0.375, 0, 0, 0, 0.25, -0.125, 0, 0, s, s, 0, 0, 0, 0};
+  }
+  return {0, 0, 0, 1, 0, 0, s, s};
+}
+
+struct Tube {
+  tinygltf::Model model;
+  std::vector<Vec3> render_positions;  // as written, primitives concatenated
+  int position_accessor = -1;          // POSITION of primitive 0
+};
+
+Tube makeTube(const TubeOptions& o = {}) {
+  Builder b;
+  std::vector<Prim> prims;
+  if (o.two_primitives) {
+    prims.push_back(indexedRings(0, 1, o));
+    prims.push_back(unindexedRings(1, o));
+  } else {
+    prims.push_back(indexedRings(0, 2, o));
+  }
+  Tube tube;
+  tinygltf::Mesh mesh;
+  mesh.name = "tube";
+  for (std::size_t i = 0; i < prims.size(); ++i) {
+    if (o.tweak) o.tweak(prims[i]);
+    const bool has_ring2 = std::find(prims[i].ring.begin(), prims[i].ring.end(), 2) != prims[i].ring.end();
+    mesh.primitives.push_back(emit(b, prims[i], o, has_ring2));
+    tube.render_positions.insert(tube.render_positions.end(), prims[i].positions.begin(), prims[i].positions.end());
+  }
+  tube.position_accessor = mesh.primitives[0].attributes["POSITION"];
+  b.model.meshes.push_back(mesh);
+
+  // Node 0: the skinned mesh, translated (which glTF says must be ignored); nodes 1, 2: joints.
+  tinygltf::Node mesh_node;
+  mesh_node.name = "tube";
+  mesh_node.mesh = 0;
+  mesh_node.skin = 0;
+  mesh_node.translation = {5.0, 0.0, 0.0};
+  b.model.nodes.push_back(mesh_node);
+  addNode(b.model, "root", {}, {2});
+  addNode(b.model, "tip", {0.0, 1.0, 0.0}, {});
+  tinygltf::Skin skin;
+  skin.joints = {1, 2};
+  std::vector<double> ibm(32, 0.0);
+  for (int k = 0; k < 4; ++k) ibm[static_cast<std::size_t>(5 * k)] = ibm[static_cast<std::size_t>(16 + 5 * k)] = 1.0;
+  ibm[16 + 13] = -1.0;  // column 3, row 1 of joint 1's matrix: translate (0, -1, 0)
+  skin.inverseBindMatrices = b.accessor(ibm, kFloatType, TINYGLTF_TYPE_MAT4);
+  b.model.skins.push_back(skin);
+  tinygltf::Scene scene;
+  scene.nodes = {0, 1};
+  b.model.scenes.push_back(scene);
+  b.model.defaultScene = 0;
+
+  tinygltf::Animation bend;
+  bend.name = "bend";
+  addChannel(b, bend, 2, "rotation", o.interpolation, {0.0, 2.0}, rotationKeys(o.interpolation), TINYGLTF_TYPE_VEC4);
+  addChannel(b, bend, 1, "translation", "LINEAR", {0.0, 1.0}, {0, 0, 0, 0.5, 0, 0}, TINYGLTF_TYPE_VEC3);
+  b.model.animations.push_back(bend);
+  tinygltf::Animation wiggle;
+  wiggle.name = "wiggle";
+  addChannel(b, wiggle, 0, "weights", "LINEAR", {0.0, 2.0}, {0.0, 1.0}, TINYGLTF_TYPE_SCALAR);
+  addChannel(b, wiggle, 2, "rotation", "LINEAR", {0.0, 2.0}, rotationKeys("LINEAR"), TINYGLTF_TYPE_VEC4);
+  b.model.animations.push_back(wiggle);
+  tinygltf::Animation squash;
+  squash.name = "squash";
+  addChannel(b, squash, 2, "scale", "LINEAR", {0.0, 1.0}, {1, 1, 1, 2, 2, 2}, TINYGLTF_TYPE_VEC3);
+  b.model.animations.push_back(squash);
+  if (o.position_type != kFloatType) b.model.extensionsRequired = b.model.extensionsUsed = {"KHR_mesh_quantization"};
+  tube.model = std::move(b.model);
+  return tube;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The expected poses, computed independently of the reader
+
+// glTF quaternions restricted to the z axis: (z, w).
+struct ZQuat {
+  double z = 0.0;
+  double w = 1.0;
+};
+
+// The tip joint's rotation angle about z at time t under "bend"'s rotation channel (spec Appendix C).
+double bendAngle(const std::string& interpolation, double t) {
+  const ZQuat v0{0.0, 1.0};
+  const ZQuat v1{kHalfTurnZ, kHalfTurnZ};
+  ZQuat q = t <= 0.0 ? v0 : v1;
+  if (t > 0.0 && t < 2.0) {
+    const double td = 2.0;
+    const double u = t / td;
+    if (interpolation == "STEP") {
+      q = v0;
+    } else if (interpolation == "LINEAR") {
+      const double theta = std::acos(v0.z * v1.z + v0.w * v1.w);
+      const double a = std::sin((1.0 - u) * theta) / std::sin(theta);
+      const double c = std::sin(u * theta) / std::sin(theta);
+      q = {a * v0.z + c * v1.z, a * v0.w + c * v1.w};
+    } else {
+      const ZQuat b0{0.375, 0.0};  // tangents exact in float
+      const ZQuat a1{0.25, -0.125};
+      const double h00 = 2 * u * u * u - 3 * u * u + 1;
+      const double h10 = u * u * u - 2 * u * u + u;
+      const double h01 = -2 * u * u * u + 3 * u * u;
+      const double h11 = u * u * u - u * u;
+      q = {h00 * v0.z + td * h10 * b0.z + h01 * v1.z + td * h11 * a1.z,
+           h00 * v0.w + td * h10 * b0.w + h01 * v1.w + td * h11 * a1.w};
+    }
+  }
+  return 2.0 * std::atan2(q.z, q.w);  // atan2 normalises the quaternion for us
+}
+
+struct PoseParams {
+  double root_dx = 0.0;  // the root joint's x translation
+  double angle = 0.0;    // the tip joint's rotation about z, through its joint at y = 1
+  double morph = 0.0;    // the morph target's weight
+};
+
+// Tip joint's skin matrix S_1 = G_tip IBM_tip applied to x: turn about the joint, then the root's shift.
+Vec3 tipSkin(const Vec3& x, const PoseParams& p) {
+  const Vec3 d = x - kTipJoint;
+  const Vec3 turned(std::cos(p.angle) * d.x - std::sin(p.angle) * d.y, std::sin(p.angle) * d.x + std::cos(p.angle) * d.y, d.z);
+  return kTipJoint + turned + Vec3(p.root_dx, 0.0, 0.0);
+}
+
+Vec3 expectedVertex(const Vec3& rest, double tip_weight, const Vec3& delta, const PoseParams& p) {
+  const Vec3 x = rest + p.morph * delta;
+  return (1.0 - tip_weight) * (x + Vec3(p.root_dx, 0.0, 0.0)) + tip_weight * tipSkin(x, p);
+}
+
+int ringOf(const Vec3& p) { return static_cast<int>(std::lround(p.y)); }
+
+double tipWeight(int ring, const TubeOptions& o) {
+  if (ring == 0) return 0.0;
+  if (ring == 2) return 1.0;
+  return o.ring1_weights[1] / (o.ring1_weights[0] + o.ring1_weights[1]);
+}
+
+Vec3 deltaOf(int ring, const TubeOptions& o) {
+  if (ring == 2) return kDelta;
+  if (ring == 1 && o.sparse_over_base) return kBaseDelta;
+  return Vec3(0.0);
+}
+
+void expectNear(const Vec3& actual, const Vec3& expected, double tolerance, const std::string& what) {
+  EXPECT_LT(glm::length(actual - expected), tolerance)
+      << what << ": (" << actual.x << ", " << actual.y << ", " << actual.z << ") vs (" << expected.x << ", "
+      << expected.y << ", " << expected.z << ")";
+}
+
+Result<ExampleSet> read(const fs::path& path, std::vector<double> times, std::vector<int> targets = {},
+                        std::string animation = "bend") {
+  GltfPoseRequest request;
+  request.animation = std::move(animation);
+  request.times = std::move(times);
+  request.morph_targets = std::move(targets);
+  return readGltfExamples(path, request);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tests
+
+class GltfFormats : public ::testing::TestWithParam<bool> {};  // parameter: write GLB
+
+TEST_P(GltfFormats, SeamIsWeldedAndRenderLayoutKept) {
+  const Tube tube = makeTube();
+  const auto examples = read(write(tube.model, GetParam() ? "tube.glb" : "tube.gltf", GetParam()), {0.5});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  const ExampleSet& e = *examples;
+  ASSERT_EQ(e.render.topology_of_render.size(), 15u);
+  ASSERT_EQ(e.rest_positions.size(), 12u);  // 3 rings x 4 corners; the seam column is welded
+  for (std::uint32_t r = 0; r < 15; ++r) {
+    const std::uint32_t t = e.render.topology_of_render[r];
+    EXPECT_EQ(e.rest_positions[t], tube.render_positions[r]) << "render vertex " << r;
+    if (r % kColumns == 4) {
+      EXPECT_EQ(t, e.render.topology_of_render[r - 4]) << "seam vertex " << r;
+    }
+  }
+  ASSERT_EQ(e.faces.faceCount(), 16u);
+  ASSERT_EQ(e.render.faces.faceCount(), 16u);
+  for (std::size_t k = 0; k < e.faces.indices.size(); ++k) {
+    EXPECT_EQ(e.faces.indices[k], e.render.topology_of_render[e.render.faces.indices[k]]);
+  }
+  EXPECT_EQ(e.pose_labels, (std::vector<std::string>{std::string(GetParam() ? "tube.glb" : "tube.gltf") + " bind",
+                                                     std::string(GetParam() ? "tube.glb" : "tube.gltf") + " bend at 0.5 s"}));
+}
+
+TEST_P(GltfFormats, TwoPrimitivesIndexedAndNotWeldIntoOneTopology) {
+  TubeOptions o;
+  o.two_primitives = true;
+  const Tube tube = makeTube(o);
+  const auto examples = read(write(tube.model, GetParam() ? "two.glb" : "two.gltf", GetParam()), {1.0}, {0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  const ExampleSet& e = *examples;
+  ASSERT_EQ(e.render.topology_of_render.size(), 10u + 24u);
+  ASSERT_EQ(e.rest_positions.size(), 12u);
+  for (std::size_t r = 0; r < tube.render_positions.size(); ++r) {
+    EXPECT_EQ(e.rest_positions[e.render.topology_of_render[r]], tube.render_positions[r]) << "render vertex " << r;
+  }
+  EXPECT_EQ(e.faces.faceCount(), 16u);
+  EXPECT_EQ(e.render.faces.faceCount(), 16u);
+  // The morph target: zeros in primitive 0 (no bufferView), sparse in primitive 1.
+  ASSERT_EQ(e.poses.size(), 3u);
+  for (std::size_t v = 0; v < 12; ++v) {
+    expectNear(e.poses[2][v], e.rest_positions[v] + deltaOf(ringOf(e.rest_positions[v]), o), 1e-12, "target pose");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(GltfAndGlb, GltfFormats, ::testing::Bool());
+
+TEST(GltfReader, TriangleCollapsedByWeldingStaysOnlyInRenderFaces) {
+  TubeOptions o;
+  o.tweak = [](Prim& p) { p.indices.insert(p.indices.end(), {0, 4, 5}); };  // 0 and 4 are the seam pair
+  const auto examples = read(write(makeTube(o).model, "sliver.gltf", false), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  EXPECT_EQ(examples->render.faces.faceCount(), 17u);
+  EXPECT_EQ(examples->faces.faceCount(), 16u);
+}
+
+TEST(GltfReader, SkeletonFromSkin) {
+  const auto examples = read(write(makeTube().model, "tube.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  ASSERT_TRUE(examples->rig.has_value());
+  const Skeleton& s = examples->rig->skeleton;
+  EXPECT_EQ(s.names, (std::vector<std::string>{"root", "tip"}));
+  EXPECT_EQ(s.parents, (std::vector<std::int32_t>{-1, 0}));
+  ASSERT_EQ(s.heads.size(), 2u);
+  EXPECT_EQ(s.heads[0], Vec3(0.0));
+  EXPECT_EQ(s.heads[1], kTipJoint);
+  EXPECT_EQ(s.tails[0], kTipJoint);  // the first child joint's head
+  EXPECT_EQ(s.tails[1], kTipJoint);  // no child: its own head
+}
+
+struct WeightCase {
+  int joint_type;
+  int weight_type;
+  std::array<double, 2> ring1;
+  bool two_sets;
+};
+
+void PrintTo(const WeightCase& c, std::ostream* os) {
+  *os << "joints " << c.joint_type << " weights " << c.weight_type << " ring 1 (" << c.ring1[0] << ", " << c.ring1[1]
+      << ")" << (c.two_sets ? " in two sets" : "");
+}
+
+class GltfWeights : public ::testing::TestWithParam<WeightCase> {};
+
+TEST_P(GltfWeights, NormalisedPerVertexForEveryComponentType) {
+  TubeOptions o;
+  o.joint_type = GetParam().joint_type;
+  o.weight_type = GetParam().weight_type;
+  o.ring1_weights = GetParam().ring1;
+  o.two_sets = GetParam().two_sets;
+  const auto examples = read(write(makeTube(o).model, "weights.gltf", false), {0.5});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  const ExampleSet& e = *examples;
+  const Influences& in = e.rig->influences;
+  ASSERT_EQ(in.vertexCount(), 12u);
+  for (std::size_t v = 0; v < 12; ++v) {
+    const int ring = ringOf(e.rest_positions[v]);
+    std::map<std::uint32_t, double> w;
+    double sum = 0.0;
+    for (std::uint32_t k = in.offsets[v]; k < in.offsets[v + 1]; ++k) {
+      w[in.bones[k]] += in.weights[k];
+      sum += in.weights[k];
+      EXPECT_GT(in.weights[k], 0.0) << "zero weights are dropped";
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-15) << "vertex " << v;
+    EXPECT_NEAR(w[1], tipWeight(ring, o), 1e-12) << "vertex " << v;
+    EXPECT_EQ(in.offsets[v + 1] - in.offsets[v], ring == 1 ? 2u : 1u) << "vertex " << v;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ComponentTypes, GltfWeights,
+    ::testing::Values(WeightCase{kUByteType, kFloatType, {1.0, 3.0}, false},        // sums to 4: normalised
+                      WeightCase{kUShortType, kFloatType, {0.25, 0.75}, false},
+                      WeightCase{kUByteType, kUByteType, {64.0, 191.0}, false},     // 64/255, 191/255
+                      WeightCase{kUShortType, kUByteType, {100.0, 100.0}, false},   // sums to 200/255
+                      WeightCase{kUByteType, kUShortType, {16384.0, 49151.0}, false},
+                      WeightCase{kUShortType, kUShortType, {1000.0, 3000.0}, true}, // JOINTS_1/WEIGHTS_1
+                      WeightCase{kUByteType, kFloatType, {0.5, 0.5}, true}));
+
+struct PoseCase {
+  std::string interpolation;
+  bool binary;
+};
+
+void PrintTo(const PoseCase& c, std::ostream* os) { *os << c.interpolation << (c.binary ? " glb" : " gltf"); }
+
+class GltfPoses : public ::testing::TestWithParam<PoseCase> {};
+
+TEST_P(GltfPoses, EqualIndependentLinearBlendSkinning) {
+  TubeOptions o;
+  o.interpolation = GetParam().interpolation;
+  const std::vector<double> times{-0.5, 0.0, 0.5, 1.0, 1.5, 2.0, 3.0};
+  const auto examples = read(write(makeTube(o).model, GetParam().binary ? "bend.glb" : "bend.gltf", GetParam().binary), times);
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  const ExampleSet& e = *examples;
+  ASSERT_EQ(e.poses.size(), times.size() + 1);
+  ASSERT_EQ(e.rig->key_poses.size(), times.size() + 1);
+  for (std::size_t v = 0; v < 12; ++v) EXPECT_EQ(e.poses[0][v], e.rest_positions[v]);
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const double t = times[k];
+    const PoseParams p{0.5 * std::clamp(t, 0.0, 1.0), bendAngle(o.interpolation, t), 0.0};
+    const std::vector<Vec3>& pose = e.poses[k + 1];
+    for (std::size_t v = 0; v < 12; ++v) {
+      const Vec3& x = e.rest_positions[v];
+      expectNear(pose[v], expectedVertex(x, tipWeight(ringOf(x), o), Vec3(0.0), p), 1e-9,
+                 "t " + std::to_string(t) + " vertex " + std::to_string(v));
+    }
+    // Key poses are the joints' skin matrices (rigid here).
+    const std::vector<RigidTransform>& key = e.rig->key_poses[k + 1];
+    for (const Vec3& x : {Vec3(0.0), Vec3(1.0, 2.0, 3.0), Vec3(-1.0, 0.5, 0.0)}) {
+      expectNear(key[0].apply(x), x + Vec3(p.root_dx, 0.0, 0.0), 1e-9, "root key pose");
+      expectNear(key[1].apply(x), tipSkin(x, p), 1e-9, "tip key pose");
+    }
+  }
+  // A quarter turn at the end (float data aside), and none at the start.
+  EXPECT_NEAR(bendAngle(o.interpolation, 2.0), std::numbers::pi / 2, 1e-7);
+  for (const RigidTransform& identity : e.rig->key_poses[0]) {
+    EXPECT_EQ(identity.rotation, glm::dquat(1.0, 0.0, 0.0, 0.0));
+    EXPECT_EQ(identity.translation, Vec3(0.0));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Interpolations, GltfPoses,
+                         ::testing::Values(PoseCase{"LINEAR", false}, PoseCase{"LINEAR", true}, PoseCase{"STEP", false},
+                                           PoseCase{"CUBICSPLINE", false}, PoseCase{"CUBICSPLINE", true}),
+                         [](const auto& case_info) { return case_info.param.interpolation + (case_info.param.binary ? "_glb" : "_gltf"); });
+
+TEST(GltfReader, AnimatedMorphWeightsApplyBeforeSkinning) {
+  const TubeOptions o;
+  const auto examples = read(write(makeTube(o).model, "wiggle.gltf", false), {1.0, 2.0}, {}, "wiggle");
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  const ExampleSet& e = *examples;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double t = k == 0 ? 1.0 : 2.0;
+    const PoseParams p{0.0, bendAngle("LINEAR", t), t / 2.0};
+    for (std::size_t v = 0; v < 12; ++v) {
+      const Vec3& x = e.rest_positions[v];
+      expectNear(e.poses[k + 1][v], expectedVertex(x, tipWeight(ringOf(x), o), deltaOf(ringOf(x), o), p), 1e-9,
+                 "wiggle t " + std::to_string(t) + " vertex " + std::to_string(v));
+    }
+  }
+  EXPECT_EQ(e.pose_labels[1], "wiggle.gltf wiggle at 1 s");
+}
+
+TEST(GltfReader, AnimationByIndex) {
+  const auto examples = read(write(makeTube().model, "tube.gltf", false), {2.0}, {}, "1");
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  EXPECT_EQ(examples->pose_labels[1], "tube.gltf wiggle at 2 s");
+}
+
+TEST(GltfReader, SparseMorphTargetIsApplied) {
+  for (int index_type : {kUByteType, kUShortType, kUIntType}) {
+    for (bool over_base : {false, true}) {
+      TubeOptions o;
+      o.sparse_index_type = index_type;
+      o.sparse_over_base = over_base;
+      GltfPoseRequest request;
+      request.morph_targets = {0};
+      const auto examples = readGltfExamples(write(makeTube(o).model, "sparse.glb", true), request);
+      ASSERT_TRUE(examples.ok()) << examples.status().toString();
+      const ExampleSet& e = *examples;
+      ASSERT_EQ(e.poses.size(), 2u);
+      EXPECT_EQ(e.pose_labels[1], "sparse.glb target 0");
+      for (std::size_t v = 0; v < 12; ++v) {
+        const Vec3& x = e.rest_positions[v];
+        EXPECT_EQ(e.poses[1][v], x + deltaOf(ringOf(x), o)) << "vertex " << v << " index type " << index_type;
+      }
+      for (const RigidTransform& key : e.rig->key_poses[1]) EXPECT_EQ(key.translation, Vec3(0.0));
+    }
+  }
+}
+
+TEST(GltfReader, QuantizedPositions) {
+  TubeOptions o;
+  o.position_type = kShortType;
+  o.position_normalized = true;
+  o.position_scale = 16000.0;
+  GltfPoseRequest request;
+  request.morph_targets = {0};
+  const Tube tube = makeTube(o);
+  const auto examples = readGltfExamples(write(tube.model, "quantized.gltf", false), request);
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  ASSERT_EQ(examples->rest_positions.size(), 12u);
+  for (std::size_t r = 0; r < tube.render_positions.size(); ++r) {
+    const Vec3 stored = tube.render_positions[r] * 16000.0;
+    EXPECT_EQ(examples->rest_positions[examples->render.topology_of_render[r]], stored / 32767.0);
+  }
+  // Without the extension those formats are not glTF.
+  tinygltf::Model plain = tube.model;
+  plain.extensionsRequired.clear();
+  plain.extensionsUsed.clear();
+  const auto refused = readGltfExamples(write(plain, "plain.gltf", false), request);
+  EXPECT_EQ(refused.status().code(), StatusCode::kParseError);
+  EXPECT_NE(refused.status().message().find("accessor " + std::to_string(tube.position_accessor)), std::string::npos)
+      << refused.status().message();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Errors
+
+void expectError(const Result<ExampleSet>& r, StatusCode code, const std::vector<std::string>& words) {
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), code) << r.status().toString();
+  for (const std::string& w : words) {
+    EXPECT_NE(r.status().message().find(w), std::string::npos) << "'" << w << "' not in: " << r.status().message();
+  }
+}
+
+TEST(GltfReader, InterleavedPositionsHonourByteStride) {
+  Tube tube = makeTube();
+  // POSITION moved into an interleaved view: x y z and one float of something else per vertex.
+  std::vector<double> interleaved;
+  for (const Vec3& p : tube.render_positions) interleaved.insert(interleaved.end(), {p.x, p.y, p.z, 99.0});
+  std::vector<unsigned char>& data = tube.model.buffers[0].data;
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteStride = 16;
+  const std::vector<unsigned char> bytes = pack(interleaved, kFloatType);
+  view.byteLength = bytes.size() - 4;  // the last vertex's extra float is not needed
+  data.insert(data.end(), bytes.begin(), bytes.end());
+  tube.model.bufferViews.push_back(view);
+  tinygltf::Accessor& a = tube.model.accessors[static_cast<std::size_t>(tube.position_accessor)];
+  a.bufferView = static_cast<int>(tube.model.bufferViews.size()) - 1;
+  const auto examples = read(write(tube.model, "stride.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  for (std::size_t r = 0; r < tube.render_positions.size(); ++r) {
+    EXPECT_EQ(examples->rest_positions[examples->render.topology_of_render[r]], tube.render_positions[r]);
+  }
+  tube.model.bufferViews.back().byteStride = 8;  // smaller than a VEC3 of floats
+  expectError(read(write(tube.model, "short_stride.glb", true), {1.0}), StatusCode::kParseError, {"byteStride 8"});
+}
+
+TEST(GltfReaderErrors, MissingFile) {
+  const fs::path path = tempDir() / "absent.glb";
+  expectError(read(path, {1.0}), StatusCode::kIoError, {path.string()});
+}
+
+TEST(GltfReaderErrors, TruncatedGlb) {
+  const fs::path path = write(makeTube().model, "truncated.glb", true);
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  ASSERT_GT(bytes.size(), 100u);
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+  }
+  expectError(read(path, {1.0}), StatusCode::kParseError, {path.string(), "tinygltf"});
+}
+
+TEST(GltfReaderErrors, MalformedJson) {
+  const fs::path path = tempDir() / "broken.gltf";
+  std::ofstream(path) << "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [";
+  expectError(read(path, {1.0}), StatusCode::kParseError, {path.string(), "tinygltf"});
+}
+
+TEST(GltfReaderErrors, UnknownAnimationListsTheAvailableOnes) {
+  const fs::path path = write(makeTube().model, "tube.gltf", false);
+  expectError(read(path, {1.0}, {}, "walk"), StatusCode::kInvalidArgument, {path.string(), "walk", "bend", "wiggle", "squash"});
+  expectError(read(path, {1.0}, {}, "3"), StatusCode::kInvalidArgument, {"'3'"});
+}
+
+TEST(GltfReaderErrors, UnimplementedRequiredExtensionIsNamed) {
+  tinygltf::Model model = makeTube().model;
+  model.extensionsUsed.push_back("KHR_draco_mesh_compression");
+  model.extensionsRequired.push_back("KHR_draco_mesh_compression");
+  expectError(read(write(model, "draco.glb", true), {1.0}), StatusCode::kInvalidArgument, {"KHR_draco_mesh_compression"});
+}
+
+TEST(GltfReaderErrors, JointIndexOutOfRange) {
+  TubeOptions o;
+  o.tweak = [](Prim& p) { p.joints0[3][1] = 7; };
+  expectError(read(write(makeTube(o).model, "joints.gltf", false), {1.0}), StatusCode::kParseError,
+              {"render vertex 3", "joint 7", "2 joints"});
+}
+
+TEST(GltfReaderErrors, AccessorOutOfBufferBounds) {
+  Tube tube = makeTube();
+  tinygltf::Accessor& a = tube.model.accessors[static_cast<std::size_t>(tube.position_accessor)];
+  a.byteOffset = 12;  // the last vertex now runs past its bufferView
+  const std::string name = "accessor " + std::to_string(tube.position_accessor);
+  expectError(read(write(tube.model, "offset.glb", true), {1.0}), StatusCode::kParseError, {name, "POSITION", "past the end"});
+  a.byteOffset = 0;
+  tube.model.bufferViews[static_cast<std::size_t>(a.bufferView)].byteLength = 1u << 20;  // past the buffer
+  expectError(read(write(tube.model, "view.glb", true), {1.0}), StatusCode::kParseError, {name, "past the end of buffer"});
+}
+
+TEST(GltfReaderErrors, FewerThanTwoPoses) {
+  const fs::path path = write(makeTube().model, "tube.gltf", false);
+  expectError(read(path, {}), StatusCode::kInvalidArgument, {"at least 2"});
+  GltfPoseRequest request;
+  request.include_bind_pose = false;
+  request.times = {1.0};
+  expectError(readGltfExamples(path, request), StatusCode::kInvalidArgument, {"at least 2"});
+}
+
+TEST(GltfReaderErrors, TimesNeedASkin) {
+  tinygltf::Model model = makeTube().model;
+  model.nodes[0].skin = -1;
+  expectError(read(write(model, "unskinned.gltf", false), {1.0}), StatusCode::kInvalidArgument, {"no skin"});
+  // Morph targets alone still read, without a rig.
+  const auto examples = read(write(model, "unskinned.gltf", false), {}, {0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  EXPECT_FALSE(examples->rig.has_value());
+}
+
+TEST(GltfReaderErrors, OnlyTriangles) {
+  tinygltf::Model model = makeTube().model;
+  model.meshes[0].primitives[0].mode = TINYGLTF_MODE_TRIANGLE_STRIP;
+  expectError(read(write(model, "strip.gltf", false), {1.0}), StatusCode::kParseError, {"mode 5", "TRIANGLES"});
+}
+
+TEST(GltfReaderErrors, WeightsSummingToZero) {
+  TubeOptions o;
+  o.tweak = [](Prim& p) { p.weights0[6] = {0, 0, 0, 0}; };
+  expectError(read(write(makeTube(o).model, "zero.gltf", false), {1.0}), StatusCode::kParseError, {"render vertex 6", "sum to 0"});
+}
+
+TEST(GltfReaderErrors, WeldedCopiesWithDifferentWeights) {
+  TubeOptions o;
+  o.tweak = [](Prim& p) { p.weights0[9] = {0.5, 0.5, 0, 0}; };  // ring 1's seam copy of vertex 5 (1:3 there)
+  expectError(read(write(makeTube(o).model, "seam.gltf", false), {1.0}), StatusCode::kParseError,
+              {"topology vertex 4", "render vertices 5 and 9"});
+}
+
+TEST(GltfReaderErrors, ScalingJointIsNotARigidKeyPose) {
+  const fs::path path = write(makeTube().model, "squash.gltf", false);
+  expectError(read(path, {1.0}, {}, "squash"), StatusCode::kInvalidArgument, {"joint 1 'tip'", "squash.gltf squash at 1 s"});
+}
+
+TEST(GltfReaderErrors, MorphTargetOutOfRange) {
+  expectError(read(write(makeTube().model, "tube.gltf", false), {}, {1}), StatusCode::kInvalidArgument, {"morph target 1"});
+}
+
+}  // namespace
+}  // namespace odeskin
