@@ -28,7 +28,7 @@ Result<GpuDeformer> GpuDeformer::create(const vk::Device& device, const PackedDe
   // The CPU job's own checks on the packed arrays, so both paths accept exactly the same data.
   {
     std::vector<gpu::BoneMatrix> bones(data.bone_count);
-    std::vector<gpu::ModeBasis> basis(static_cast<std::size_t>(data.material_count) * (data.modes + 1));
+    std::vector<gpu::ModeBasis> basis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}));
     std::vector<gpu::Float4> out(data.vertex_count);
     FourierDeformFastJob job;
     job.data = &data;
@@ -44,7 +44,7 @@ Result<GpuDeformer> GpuDeformer::create(const vk::Device& device, const PackedDe
   deformer.vertex_count_ = data.vertex_count;
   deformer.segment_count_ = data.segment_count;
   deformer.bone_count_ = data.bone_count;
-  deformer.basis_count_ = static_cast<std::size_t>(data.material_count) * (data.modes + 1);
+  deformer.basis_count_ = ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes});
   for (std::uint32_t s = 0; s < data.segment_count; ++s) {
     deformer.push_constants_.push_back(deformPushConstants(data, s));
   }
@@ -122,7 +122,7 @@ Status GpuDeformer::validate(const GpuDeformFrame& frame) const {
   }
   if (frame.basis.size() != basis_count_) {
     return invalidArgument("fourier deform gpu: basis has " + std::to_string(frame.basis.size()) +
-                           " entries, expected material_count x (N+1) = " + std::to_string(basis_count_));
+                           " entries, expected material_count x (N+1) + 1 = " + std::to_string(basis_count_));
   }
   return okStatus();
 }

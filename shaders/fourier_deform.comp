@@ -79,8 +79,8 @@ void main() {
   SegmentVertex sv = segment_vertices[pc.segment * pc.vertex_count + i];
   residual += vec3(sv.base_x, sv.base_y, sv.base_z);
   if (sv.remainder_index != ODESKIN_NO_REMAINDER) {
-    float gamma0 = basis[curve_materials[vb.curve_a] * (pc.modes + 1u)].gamma;
-    residual += gamma0 * xyz(remainders[pc.remainder_base + sv.remainder_index]);
+    float weight = basis[pc.material_count * (pc.modes + 1u)].gamma;  // the remainder weight (gpu_layout.h)
+    residual += weight * xyz(remainders[pc.remainder_base + sv.remainder_index]);
   }
 
   vec3 rest = xyz(rest_positions[i]);

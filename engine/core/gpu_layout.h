@@ -102,6 +102,12 @@ struct ModeBasis {
   float psi;
 };
 
+// Time basis per frame: material_count x (N+1) entries (gamma_n, psi_n) of every (material, mode),
+// then ONE more entry whose gamma is the sparse remainders' weight w(tau) = 3 tau^2 - 2 tau^3
+// (MATH.md 4.4 allows any w with w(0) = 0, w(1) = 1; this one has zero rate at both ends, so the
+// remainders never break the C1 join between segments). ODESKIN_BASIS_ENTRIES gives the count.
+#define ODESKIN_BASIS_ENTRIES(material_count, modes) ((material_count) * ((modes) + 1u) + 1u)
+
 // Coefficient layout per curve, M = 2N + 2 entries: m = 0 constant, m = 2n-1 cos(2 pi n v),
 // m = 2n sin(2 pi n v) for n = 1..N (MATH.md 4.2 order), m = 2N+1 the open-curve trend v (MATH.md
 // 4.3; zero on closed curves). The trend and the constant follow mode n = 0.

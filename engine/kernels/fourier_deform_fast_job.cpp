@@ -143,8 +143,7 @@ void deformRange(const FourierDeformFastJob& job, const gpu::DeformPushConstants
     const gpu::SegmentVertex sv = segment[i];
     residual += glm::vec3(sv.base_x, sv.base_y, sv.base_z);
     if (sv.remainder_index != gpu::kNoRemainder) {
-      const float gamma0 = job.basis[static_cast<std::size_t>(d.curve_materials[vb.curve_a]) * (pc.modes + 1)].gamma;
-      residual += gamma0 * xyz(d.remainders[pc.remainder_base + sv.remainder_index]);
+      residual += job.basis.back().gamma * xyz(d.remainders[pc.remainder_base + sv.remainder_index]);
     }
     const glm::vec3 rest = xyz(d.rest_positions[i]);
     const glm::vec3 p = pc.residual_space == ODESKIN_RESIDUAL_BIND
@@ -236,10 +235,10 @@ Status FourierDeformFastJob::validate() const {
     return invalidArgument("fourier deform fast: bones has " + std::to_string(bones.size()) + " entries, expected " +
                            std::to_string(d.bone_count));
   }
-  if (basis.size() != static_cast<std::size_t>(d.material_count) * (d.modes + 1)) {
+  if (basis.size() != ODESKIN_BASIS_ENTRIES(std::size_t{d.material_count}, std::size_t{d.modes})) {
     return invalidArgument("fourier deform fast: basis has " + std::to_string(basis.size()) +
-                           " entries, expected material_count x (N+1) = " +
-                           std::to_string(static_cast<std::size_t>(d.material_count) * (d.modes + 1)));
+                           " entries, expected material_count x (N+1) + 1 = " +
+                           std::to_string(ODESKIN_BASIS_ENTRIES(std::size_t{d.material_count}, std::size_t{d.modes})));
   }
   if (out_positions.size() != d.vertex_count) {
     return invalidArgument("fourier deform fast: out_positions has " + std::to_string(out_positions.size()) +

@@ -74,11 +74,13 @@ Status FourierDeformJob::validate() const {
   }
   if (!rates.empty() && rates.size() != curve_count * m_count) return sizeError("rates", rates.size(), curve_count * m_count);
   const std::size_t per_material = static_cast<std::size_t>(modes) + 1;
-  if (basis.empty() || basis.size() % per_material != 0) {
+  // material_count x (N+1) mode entries plus the remainder weight (gpu_layout.h).
+  if (basis.size() < per_material + 1 || (basis.size() - 1) % per_material != 0) {
     return invalidArgument("fourier deform: basis has " + std::to_string(basis.size()) +
-                           " entries, not a positive multiple of N+1 = " + std::to_string(per_material));
+                           " entries, not a positive multiple of N+1 = " + std::to_string(per_material) +
+                           " plus the remainder weight");
   }
-  const std::size_t material_count = basis.size() / per_material;
+  const std::size_t material_count = (basis.size() - 1) / per_material;
   for (const ModeBasisValue& b : basis) {
     if (!std::isfinite(b.gamma) || !std::isfinite(b.psi)) return invalidArgument("fourier deform: non-finite basis value");
   }
@@ -109,7 +111,6 @@ Status FourierDeformJob::validate() const {
 
 Status FourierDeformJob::run() const {
   ODESKIN_TRY(validate());
-  const std::size_t per_material = static_cast<std::size_t>(modes) + 1;
   const bool dual_quaternion = skinning == SkinningMode::kDualQuaternion;
   std::vector<DualQuaternion> dual_quaternions;
   if (dual_quaternion) dual_quaternions = toDualQuaternions(bones);
@@ -125,7 +126,7 @@ Status FourierDeformJob::run() const {
     Vec3 residual = (1.0 - b.w) * series_a + b.w * series_b;
     if (!base_residuals.empty()) residual += base_residuals[i];
     if (!remainder_indices.empty() && remainder_indices[i] != kNoRemainder) {
-      residual += basis[curve_materials[b.curve_a] * per_material].gamma * remainders[remainder_indices[i]];
+      residual += basis.back().gamma * remainders[remainder_indices[i]];
     }
     out_positions[i] = residual_space == ResidualSpace::kBind ? skin(i, rest_positions[i] + residual)
                                                               : skin(i, rest_positions[i]) + residual;

@@ -37,11 +37,17 @@ std::pair<std::uint32_t, double> DeformPlayer::locate(double t) const {
   return {segment, clamped - segment};
 }
 
+double remainderWeight(double tau) {
+  const double t = std::clamp(tau, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
 void DeformPlayer::basisAt(double tau, std::span<ModeBasisValue> out) const {
   for (std::size_t k = 0; k < bases_.size() && k < out.size(); ++k) {
     const TimeBasisSample s = bases_[k].at(tau);
     out[k] = ModeBasisValue{s.gamma, s.psi};
   }
+  if (out.size() > bases_.size()) out[bases_.size()] = ModeBasisValue{remainderWeight(tau), 0.0};
 }
 
 void DeformPlayer::bonesAt(const DeformAsset& asset, std::uint32_t segment, double tau,
@@ -57,6 +63,7 @@ FourierDeformJob referenceJob(const DeformAsset& asset, std::uint32_t segment, s
   FourierDeformJob job;
   job.modes = asset.modes;
   job.residual_space = asset.residual_space;
+  job.skinning = asset.skinning;
   job.rest_positions = asset.rest_positions;
   job.bindings = asset.bindings;
   job.base_residuals = seg.base_residuals;

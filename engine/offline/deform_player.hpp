@@ -14,18 +14,22 @@
 
 namespace odeskin {
 
+// Weight of the sparse remainders at tau: 3 tau^2 - 2 tau^3 (0 -> 1 with zero rate at both ends).
+double remainderWeight(double tau);
+
 class DeformPlayer {
  public:
   // Sets up every (material, mode) time basis; fails on degenerate or resonant modes, naming them.
   static Result<DeformPlayer> create(const DeformAsset& asset);
 
-  std::size_t basisSize() const { return bases_.size(); }  // material_count * (N+1)
+  // material_count * (N+1) + 1: every (material, mode), then the remainder weight (gpu_layout.h).
+  std::size_t basisSize() const { return bases_.size() + 1; }
   std::uint32_t segmentCount() const { return segment_count_; }
 
   // Global time t in [0, K-1] -> (segment, tau in [0, 1]); t is clamped to that range.
   std::pair<std::uint32_t, double> locate(double t) const;
 
-  // Time basis values at tau (basisSize() entries).
+  // Time basis values at tau (basisSize() entries); the last one's gamma is remainderWeight(tau).
   void basisAt(double tau, std::span<ModeBasisValue> out) const;
   // Bone transforms of `segment` at tau (asset.bone_count entries), C1 across keys (RigidKeyPath).
   void bonesAt(const DeformAsset& asset, std::uint32_t segment, double tau, std::span<BoneTransform> out) const;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "../kernels/dual_quaternion.hpp"
 #include "../kernels/fourier_deform_job.hpp"
 #include "../kernels/lbs_job.hpp"
 #include "deform_player.hpp"
@@ -74,21 +75,22 @@ Status checkInput(const FitInput& in, const FitOptions& opt) {
 std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, std::size_t k, std::size_t* ill_conditioned) {
   std::vector<BoneTransform> bones(in.bone_count);
   for (std::uint32_t b = 0; b < in.bone_count; ++b) bones[b] = in.key_poses[k][b].matrix();
+  const std::vector<DualQuaternion> dual = toDualQuaternions(bones);
   const InfluencesView influences(in.influences);
   std::vector<Vec3> residuals(in.rest_positions.size());
   for (std::size_t i = 0; i < residuals.size(); ++i) {
-    const Vec3 posed = in.poses[k][i] - skinPoint(influences, bones, i, in.rest_positions[i]);
+    const SkinTransform skin = skinTransform(opt.skinning, influences, bones, dual, i);
+    const Vec3 posed = in.poses[k][i] - skin.apply(in.rest_positions[i]);
     if (opt.residual_space == ResidualSpace::kPosed) {
       residuals[i] = posed;
       continue;
     }
-    const glm::dmat3 a = blendedLinearPart(influences, bones, i);
-    const double det = glm::determinant(a);
+    const double det = glm::determinant(skin.linear);
     if (std::abs(det) < kSingularDet) {
       ++*ill_conditioned;
       residuals[i] = posed;  // best effort; counted and reported (fit report ill_conditioned)
     } else {
-      residuals[i] = glm::inverse(a) * posed;
+      residuals[i] = glm::inverse(skin.linear) * posed;
     }
   }
   return residuals;
@@ -163,6 +165,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   DeformAsset asset;
   asset.modes = opt.modes;
   asset.residual_space = opt.residual_space;
+  asset.skinning = opt.skinning;
   asset.rest_positions = in.rest_positions;
   asset.faces = in.faces;
   asset.bindings = in.bindings;

@@ -23,7 +23,7 @@ struct Tiny {
   // d_0 (constant), d_1 (cos), d_2 (sin), d_3 (trend v)
   std::vector<Vec3> coef{Vec3(1.0, 0.0, 0.0), Vec3(0.0, 7.0, 0.0), Vec3(0.0, 0.0, 2.0), Vec3(4.0, 0.0, 0.0)};
   std::vector<Vec3> rates{Vec3(0.0), Vec3(0.0), Vec3(0.0, 0.0, 1.0), Vec3(0.0)};
-  std::vector<ModeBasisValue> basis{{0.5, 0.0}, {2.0, 3.0}};
+  std::vector<ModeBasisValue> basis{{0.5, 0.0}, {2.0, 3.0}, {0.25, 0.0}};  // + remainder weight
   Influences influences;
   std::vector<BoneTransform> bones{BoneTransform(1.0)};
   std::vector<Vec3> out{Vec3(0.0)};
@@ -125,7 +125,7 @@ TEST(FourierDeformJob, PosedResidualIsAddedAfterSkinning) {
 
 TEST(FourierDeformJob, ZeroBasisAndIdentityBonesGiveRestPlusBase) {
   DeformAsset a = testing::randomAsset(300, 7, 5, 4, 3, 2, 11);
-  std::vector<ModeBasisValue> basis(2 * 6);
+  std::vector<ModeBasisValue> basis(2 * 6 + 1);
   std::vector<BoneTransform> bones(4, BoneTransform(1.0));
   std::vector<Vec3> out(300);
   ASSERT_TRUE(referenceJob(a, 0, basis, bones, out).run().ok());
@@ -172,7 +172,7 @@ TEST(FourierDeformJob, DualQuaternionSkinningMatchesTheDirectFormula) {
   for (ResidualSpace space : {ResidualSpace::kBind, ResidualSpace::kPosed}) {
     DeformAsset a = testing::randomAsset(400, 9, 5, 6, 4, 2, 31);
     a.residual_space = space;
-    const std::vector<ModeBasisValue> basis = testing::randomBasis(2 * 6, 17);
+    const std::vector<ModeBasisValue> basis = testing::randomBasis(2 * 6 + 1, 17);
     // X + r + D: the job with identity bones in bind space.
     std::vector<BoneTransform> identity(6, BoneTransform(1.0));
     std::vector<Vec3> corrected(a.vertexCount());
@@ -205,7 +205,7 @@ TEST(FourierDeformJob, BlendIsLinearInW) {
   // Moving w from 0 to 1 moves the vertex linearly from curve a's series to curve b's.
   DeformAsset a = testing::randomAsset(1, 2, 3, 1, 1, 1, 5);
   a.bindings[0] = CurveBinding{0, 1, 0.0, 0.3};
-  std::vector<ModeBasisValue> basis = testing::randomBasis(4, 9);
+  std::vector<ModeBasisValue> basis = testing::randomBasis(4 + 1, 9);
   std::vector<BoneTransform> bones(1, BoneTransform(1.0));
   Vec3 out[3];
   const double ws[3] = {0.0, 1.0, 0.25};
@@ -226,7 +226,7 @@ void expectFastMatchesReference(std::uint32_t layout, ResidualSpace space, unsig
   a.skinning = skinning;
   Result<PackedDeformData> packed = packDeformAsset(a, layout);
   ASSERT_TRUE(packed.ok()) << packed.status().toString();
-  const std::vector<ModeBasisValue> basis = testing::randomBasis(3 * 10, 3);
+  const std::vector<ModeBasisValue> basis = testing::randomBasis(3 * 10 + 1, 3);
   const std::vector<BoneTransform> bones = testing::randomBones(12, 4);
   for (std::uint32_t segment = 0; segment < 2; ++segment) {
     std::vector<Vec3> expected(a.vertexCount());
@@ -271,8 +271,8 @@ TEST(FourierDeformFastJob, BitIdenticalAcrossThreadCounts) {
     ASSERT_TRUE(packed.ok());
     std::vector<gpu::BoneMatrix> bones(8);
     toGpuBones(testing::randomBones(8, 1), bones);
-    std::vector<gpu::ModeBasis> basis(20);
-    toGpuBasis(testing::randomBasis(20, 2), basis);
+    std::vector<gpu::ModeBasis> basis(21);
+    toGpuBasis(testing::randomBasis(21, 2), basis);
     std::vector<gpu::Float4> one(a.vertexCount()), many(a.vertexCount());
     ASSERT_TRUE((FourierDeformFastJob{&*packed, 1, bones, basis, one, 1}).run().ok());
     ASSERT_TRUE((FourierDeformFastJob{&*packed, 1, bones, basis, many, 0}).run().ok());
@@ -285,14 +285,14 @@ TEST(FourierDeformFastJob, ValidatesSizes) {
   Result<PackedDeformData> packed = packDeformAsset(a, 0);
   ASSERT_TRUE(packed.ok());
   std::vector<gpu::BoneMatrix> bones(2);
-  std::vector<gpu::ModeBasis> basis(4);
+  std::vector<gpu::ModeBasis> basis(5);
   std::vector<gpu::Float4> out(10);
   EXPECT_TRUE((FourierDeformFastJob{&*packed, 0, bones, basis, out, 1}).validate().ok());
   EXPECT_EQ((FourierDeformFastJob{}).validate().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ((FourierDeformFastJob{&*packed, 2, bones, basis, out, 1}).validate().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ((FourierDeformFastJob{&*packed, 0, std::span(bones).first(1), basis, out, 1}).validate().code(),
             StatusCode::kInvalidArgument);
-  EXPECT_EQ((FourierDeformFastJob{&*packed, 0, bones, std::span(basis).first(3), out, 1}).validate().code(),
+  EXPECT_EQ((FourierDeformFastJob{&*packed, 0, bones, std::span(basis).first(4), out, 1}).validate().code(),
             StatusCode::kInvalidArgument);
   EXPECT_EQ((FourierDeformFastJob{&*packed, 0, bones, basis, std::span(out).first(9), 1}).validate().code(),
             StatusCode::kInvalidArgument);

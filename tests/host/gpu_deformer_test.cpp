@@ -77,7 +77,7 @@ void checkFourierDeformParity(vk::Device& device, SkinningMode skinning) {
     ASSERT_TRUE(gpu.ok()) << describe(options) << ": " << gpu.status().toString();
     for (std::uint32_t segment = 0; segment < data.segment_count; ++segment) {
       const auto bones = testing::randomBones(data.bone_count, options.seed * 7 + segment);
-      const auto basis = testing::randomBasis(static_cast<std::size_t>(data.material_count) * (data.modes + 1),
+      const auto basis = testing::randomBasis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}),
                                               options.seed * 13 + segment);
       std::vector<gpu::Float4> expected(data.vertex_count);
       FourierDeformFastJob job;
@@ -156,7 +156,7 @@ TEST_F(GpuTest, DoubleBufferedFramesKeepTheirInputs) {
   const PackedDeformData data = testing::randomPackedData({1000, 0, ResidualSpace::kBind, true, 3});
   Result<GpuDeformer> gpu = GpuDeformer::create(device(), data);
   ASSERT_TRUE(gpu.ok());
-  const auto basis = testing::randomBasis(static_cast<std::size_t>(data.material_count) * (data.modes + 1), 5);
+  const auto basis = testing::randomBasis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}), 5);
   std::vector<std::vector<gpu::BoneMatrix>> frames;
   for (std::uint32_t k = 0; k < 5; ++k) frames.push_back(testing::randomBones(data.bone_count, 100 + k));
   for (const auto& bones : frames) ASSERT_TRUE(gpu->submit(GpuDeformFrame{1, bones, basis}).ok());
@@ -185,7 +185,7 @@ TEST_F(GpuTest, DeformerValidatesLikeTheCpuJob) {
   Result<GpuDeformer> gpu = GpuDeformer::create(device(), data);
   ASSERT_TRUE(gpu.ok());
   const auto bones = testing::randomBones(data.bone_count, 1);
-  const auto basis = testing::randomBasis(static_cast<std::size_t>(data.material_count) * (data.modes + 1), 2);
+  const auto basis = testing::randomBasis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}), 2);
   EXPECT_EQ(gpu->run({data.segment_count, bones, basis}).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(gpu->run({0, std::span(bones).first(3), basis}).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(gpu->run({0, bones, std::span(basis).first(1)}).code(), StatusCode::kInvalidArgument);

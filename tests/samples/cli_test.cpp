@@ -6,6 +6,8 @@
 #include <functional>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "engine/io/asset_file.hpp"
@@ -27,7 +29,8 @@ constexpr double kKeyTolerance = 1e-4;     // of the box: --t k reproduces examp
 constexpr double kBackendTolerance = 1e-5; // of the box: cpu and vulkan outputs agree
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("odeskin_cli_test_" + name);
+  // Per process: ctest runs each test of this file as its own process, in parallel.
+  const fs::path dir = fs::temp_directory_path() / ("odeskin_cli_test_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
