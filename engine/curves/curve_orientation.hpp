@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // One parameter v for neighbouring curves (thesis 6.3.1, MATH.md 4.1): a vertex between curves a
 // and b evaluates both series at the same v, so their points must correspond. Every curve of a
-// part runs counter-clockwise about the part's flow (times one sign per part, chosen so that it
-// agrees with the parent part's curve nearest the entry seam) and starts at the point seen from
-// its centroid closest to a reference direction carried from plane to plane (projected onto each
-// one, parallel transport in the small). v is the normalised arc length on the bind mesh.
+// part runs counter-clockwise about the part's flow times one sign per part, and starts at the
+// point seen from its centroid closest to a reference direction carried from plane to plane
+// (projected onto each one, parallel transport in the small). Sign and first reference come
+// from a neighbour part done before whose nearest curve is parallel (so junction blends match),
+// else from the parent part. v is the normalised arc length on the bind mesh.
 #pragma once
 
 #include <span>

@@ -156,6 +156,38 @@ void describePart(std::span<const Vec3> rest, const Skeleton& skeleton, Part& pa
   }
 }
 
+// Centroid, plane normal (from parts[0] into parts[1]) and significance of a seam from the
+// midpoints of its cross edges and the sum of their directions (parts[0] side to parts[1] side).
+void describeSeam(const std::vector<Vec3>& midpoints, Vec3 across, const std::vector<Part>& parts,
+                  std::size_t min_seam_edges, Seam& seam) {
+  Vec3 sum(0.0);
+  for (const Vec3& m : midpoints) sum += m;
+  seam.centroid = sum / static_cast<double>(midpoints.size());
+  // A ring-like seam is close to a plane (one small principal value); otherwise the mean
+  // cross-edge direction is the best guess at the direction across it.
+  const PrincipalAxes pca = principalAxes(midpoints);
+  if (!(glm::length(across) > 0.0)) across = parts[seam.parts[1]].centroid - parts[seam.parts[0]].centroid;
+  if (pca.values[0] <= 0.25 * pca.values[1] && pca.values[1] > 0.0) {
+    seam.normal = pca.axes[0];
+  } else if (glm::length(across) > 0.0) {
+    seam.normal = glm::normalize(across);
+  } else {
+    seam.normal = parts[seam.parts[1]].axis;
+  }
+  if (glm::dot(seam.normal, across) < 0.0) seam.normal = -seam.normal;
+  // Two limb segments meeting at a joint are best split by the plane bisecting their axes; a
+  // jagged seam (equal weights alternating along a ring) tilts its fitted plane, so the bisector
+  // wins whenever it is close to it.
+  Vec3 a = parts[seam.parts[0]].axis;
+  Vec3 b = parts[seam.parts[1]].axis;
+  if (glm::dot(a, seam.normal) < 0.0) a = -a;
+  if (glm::dot(b, seam.normal) < 0.0) b = -b;
+  if (glm::length(a + b) > 1e-9 && glm::dot(glm::normalize(a + b), seam.normal) > kBisectorCos) {
+    seam.normal = glm::normalize(a + b);
+  }
+  seam.significant = seam.cross_edges >= min_seam_edges;
+}
+
 // Seams: per pair of parts, the connected components of their cross edges.
 std::vector<Seam> findSeams(std::span<const Vec3> rest, const VertexAdjacency& adjacency,
                             const std::vector<std::uint32_t>& vertex_part, const std::vector<Part>& parts,
@@ -214,35 +246,7 @@ std::vector<Seam> findSeams(std::span<const Vec3> rest, const VertexAdjacency& a
       across[s - first] += rest[edges[k].v] - rest[edges[k].u];
     }
     for (std::size_t s = first; s < seams.size(); ++s) {
-      Seam& seam = seams[s];
-      const std::vector<Vec3>& mid = midpoints[s - first];
-      Vec3 sum(0.0);
-      for (const Vec3& m : mid) sum += m;
-      seam.centroid = sum / static_cast<double>(mid.size());
-      // A ring-like seam is close to a plane (one small principal value); otherwise the mean
-      // cross-edge direction is the best guess at the direction across it.
-      const PrincipalAxes pca = principalAxes(mid);
-      Vec3 dir = across[s - first];
-      if (!(glm::length(dir) > 0.0)) dir = parts[seam.parts[1]].centroid - parts[seam.parts[0]].centroid;
-      if (pca.values[0] <= 0.25 * pca.values[1] && pca.values[1] > 0.0) {
-        seam.normal = pca.axes[0];
-      } else if (glm::length(dir) > 0.0) {
-        seam.normal = glm::normalize(dir);
-      } else {
-        seam.normal = parts[seam.parts[1]].axis;
-      }
-      if (glm::dot(seam.normal, dir) < 0.0) seam.normal = -seam.normal;
-      // Two limb segments meeting at a joint are best split by the plane bisecting their axes;
-      // a jagged seam (equal weights alternating along a ring) tilts its fitted plane, so the
-      // bisector wins whenever it is close to it.
-      Vec3 a = parts[seam.parts[0]].axis;
-      Vec3 b = parts[seam.parts[1]].axis;
-      if (glm::dot(a, seam.normal) < 0.0) a = -a;
-      if (glm::dot(b, seam.normal) < 0.0) b = -b;
-      if (glm::length(a + b) > 1e-9 && glm::dot(glm::normalize(a + b), seam.normal) > kBisectorCos) {
-        seam.normal = glm::normalize(a + b);
-      }
-      seam.significant = seam.cross_edges >= min_seam_edges;
+      describeSeam(midpoints[s - first], across[s - first], parts, min_seam_edges, seams[s]);
     }
     begin = end;
   }

@@ -18,6 +18,8 @@ namespace {
 // end curve's radius (or a spacing).
 constexpr double kAlignedCos = 0.82;
 constexpr double kMinAhead = 0.1;
+// A vertex blends two curves only if its parameters on them differ by at most this.
+constexpr double kMaxParameterMismatch = 0.1;
 
 bool inSequence(const std::vector<Station>& seq, std::uint32_t curve) {
   return std::any_of(seq.begin(), seq.end(), [&](const Station& s) { return s.curve == curve; });
@@ -124,79 +126,97 @@ std::vector<std::int32_t> bindingParts(std::span<const Vec3> rest, const VertexA
   return label;
 }
 
+class Binder {
+ public:
+  Binder(std::span<const Vec3> rest, const CurveLayout& layout, double spacing)
+      : layout_(layout), spacing_(spacing), positions_(layout.curves.size()) {
+    for (std::size_t c = 0; c < layout.curves.size(); ++c) {
+      for (const CurvePoint& point : layout.curves[c].points) positions_[c].push_back(curvePointPosition(rest, point));
+    }
+  }
+
+  CurveBinding alone(std::uint32_t curve, const Plane& plane, const Vec3& x) const {
+    return {curve, curve, 0.0, parameterAt(positions_[curve], layout_.curves[curve], plane, x)};
+  }
+
+  // Not connected to any curved part: the curve with the nearest point, alone.
+  CurveBinding nearestCurve(const Vec3& x) const {
+    std::uint32_t best_curve = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::uint32_t c = 0; c < layout_.curves.size(); ++c) {
+      for (const Vec3& p : positions_[c]) {
+        if (glm::length(p - x) < best) {
+          best = glm::length(p - x);
+          best_curve = c;
+        }
+      }
+    }
+    const CurveDraft& curve = layout_.curves[best_curve];
+    return alone(best_curve, {curve.centroid, curve.orientation}, x);
+  }
+
+  CurveBinding bind(const std::vector<Station>& seq, const Vec3& x) {
+    d_.resize(seq.size());
+    for (std::size_t k = 0; k < seq.size(); ++k) d_[k] = glm::dot(seq[k].plane.normal, x - seq[k].plane.origin);
+    // The tightest pair of consecutive planes with the vertex between them (rounding must not
+    // push a vertex on a plane, a rim or a ring, out of its pair); curves of opposite sense,
+    // where two parts' conventions meet, cannot share v and are not paired.
+    const double on_plane = 1e-9 * spacing_;
+    std::size_t pair = seq.size();
+    double best_gap = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k + 1 < seq.size(); ++k) {
+      if (d_[k] < -on_plane || d_[k + 1] > on_plane) continue;
+      if (glm::dot(layout_.curves[seq[k].curve].orientation, layout_.curves[seq[k + 1].curve].orientation) <= 0.0) continue;
+      const double gap = std::max(0.0, d_[k] - d_[k + 1]);
+      if (gap < best_gap) {
+        best_gap = gap;
+        pair = k;
+      }
+    }
+    if (pair == seq.size()) {
+      // Beyond the sequence (a tip, a rim) or between planes that do not pair: the nearest plane.
+      std::size_t nearest = 0;
+      for (std::size_t k = 1; k < seq.size(); ++k) {
+        if (std::abs(d_[k]) < std::abs(d_[nearest])) nearest = k;
+      }
+      return alone(seq[nearest].curve, seq[nearest].plane, x);
+    }
+    const Station& sa = seq[pair];
+    const Station& sb = seq[pair + 1];
+    const CurveDraft& ca = layout_.curves[sa.curve];
+    const CurveDraft& cb = layout_.curves[sb.curve];
+    const double w = best_gap > 0.0 ? std::clamp(d_[pair] / best_gap, 0.0, 1.0) : 0.0;
+    const double va = parameterAt(positions_[sa.curve], ca, sa.plane, x);
+    const double vb = parameterAt(positions_[sb.curve], cb, sb.plane, x);
+    const bool both_closed = ca.closed && cb.closed;
+    // One v serves both series only where the curves' parameters agree at this vertex (an arc
+    // next to a full ring, or two rings whose starts drifted apart, do not): else the nearer
+    // curve alone.
+    if (std::abs(both_closed ? va - vb - std::round(va - vb) : va - vb) > kMaxParameterMismatch) {
+      return w <= 0.5 ? CurveBinding{sa.curve, sa.curve, 0.0, va} : CurveBinding{sb.curve, sb.curve, 0.0, vb};
+    }
+    return {sa.curve, sb.curve, w, blendParameters(va, vb, w, both_closed)};
+  }
+
+ private:
+  const CurveLayout& layout_;
+  double spacing_;
+  std::vector<std::vector<Vec3>> positions_;
+  std::vector<double> d_;
+};
+
 }  // namespace
 
 std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexAdjacency& adjacency,
                                        const Segmentation& seg, const CurveLayout& layout, double spacing) {
   std::vector<std::vector<Station>> ext(seg.parts.size());
   for (std::uint32_t p = 0; p < seg.parts.size(); ++p) ext[p] = extendedSequence(p, seg, layout, spacing);
-  std::vector<std::vector<Vec3>> positions(layout.curves.size());
-  for (std::size_t c = 0; c < layout.curves.size(); ++c) {
-    for (const CurvePoint& point : layout.curves[c].points) positions[c].push_back(curvePointPosition(rest, point));
-  }
   const std::vector<std::int32_t> part_of = bindingParts(rest, adjacency, seg, ext);
-
+  Binder binder(rest, layout, spacing);
   std::vector<CurveBinding> bindings(rest.size());
-  std::vector<double> d;
   for (std::size_t i = 0; i < rest.size(); ++i) {
-    const Vec3& x = rest[i];
-    CurveBinding& b = bindings[i];
-    if (part_of[i] < 0) {
-      // Not connected to any curved part: the nearest curve point's curve alone.
-      double best = std::numeric_limits<double>::infinity();
-      for (std::uint32_t c = 0; c < layout.curves.size(); ++c) {
-        for (const Vec3& p : positions[c]) {
-          const double dist = glm::length(p - x);
-          if (dist < best) {
-            best = dist;
-            b.curve_a = b.curve_b = c;
-          }
-        }
-      }
-      const CurveDraft& curve = layout.curves[b.curve_a];
-      b.w = 0.0;
-      b.v = parameterAt(positions[b.curve_a], curve, {curve.centroid, curve.orientation}, x);
-      continue;
-    }
-    const std::vector<Station>& seq = ext[static_cast<std::size_t>(part_of[i])];
-    d.resize(seq.size());
-    for (std::size_t k = 0; k < seq.size(); ++k) d[k] = glm::dot(seq[k].plane.normal, x - seq[k].plane.origin);
-    // The tightest pair of consecutive planes with the vertex between them; curves of opposite
-    // sense (where two parts' conventions meet) cannot share v and are not paired.
-    std::size_t pair = seq.size();
-    double best_gap = std::numeric_limits<double>::infinity();
-    // Rounding must not push a vertex lying on a plane (a rim, a ring) out of its pair.
-    const double on_plane = 1e-9 * spacing;
-    for (std::size_t k = 0; k + 1 < seq.size(); ++k) {
-      if (d[k] < -on_plane || d[k + 1] > on_plane) continue;
-      if (glm::dot(layout.curves[seq[k].curve].orientation, layout.curves[seq[k + 1].curve].orientation) <= 0.0) continue;
-      const double gap = std::max(0.0, d[k] - d[k + 1]);
-      if (gap < best_gap) {
-        best_gap = gap;
-        pair = k;
-      }
-    }
-    if (pair < seq.size()) {
-      const Station& sa = seq[pair];
-      const Station& sb = seq[pair + 1];
-      b.curve_a = sa.curve;
-      b.curve_b = sb.curve;
-      b.w = best_gap > 0.0 ? std::clamp(d[pair] / best_gap, 0.0, 1.0) : 0.0;
-      const CurveDraft& ca = layout.curves[sa.curve];
-      const CurveDraft& cb = layout.curves[sb.curve];
-      const double va = parameterAt(positions[sa.curve], ca, sa.plane, x);
-      const double vb = parameterAt(positions[sb.curve], cb, sb.plane, x);
-      b.v = blendParameters(va, vb, b.w, ca.closed && cb.closed);
-      continue;
-    }
-    std::size_t nearest = 0;
-    for (std::size_t k = 1; k < seq.size(); ++k) {
-      if (std::abs(d[k]) < std::abs(d[nearest])) nearest = k;
-    }
-    const Station& s = seq[nearest];
-    b.curve_a = b.curve_b = s.curve;
-    b.w = 0.0;
-    b.v = parameterAt(positions[s.curve], layout.curves[s.curve], s.plane, x);
+    bindings[i] = part_of[i] < 0 ? binder.nearestCurve(rest[i])
+                                 : binder.bind(ext[static_cast<std::size_t>(part_of[i])], rest[i]);
   }
   return bindings;
 }

@@ -7,7 +7,8 @@
 // the part reached first along mesh edges (Dijkstra); a vertex no edge connects to a curved part
 // goes to the nearest curve point. v is the arc-length parameter of the nearest point of each
 // curve to the vertex moved along the plane normal onto the curve's plane, blended by w (across
-// the wrap-around of closed curves).
+// the wrap-around of closed curves); where the two parameters differ by more than 0.1 one v
+// cannot serve both curves and the nearer curve is used alone.
 #pragma once
 
 #include <span>
