@@ -111,7 +111,6 @@ CurveLayout edgeLoopCurves(std::span<const Vec3> rest, const PolyMesh& mesh, con
     for (std::uint32_t v : loop.vertices) draft.points.push_back({v, v, 0.0});
     draft.closed = loop.closed;
     draft.bone = seg.parts[p].bone;
-    draft.home = p;
     measureCurve(draft, rest);
     std::vector<Vec3> points;
     for (std::uint32_t v : loop.vertices) points.push_back(rest[v]);

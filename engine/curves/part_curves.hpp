@@ -21,7 +21,6 @@ struct CurveDraft {
   std::vector<CurvePoint> points;  // in order; a closed curve does not repeat its first point
   bool closed = true;
   std::uint32_t bone = 0;   // IsoCurve::part
-  std::uint32_t home = 0;   // the part (segmentation index) whose sequence first took the curve
   Vec3 centroid{0.0};       // length-weighted, bind pose
   double radius = 0.0;      // mean distance of the points from the centroid
   // Set by orientCurves.

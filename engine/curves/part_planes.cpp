@@ -77,7 +77,6 @@ class PartPlanner {
       draft.points = std::move(cut->points);
       draft.closed = cut->closed;
       draft.bone = seg_.parts[part].bone;
-      draft.home = part;
       draft.centroid = cut->centroid;
       draft.radius = cut->radius;
       out.curve = static_cast<std::int32_t>(layout_.curves.size());
@@ -261,9 +260,18 @@ class PartPlanner {
       spanAndExtend(a, &b, triangles, p, out);
       return out;
     }
-    // No seam, or seams all at one place: march both ways from the middle.
+    // No seam, or seams all at one place: march both ways from the middle, across the bone; a
+    // bone that points along no extent of its patch (a flat patch seen edge on) cuts nothing,
+    // and the patch's longest principal axis is tried instead.
     const Probe middle = planeProbe(triangles, {part.centroid, part.axis}, p);
     spanAndExtend(middle, nullptr, triangles, p, out);
+    if (std::none_of(out.begin(), out.end(), [](const Probe& probe) { return probe.curve >= 0; })) {
+      std::vector<Vec3> points;
+      for (std::uint32_t v : part.vertices) points.push_back(rest_[v]);
+      const Vec3 axis = principalAxes(points).axes[2];
+      out.clear();
+      spanAndExtend(planeProbe(triangles, {part.centroid, axis}, p), nullptr, triangles, p, out);
+    }
     return out;
   }
 
@@ -297,7 +305,6 @@ void addBoundaryLoops(std::span<const Vec3> rest, const std::vector<std::vector<
     for (std::uint32_t v : loop) draft.points.push_back({v, v, 0.0});
     draft.closed = true;
     draft.bone = seg.parts[p].bone;
-    draft.home = p;
     measureCurve(draft, rest);
     std::vector<Vec3> points;
     for (std::uint32_t v : loop) points.push_back(rest[v]);

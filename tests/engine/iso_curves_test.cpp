@@ -268,6 +268,34 @@ TEST(IsoCurves, RejectsBadInput) {
             StatusCode::kDegenerate);
 }
 
+// A flat strip whose only bone points out of its plane: no cut across the bone meets it, so the
+// strip's own long axis is cut instead (open curves across the strip).
+TEST(IsoCurves, FlatStripWithABoneOutOfItsPlane) {
+  Mesh m;
+  constexpr std::uint32_t kLong = 30, kWide = 12;
+  for (std::uint32_t i = 0; i < kLong; ++i) {
+    for (std::uint32_t j = 0; j < kWide; ++j) m.positions.push_back({0.1 * i, 0.1 * j, 0.0});
+  }
+  for (std::uint32_t i = 0; i + 1 < kLong; ++i) {
+    for (std::uint32_t j = 0; j + 1 < kWide; ++j) {
+      const std::uint32_t a = i * kWide + j, b = a + kWide;
+      addFace(m.faces, {a, b, b + 1});
+      addFace(m.faces, {a, b + 1, a + 1});
+    }
+  }
+  const Skeleton sk = skeletonOf({{{1.5, 0.5, 0.0}, {1.5, 0.5, 1.0}}}, {-1});
+  Result<CurveSet> set = buildIsoCurves(m.positions, m.faces, sk, nearestBoneWeights(m.positions, sk));
+  ASSERT_TRUE(set.ok()) << set.status().toString();
+  const Summary s = expectWellFormed(*set, m.positions.size());
+  EXPECT_GE(s.curves, 5u);
+  EXPECT_EQ(s.closed, 0u);
+  for (const IsoCurve& c : set->curves) {
+    const Vec3 first = curvePointPosition(m.positions, c.points.front());
+    const Vec3 last = curvePointPosition(m.positions, c.points.back());
+    EXPECT_NEAR(std::abs(last.y - first.y), 0.1 * (kWide - 1), 1e-9);  // edge to edge across the strip
+  }
+}
+
 // Two bones along a triangulated tube, weights blending over the middle third.
 class TwoBoneTube : public ::testing::Test {
  protected:
