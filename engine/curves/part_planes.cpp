@@ -1,0 +1,342 @@
+// SPDX-License-Identifier: MIT
+#include "part_planes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <optional>
+
+#include <glm/geometric.hpp>
+
+namespace odeskin {
+namespace {
+
+// Centroid following turns the plane at most this much per step, so consecutive planes do not
+// cross inside a limb of radius up to ~3 spacings.
+constexpr double kMaxTurn = 20.0 * std::numbers::pi / 180.0;
+// Dichotomy stops once two cuts are closer than this many spacings (final gaps 0.625 .. 1.25).
+constexpr double kDichotomyStop = 1.25;
+// Seam band: vertices within this many edges of a seam, on either side, carry the seam's cut.
+constexpr int kSeamBandRings = 2;
+// A part's cuts may use the faces within this many edges around it.
+constexpr int kPartMarginRings = 2;
+
+struct Probe {
+  Plane plane;
+  Vec3 centre{0.0};
+  std::int32_t curve = -1;
+};
+
+Vec3 turnToward(const Vec3& dir, const Vec3& target, double max_angle) {
+  const double len = glm::length(target);
+  if (!(len > 0.0)) return dir;
+  const Vec3 t = target / len;
+  const double c = glm::dot(dir, t);
+  if (c >= std::cos(max_angle)) return t;
+  const Vec3 perp = t - c * dir;
+  if (!(glm::length(perp) > 1e-12)) return dir;  // straight back: keep going
+  return glm::normalize(std::cos(max_angle) * dir + std::sin(max_angle) * glm::normalize(perp));
+}
+
+class PartPlanner {
+ public:
+  PartPlanner(std::span<const Vec3> rest, const CutMesh& mesh, const VertexAdjacency& adjacency,
+              const Segmentation& seg, const PlaneCutOptions& options)
+      : rest_(rest), adjacency_(adjacency), seg_(seg), options_(options),
+        cutter_(mesh, rest, options.snap_threshold), seam_probes_(seg.seams.size()),
+        mark_(rest.size(), -1) {}
+
+  CurveLayout run() {
+    layout_.sequences.resize(seg_.parts.size());
+    for (std::uint32_t p : seg_.order) {
+      for (const Probe& probe : partProbes(p)) {
+        if (probe.curve < 0) continue;
+        // Snapping moves points off the cutting plane; what the curve's fitted series describes
+        // is where its points are on average, so bindings measure from the plane through the
+        // curve's centroid.
+        Plane plane = probe.plane;
+        const Vec3 centroid = layout_.curves[static_cast<std::size_t>(probe.curve)].centroid;
+        plane.origin += glm::dot(centroid - plane.origin, plane.normal) * plane.normal;
+        layout_.sequences[p].push_back({static_cast<std::uint32_t>(probe.curve), plane});
+      }
+    }
+    return std::move(layout_);
+  }
+
+ private:
+  std::optional<Probe> probe(std::span<const std::uint32_t> triangles, const Plane& plane, std::uint32_t part) {
+    std::optional<PlaneCut> cut = cutter_.bestChain(triangles, plane, owned_);
+    // A plane that meets only the margin around the part has left the part.
+    if (!cut || cut->owned == 0) return std::nullopt;
+    Probe out{plane, cut->centroid, -1};
+    // A chain mostly on a neighbour's faces is the neighbour's curve, not this part's.
+    if (cut->points.size() >= options_.min_points && 2 * cut->owned >= cut->points.size()) {
+      CurveDraft draft;
+      draft.points = std::move(cut->points);
+      draft.closed = cut->closed;
+      draft.bone = seg_.parts[part].bone;
+      draft.centroid = cut->centroid;
+      draft.radius = cut->radius;
+      out.curve = static_cast<std::int32_t>(layout_.curves.size());
+      layout_.curves.push_back(std::move(draft));
+    }
+    return out;
+  }
+
+  // `seeds` and the vertices within `rings` edges of them (only through vertices of parts `a` or
+  // `b` when a >= 0).
+  std::vector<std::uint32_t> grow(std::vector<std::uint32_t> seeds, int rings, std::int64_t a = -1,
+                                  std::int64_t b = -1) {
+    ++mark_epoch_;
+    for (std::uint32_t v : seeds) mark_[v] = mark_epoch_;
+    std::size_t begin = 0;
+    for (int ring = 0; ring < rings; ++ring) {
+      const std::size_t end = seeds.size();
+      for (std::size_t k = begin; k < end; ++k) {
+        for (std::uint32_t n : adjacency_.of(seeds[k])) {
+          const std::uint32_t part = seg_.vertex_part[n];
+          if (mark_[n] == mark_epoch_ || (a >= 0 && part != a && part != b)) continue;
+          mark_[n] = mark_epoch_;
+          seeds.push_back(n);
+        }
+      }
+      begin = end;
+    }
+    return seeds;
+  }
+
+  // The seam's cut, made once and shared by both parts; its normal points into `part`.
+  Probe seamProbe(std::uint32_t s, std::uint32_t part) {
+    const Seam& seam = seg_.seams[s];
+    const std::function<bool(std::uint32_t)> saved = owned_;
+    if (!seam_probes_[s]) {
+      const std::vector<std::uint32_t> band = grow(seam.vertices, kSeamBandRings, seam.parts[0], seam.parts[1]);
+      const std::vector<std::uint32_t> triangles = cutter_.trianglesTouching(band);
+      const Plane plane{seam.centroid, seam.normal};
+      owned_ = {};
+      std::optional<Probe> cut = probe(triangles, plane, part);
+      Probe p = cut ? *cut : Probe{plane, seam.centroid, -1};
+      // A cut that wandered off the seam (a very uneven seam) still marks its curve, but the
+      // planes around it are placed from the seam itself.
+      if (glm::length(p.centre - seam.centroid) > options_.spacing) p.centre = seam.centroid;
+      seam_probes_[s] = p;
+      owned_ = saved;
+    }
+    Probe p = *seam_probes_[s];
+    p.plane.normal = seam.normalInto(part);
+    return p;
+  }
+
+  std::size_t maxSteps(const Part& part) const {
+    return static_cast<std::size_t>(std::ceil(2.0 * part.extent / options_.spacing)) + 2;
+  }
+
+  // Centroid following (thesis 6.3.1): each plane sits one spacing past the previous cut's
+  // centroid, its normal turned toward the step between the last two centroids.
+  void march(const Probe& from, Vec3 dir, std::span<const std::uint32_t> triangles, std::uint32_t part,
+             std::vector<Probe>& out) {
+    Vec3 prev = from.centre;
+    const std::size_t steps = maxSteps(seg_.parts[part]);
+    for (std::size_t step = 0; step < steps; ++step) {
+      std::optional<Probe> next = probe(triangles, {prev + options_.spacing * dir, dir}, part);
+      if (!next) return;
+      out.push_back(*next);
+      dir = turnToward(dir, next->centre - prev, kMaxTurn);
+      prev = next->centre;
+    }
+  }
+
+  // Dichotomy refinement (thesis 6.3.1) between two planes whose normals point from a to b.
+  void dichotomy(const Probe& a, const Probe& b, std::span<const std::uint32_t> triangles, std::uint32_t part,
+                 std::vector<Probe>& out) {
+    const Vec3 gap = b.centre - a.centre;
+    const double len = glm::length(gap);
+    if (len < kDichotomyStop * options_.spacing) return;
+    Vec3 n = a.plane.normal + b.plane.normal;
+    if (!(glm::length(n) > 1e-9) || glm::dot(n, gap) <= 0.0) n = gap;
+    n = glm::normalize(n);
+    const Vec3 m = 0.5 * (a.centre + b.centre);
+    std::optional<Probe> cut = probe(triangles, {m, n}, part);
+    Probe mid = cut ? *cut : Probe{{m, n}, m, -1};
+    // Each half is then at most 3/4 of this gap, so the recursion ends.
+    if (glm::length(mid.centre - m) > 0.25 * len) mid.centre = m;
+    dichotomy(a, mid, triangles, part, out);
+    out.push_back(mid);
+    dichotomy(mid, b, triangles, part, out);
+  }
+
+  // Probes from `a` (normal along the flow) marching backwards, then a .. b by dichotomy, then
+  // marching on past b.
+  // (b == nullptr: march both ways from a alone.)
+  void spanAndExtend(const Probe& a, const Probe* b, std::span<const std::uint32_t> triangles, std::uint32_t part,
+                     std::vector<Probe>& out) {
+    std::vector<Probe> before;
+    march(a, -a.plane.normal, triangles, part, before);
+    for (auto it = before.rbegin(); it != before.rend(); ++it) {
+      Probe p = *it;
+      p.plane.normal = -p.plane.normal;
+      out.push_back(p);
+    }
+    out.push_back(a);
+    if (b) {
+      dichotomy(a, *b, triangles, part, out);
+      out.push_back(*b);
+    }
+    const Probe& last = b ? *b : a;
+    march(last, last.plane.normal, triangles, part, out);
+  }
+
+  Probe planeProbe(std::span<const std::uint32_t> triangles, const Plane& plane, std::uint32_t part) {
+    std::optional<Probe> p = probe(triangles, plane, part);
+    return p ? *p : Probe{plane, plane.origin, -1};
+  }
+
+  // More than two seams: split them in two groups along the axis (1-D two-means on the
+  // projections of their centroids); false when the groups are less than a spacing apart.
+  bool clusterSeams(const Part& part, Probe& a, Probe& b, std::span<const std::uint32_t> triangles, std::uint32_t p) {
+    std::vector<std::pair<double, Vec3>> at;
+    for (std::uint32_t s : part.seams) at.push_back({glm::dot(seg_.seams[s].centroid, part.axis), seg_.seams[s].centroid});
+    std::sort(at.begin(), at.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::size_t best_split = 1;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 1; k < at.size(); ++k) {
+      double cost = 0.0;
+      for (int g = 0; g < 2; ++g) {
+        const std::size_t lo = g == 0 ? 0 : k;
+        const std::size_t hi = g == 0 ? k : at.size();
+        double mean = 0.0;
+        for (std::size_t i = lo; i < hi; ++i) mean += at[i].first;
+        mean /= static_cast<double>(hi - lo);
+        for (std::size_t i = lo; i < hi; ++i) cost += (at[i].first - mean) * (at[i].first - mean);
+      }
+      if (cost < best_cost) {
+        best_cost = cost;
+        best_split = k;
+      }
+    }
+    Vec3 ca(0.0), cb(0.0);
+    for (std::size_t i = 0; i < at.size(); ++i) (i < best_split ? ca : cb) += at[i].second;
+    ca /= static_cast<double>(best_split);
+    cb /= static_cast<double>(at.size() - best_split);
+    if (glm::dot(cb - ca, part.axis) < options_.spacing) return false;
+    a = planeProbe(triangles, {ca, part.axis}, p);
+    b = planeProbe(triangles, {cb, part.axis}, p);
+    return true;
+  }
+
+  std::vector<Probe> partProbes(std::uint32_t p) {
+    const Part& part = seg_.parts[p];
+    std::vector<Probe> out;
+    if (part.vertices.empty()) return out;
+    // Cuts may run a little past the part's own faces (a margin of kPartMarginRings edges), so a
+    // ring closes where a neighbour's patch reaches thinly around the limb; among the chains the
+    // one with the most points on the part's own edges wins.
+    const std::vector<std::uint32_t> triangles = cutter_.trianglesTouching(grow(part.vertices, kPartMarginRings));
+    if (triangles.empty()) return out;
+    owned_ = [this, p](std::uint32_t v) { return seg_.vertex_part[v] == p; };
+    if (part.seams.size() == 1) {
+      const Probe a = seamProbe(part.seams[0], p);
+      out.push_back(a);
+      march(a, a.plane.normal, triangles, p, out);
+      return out;
+    }
+    if (part.seams.size() == 2) {
+      const Probe a = seamProbe(part.seams[0], p);
+      Probe b = seamProbe(part.seams[1], p);
+      b.plane.normal = -b.plane.normal;  // out of the part, along the flow a -> b
+      const Vec3 gap = b.centre - a.centre;
+      if (glm::length(gap) >= options_.spacing && glm::dot(a.plane.normal, gap) > 0.0 &&
+          glm::dot(b.plane.normal, gap) > 0.0) {
+        out.push_back(a);
+        dichotomy(a, b, triangles, p, out);
+        out.push_back(b);
+        return out;
+      }
+    }
+    Probe a, b;
+    if (part.seams.size() >= 2 && clusterSeams(part, a, b, triangles, p)) {
+      spanAndExtend(a, &b, triangles, p, out);
+      return out;
+    }
+    // No seam, or seams all at one place: march both ways from the middle, across the bone; a
+    // bone that points along no extent of its patch (a flat patch seen edge on) cuts nothing,
+    // and the patch's longest principal axis is tried instead.
+    const Probe middle = planeProbe(triangles, {part.centroid, part.axis}, p);
+    spanAndExtend(middle, nullptr, triangles, p, out);
+    if (std::none_of(out.begin(), out.end(), [](const Probe& probe) { return probe.curve >= 0; })) {
+      std::vector<Vec3> points;
+      for (std::uint32_t v : part.vertices) points.push_back(rest_[v]);
+      const Vec3 axis = principalAxes(points).axes[2];
+      out.clear();
+      spanAndExtend(planeProbe(triangles, {part.centroid, axis}, p), nullptr, triangles, p, out);
+    }
+    return out;
+  }
+
+  std::span<const Vec3> rest_;
+  const VertexAdjacency& adjacency_;
+  const Segmentation& seg_;
+  PlaneCutOptions options_;
+  PlaneCutter cutter_;
+  CurveLayout layout_;
+  std::vector<std::optional<Probe>> seam_probes_;
+  std::function<bool(std::uint32_t)> owned_;
+  std::vector<std::int64_t> mark_;
+  std::int64_t mark_epoch_ = 0;
+};
+
+}  // namespace
+
+CurveLayout planeCutCurves(std::span<const Vec3> rest, const CutMesh& mesh, const VertexAdjacency& adjacency,
+                           const Segmentation& seg, const PlaneCutOptions& options) {
+  return PartPlanner(rest, mesh, adjacency, seg, options).run();
+}
+
+void addBoundaryLoops(std::span<const Vec3> rest, const std::vector<std::vector<std::uint32_t>>& loops,
+                      const Segmentation& seg, double spacing, std::size_t min_points, CurveLayout& layout) {
+  for (const std::vector<std::uint32_t>& loop : loops) {
+    if (loop.size() < min_points) continue;
+    std::vector<std::size_t> votes(seg.parts.size(), 0);
+    for (std::uint32_t v : loop) ++votes[seg.vertex_part[v]];
+    const auto p = static_cast<std::uint32_t>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+    CurveDraft draft;
+    for (std::uint32_t v : loop) draft.points.push_back({v, v, 0.0});
+    draft.closed = true;
+    draft.bone = seg.parts[p].bone;
+    measureCurve(draft, rest);
+    std::vector<Vec3> points;
+    for (std::uint32_t v : loop) points.push_back(rest[v]);
+    const PrincipalAxes pca = principalAxes(points);
+    Vec3 normal = pca.values[0] <= 0.25 * pca.values[1] ? pca.axes[0] : seg.parts[p].axis;
+    std::vector<Station>& seq = layout.sequences[p];
+    if (seq.empty()) {
+      seq.push_back({static_cast<std::uint32_t>(layout.curves.size()), {draft.centroid, normal}});
+      layout.curves.push_back(std::move(draft));
+      continue;
+    }
+    // Along the flow: beyond the last station, or before the first (within half a spacing).
+    for (int end = 0; end < 2; ++end) {
+      const Station& s = end == 0 ? seq.back() : seq.front();
+      const Vec3 flow = s.plane.normal;
+      const double ahead = glm::dot(flow, draft.centroid - s.plane.origin) * (end == 0 ? 1.0 : -1.0);
+      if (ahead < -0.5 * spacing || std::abs(glm::dot(normal, flow)) < 0.7) continue;
+      const Vec3 n = glm::dot(normal, flow) < 0.0 ? -normal : normal;
+      const double sign = end == 0 ? 1.0 : -1.0;
+      // Stations the rim overtakes (within half a spacing of it, or past it) go.
+      auto overtaken = [&](const Station& st) { return sign * glm::dot(n, st.plane.origin - draft.centroid) > -0.5 * spacing; };
+      if (end == 0) {
+        while (!seq.empty() && overtaken(seq.back())) seq.pop_back();
+        seq.push_back({static_cast<std::uint32_t>(layout.curves.size()), {draft.centroid, n}});
+      } else {
+        while (!seq.empty() && overtaken(seq.front())) seq.erase(seq.begin());
+        seq.insert(seq.begin(), Station{static_cast<std::uint32_t>(layout.curves.size()), {draft.centroid, n}});
+      }
+      layout.curves.push_back(std::move(draft));
+      break;
+    }
+  }
+}
+
+}  // namespace odeskin

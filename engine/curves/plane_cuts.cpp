@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: MIT
+#include "plane_cuts.hpp"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+namespace odeskin {
+namespace {
+
+bool samePoint(const CurvePoint& p, const CurvePoint& q) {
+  return (p.a == q.a && p.b == q.b && p.t == q.t) || (p.a == q.b && p.b == q.a && p.t == 1.0 - q.t);
+}
+
+}  // namespace
+
+CutMesh buildCutMesh(const FaceList& faces, std::size_t vertex_count) {
+  CutMesh mesh;
+  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+    const std::uint32_t begin = faces.face_offsets[f];
+    const std::uint32_t n = faces.face_offsets[f + 1] - begin;
+    for (std::uint32_t k = 1; k + 1 < n; ++k) {
+      mesh.triangles.push_back({faces.indices[begin], faces.indices[begin + k], faces.indices[begin + k + 1]});
+    }
+  }
+  const std::size_t count = mesh.triangles.size();
+  std::unordered_map<std::uint64_t, std::uint32_t> half_edges;  // (u, v) -> 3 * triangle + k
+  half_edges.reserve(3 * count);
+  auto key = [](std::uint32_t u, std::uint32_t v) { return (static_cast<std::uint64_t>(u) << 32) | v; };
+  for (std::uint32_t t = 0; t < count; ++t) {
+    for (std::uint32_t k = 0; k < 3; ++k) half_edges[key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])] = 3 * t + k;
+  }
+  mesh.neighbours.assign(count, {-1, -1, -1});
+  for (std::uint32_t t = 0; t < count; ++t) {
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      // Consistent orientation: the neighbour runs the shared edge the other way.
+      const auto it = half_edges.find(key(mesh.triangles[t][(k + 1) % 3], mesh.triangles[t][k]));
+      if (it != half_edges.end()) mesh.neighbours[t][k] = static_cast<std::int32_t>(it->second / 3);
+    }
+  }
+  mesh.vertex_offsets.assign(vertex_count + 1, 0);
+  for (const auto& tri : mesh.triangles) {
+    for (std::uint32_t v : tri) ++mesh.vertex_offsets[v + 1];
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v) mesh.vertex_offsets[v + 1] += mesh.vertex_offsets[v];
+  mesh.vertex_triangles.resize(mesh.vertex_offsets.back());
+  std::vector<std::uint32_t> fill(mesh.vertex_offsets.begin(), mesh.vertex_offsets.end() - 1);
+  for (std::uint32_t t = 0; t < count; ++t) {
+    for (std::uint32_t v : mesh.triangles[t]) mesh.vertex_triangles[fill[v]++] = t;
+  }
+  return mesh;
+}
+
+PlaneCutter::PlaneCutter(const CutMesh& mesh, std::span<const Vec3> positions, double snap_threshold)
+    : mesh_(mesh), positions_(positions), snap_(snap_threshold), member_(mesh.triangles.size(), 0),
+      visited_(mesh.triangles.size(), 0) {}
+
+void PlaneCutter::nextEpoch() {
+  if (++epoch_ == 0) {
+    std::fill(member_.begin(), member_.end(), 0u);
+    std::fill(visited_.begin(), visited_.end(), 0u);
+    epoch_ = 1;
+  }
+}
+
+std::vector<std::uint32_t> PlaneCutter::trianglesTouching(std::span<const std::uint32_t> vertices) {
+  nextEpoch();
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t v : vertices) {
+    for (std::uint32_t k = mesh_.vertex_offsets[v]; k < mesh_.vertex_offsets[v + 1]; ++k) {
+      const std::uint32_t t = mesh_.vertex_triangles[k];
+      if (member_[t] == epoch_) continue;
+      member_[t] = epoch_;
+      out.push_back(t);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+bool PlaneCutter::crossing(std::uint32_t triangle, const Plane& plane, int& entry, int& exit) const {
+  bool front[3];
+  for (int k = 0; k < 3; ++k) {
+    front[k] = glm::dot(plane.normal, positions_[mesh_.triangles[triangle][static_cast<std::size_t>(k)]] - plane.origin) >= 0.0;
+  }
+  if (front[0] == front[1] && front[1] == front[2]) return false;
+  for (int k = 0; k < 3; ++k) {
+    if (front[k] && !front[(k + 1) % 3]) exit = k;
+    if (!front[k] && front[(k + 1) % 3]) entry = k;
+  }
+  return true;
+}
+
+PlaneCut PlaneCutter::makeCut(const std::vector<DirectedEdge>& edges, bool closed, const Plane& plane,
+                              const std::function<bool(std::uint32_t)>& owned) const {
+  PlaneCut cut;
+  cut.closed = closed;
+  for (const DirectedEdge& e : edges) {
+    const double du = glm::dot(plane.normal, positions_[e.u] - plane.origin);
+    const double dv = glm::dot(plane.normal, positions_[e.v] - plane.origin);
+    const double t = std::clamp(du / (du - dv), 0.0, 1.0);  // du and dv differ in sign, so du != dv
+    CurvePoint p{e.u, e.v, t};
+    if (t <= snap_) p = {e.u, e.u, 0.0};
+    else if (t >= 1.0 - snap_) p = {e.v, e.v, 0.0};
+    if (cut.points.empty() || !samePoint(cut.points.back(), p)) cut.points.push_back(p);
+    cut.owned += !owned || owned(e.u) || owned(e.v) ? 1 : 0;
+  }
+  while (closed && cut.points.size() > 1 && samePoint(cut.points.back(), cut.points.front())) cut.points.pop_back();
+  const std::size_t n = cut.points.size();
+  std::vector<Vec3> pos(n);
+  for (std::size_t j = 0; j < n; ++j) pos[j] = curvePointPosition(positions_, cut.points[j]);
+  Vec3 weighted(0.0);
+  Vec3 mean(0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    mean += pos[j];
+    if (j + 1 == n && !closed) break;
+    const Vec3& next = pos[(j + 1) % n];
+    const double len = glm::length(next - pos[j]);
+    cut.length += len;
+    weighted += len * 0.5 * (pos[j] + next);
+  }
+  cut.centroid = cut.length > 0.0 ? weighted / cut.length : mean / static_cast<double>(std::max<std::size_t>(n, 1));
+  for (const Vec3& p : pos) cut.radius += glm::length(p - cut.centroid);
+  if (n > 0) cut.radius /= static_cast<double>(n);
+  return cut;
+}
+
+std::optional<PlaneCut> PlaneCutter::bestChain(std::span<const std::uint32_t> triangles, const Plane& plane,
+                                               const std::function<bool(std::uint32_t)>& owned) {
+  nextEpoch();
+  for (std::uint32_t t : triangles) member_[t] = epoch_;
+  auto inside = [&](std::int32_t t) { return t >= 0 && member_[static_cast<std::size_t>(t)] == epoch_; };
+  auto edgeOf = [&](std::uint32_t t, int k) {
+    return DirectedEdge{mesh_.triangles[t][static_cast<std::size_t>(k)], mesh_.triangles[t][static_cast<std::size_t>((k + 1) % 3)]};
+  };
+  std::optional<PlaneCut> best;
+  std::vector<DirectedEdge> forward, backward;
+  for (std::uint32_t t0 : triangles) {
+    int entry0 = 0, exit0 = 0;
+    if (visited_[t0] == epoch_ || !crossing(t0, plane, entry0, exit0)) continue;
+    visited_[t0] = epoch_;
+    forward.assign({edgeOf(t0, entry0), edgeOf(t0, exit0)});
+    bool closed = false;
+    // Forward: leave each triangle through its exit edge; the neighbour enters through it.
+    for (std::uint32_t t = t0, exit = static_cast<std::uint32_t>(exit0);;) {
+      const std::int32_t nb = mesh_.neighbours[t][exit];
+      if (!inside(nb)) break;
+      const auto next = static_cast<std::uint32_t>(nb);
+      if (next == t0) {
+        closed = true;
+        forward.pop_back();  // t0's entry edge again
+        break;
+      }
+      int entry = 0, out = 0;
+      if (visited_[next] == epoch_ || !crossing(next, plane, entry, out)) break;
+      visited_[next] = epoch_;
+      forward.push_back(edgeOf(next, out));
+      t = next;
+      exit = static_cast<std::uint32_t>(out);
+    }
+    backward.clear();
+    for (std::uint32_t t = t0, entry = static_cast<std::uint32_t>(entry0); !closed;) {
+      const std::int32_t nb = mesh_.neighbours[t][entry];
+      if (!inside(nb)) break;
+      const auto prev = static_cast<std::uint32_t>(nb);
+      int in = 0, out = 0;
+      if (visited_[prev] == epoch_ || !crossing(prev, plane, in, out)) break;
+      visited_[prev] = epoch_;
+      backward.push_back(edgeOf(prev, in));
+      t = prev;
+      entry = static_cast<std::uint32_t>(in);
+    }
+    if (!backward.empty()) {
+      std::reverse(backward.begin(), backward.end());
+      backward.insert(backward.end(), forward.begin(), forward.end());
+      forward.swap(backward);
+    }
+    PlaneCut cut = makeCut(forward, closed, plane, owned);
+    if (!best || cut.owned > best->owned || (cut.owned == best->owned && cut.length > best->length)) best = std::move(cut);
+  }
+  return best;
+}
+
+}  // namespace odeskin
