@@ -133,6 +133,7 @@ Result<Rig> autoRig(std::span<const Vec3> rest, const FaceList& faces, const std
   std::vector<std::vector<RigidTransform>> transforms = std::move(clusters.transforms);
 
   Rig rig;
+  // Parents now (a bone the sweeps cannot align follows its parent); joints again at the end.
   rig.skeleton = skeletonFromClusters(motion, clusters.labels, transforms);
   std::vector<WeightRow> prior(rest.size());
   for (std::size_t i = 0; i < rest.size(); ++i) prior[i] = {{clusters.labels[i], 1.0}};

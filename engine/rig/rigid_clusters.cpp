@@ -17,6 +17,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numeric>
 #include <optional>
 
@@ -209,7 +211,7 @@ std::optional<std::vector<RigidTransform>> seedCluster(const MotionData& m, cons
   return std::nullopt;
 }
 
-// Lloyd rounds at a fixed count; returns the clustering with its errors.
+// Lloyd rounds at a fixed count, until no label changes; leaves the errors up to date.
 void lloyd(const MotionData& m, int iterations, Clustering& c) {
   const std::size_t clusters = c.clusterCount();
   std::vector<std::uint32_t> previous;
