@@ -6,9 +6,9 @@
 //  2. Seed new clusters in the clusters with the largest total error, each at its worst vertex,
 //     with the Kabsch transforms of the kSeedPatch vertices nearest it on the mesh graph.
 //  3. Lloyd rounds: each vertex joins the cluster whose transforms best reproduce it over all poses,
-//     each cluster keeps only its largest connected piece (the rest flood into neighbouring
-//     clusters, best fit first), and the transforms are refitted by Kabsch. A cluster left with
-//     fewer than kMinClusterSize vertices or collinear ones is re-seeded at the worst vertex.
+//     each cluster keeps only its largest connected piece (cluster_connectivity.hpp), and the
+//     transforms are refitted by Kabsch. A cluster left with fewer than kMinClusterSize vertices
+//     or collinear ones is re-seeded at the worst vertex.
 //  4. Repeat 2-3 until the requested count, or, for an automatic count, until the RMS error stops
 //     improving (see growthStops).
 //  5. Clusters that still cannot hold a bone are dropped (finalise), so the count can come out
@@ -24,6 +24,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "cluster_connectivity.hpp"
 #include "kabsch.hpp"
 
 namespace odeskin {
@@ -114,72 +115,6 @@ void assignBest(const MotionData& m, std::span<const BoneTransform> matrices, st
   });
 }
 
-// Keeps each cluster's largest connected piece; vertices of its other pieces join an adjacent
-// kept piece, the best fitting first, wave by wave.
-void keepClustersConnected(const MotionData& m, std::span<const BoneTransform> matrices, std::size_t clusters,
-                           std::vector<std::uint32_t>& labels) {
-  const std::size_t v_count = m.vertexCount();
-  std::vector<std::uint32_t> piece(v_count, UINT32_MAX);
-  std::vector<std::size_t> piece_size;
-  std::vector<std::uint32_t> stack;
-  for (std::uint32_t s = 0; s < v_count; ++s) {
-    if (piece[s] != UINT32_MAX) continue;
-    const auto id = static_cast<std::uint32_t>(piece_size.size());
-    std::size_t size = 0;
-    piece[s] = id;
-    stack.assign(1, s);
-    while (!stack.empty()) {
-      const std::uint32_t i = stack.back();
-      stack.pop_back();
-      ++size;
-      for (const std::uint32_t j : m.adjacency->of(i)) {
-        if (piece[j] == UINT32_MAX && labels[j] == labels[i]) {
-          piece[j] = id;
-          stack.push_back(j);
-        }
-      }
-    }
-    piece_size.push_back(size);
-  }
-  std::vector<std::uint32_t> main_piece(clusters, UINT32_MAX);
-  for (std::uint32_t i = 0; i < v_count; ++i) {
-    std::uint32_t& best = main_piece[labels[i]];
-    if (best == UINT32_MAX || piece_size[piece[i]] > piece_size[best]) best = piece[i];
-  }
-  std::vector<char> orphan(v_count, 0);
-  std::vector<std::uint32_t> orphans;
-  for (std::uint32_t i = 0; i < v_count; ++i) {
-    if (piece[i] != main_piece[labels[i]]) {
-      orphan[i] = 1;
-      orphans.push_back(i);
-    }
-  }
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> wave;  // (vertex, new label)
-  while (!orphans.empty()) {
-    wave.clear();
-    for (const std::uint32_t i : orphans) {
-      double best_error = std::numeric_limits<double>::infinity();
-      std::uint32_t best = UINT32_MAX;
-      for (const std::uint32_t j : m.adjacency->of(i)) {
-        if (orphan[j] || labels[j] == best) continue;
-        const double e = vertexError(m, matrices, labels[j], i, best_error);
-        if (e < best_error) {
-          best_error = e;
-          best = labels[j];
-        }
-      }
-      if (best != UINT32_MAX) wave.emplace_back(i, best);
-    }
-    // A mesh component holding no kept piece keeps its labels.
-    if (wave.empty()) break;
-    for (const auto& [i, label] : wave) {
-      labels[i] = label;
-      orphan[i] = 0;
-    }
-    std::erase_if(orphans, [&](std::uint32_t i) { return !orphan[i]; });
-  }
-}
-
 void computeErrors(const MotionData& m, const Transforms& t, Clustering& out) {
   const std::vector<BoneTransform> matrices = matricesOf(t);
   out.vertex_error.resize(m.vertexCount());
@@ -219,7 +154,9 @@ void lloyd(const MotionData& m, int iterations, Clustering& c) {
     const std::vector<BoneTransform> matrices = matricesOf(c.transforms);
     previous = c.labels;
     assignBest(m, matrices, clusters, c.labels);
-    keepClustersConnected(m, matrices, clusters, c.labels);
+    keepClustersConnected(*m.adjacency, clusters, c.labels, [&](std::uint32_t cluster, std::uint32_t i, double stop_above) {
+      return vertexError(m, matrices, cluster, i, stop_above);
+    });
     if (it > 0 && c.labels == previous) break;
     std::vector<std::vector<std::uint32_t>> members(clusters);
     for (std::uint32_t i = 0; i < m.vertexCount(); ++i) members[c.labels[i]].push_back(i);
@@ -262,7 +199,9 @@ void finalise(const MotionData& m, const std::vector<RigidTransform>& whole, Clu
     const std::size_t clusters = c.clusterCount();
     const std::vector<BoneTransform> matrices = matricesOf(c.transforms);
     assignBest(m, matrices, clusters, c.labels);
-    keepClustersConnected(m, matrices, clusters, c.labels);
+    keepClustersConnected(*m.adjacency, clusters, c.labels, [&](std::uint32_t cluster, std::uint32_t i, double stop_above) {
+      return vertexError(m, matrices, cluster, i, stop_above);
+    });
     std::vector<std::vector<std::uint32_t>> members(clusters);
     for (std::uint32_t i = 0; i < m.vertexCount(); ++i) members[c.labels[i]].push_back(i);
     std::vector<char> keep(clusters, 0);
