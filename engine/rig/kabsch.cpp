@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: MIT
+// Weighted Kabsch (Kabsch 1976; Umeyama 1991 without scale):
+//   c_x = sum w x / sum w,  c_y = sum w y / sum w,  H = sum w (x - c_x)(y - c_y)^T = U S V^T,
+//   R = V diag(1, 1, det(V U^T)) U^T,  t = c_y - R c_x.
+// Bone transforms from weights are refined as in SSDR's bone step (Le & Deng 2012, section 3.2):
+// with the other bones fixed, bone j minimises sum_i |p_i - sum_b w_ib T_b x_i|^2, which is a
+// weighted Kabsch of x_i onto (p_i - sum_{b != j} w_ib T_b x_i) / w_ij with weights w_ij^2.
+#include "kabsch.hpp"
+
+#include <cmath>
+#include <string>
+
+#include <Eigen/Dense>
+#include <tbb/parallel_for.h>
+
+#include "bone_fit.hpp"
+
+namespace odeskin {
+namespace {
+
+bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+Eigen::Vector3d toEigen(const Vec3& p) { return {p.x, p.y, p.z}; }
+
+}  // namespace
+
+Result<RigidTransform> weightedKabsch(std::span<const Vec3> from, std::span<const Vec3> to,
+                                      std::span<const double> weights) {
+  if (from.size() != to.size() || weights.size() != from.size()) {
+    return invalidArgument("kabsch: " + std::to_string(from.size()) + " source points, " + std::to_string(to.size()) +
+                           " target points and " + std::to_string(weights.size()) + " weights");
+  }
+  double weight_sum = 0.0;
+  Vec3 from_sum(0.0);
+  Vec3 to_sum(0.0);
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    const double w = weights[i];
+    if (!std::isfinite(w) || w < 0.0) {
+      return invalidArgument("kabsch: weight " + std::to_string(i) + " is " + std::to_string(w));
+    }
+    if (w == 0.0) continue;
+    if (!finite(from[i]) || !finite(to[i])) {
+      return invalidArgument("kabsch: point pair " + std::to_string(i) + " is not finite");
+    }
+    weight_sum += w;
+    from_sum += w * from[i];
+    to_sum += w * to[i];
+  }
+  if (!(weight_sum > 0.0)) return degenerate("kabsch: no point has a positive weight");
+  // Second pass about the centroids: raw moments would cancel catastrophically far from the origin.
+  const Vec3 from_centroid = from_sum / weight_sum;
+  const Vec3 to_centroid = to_sum / weight_sum;
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    if (weights[i] == 0.0) continue;
+    h.noalias() += weights[i] * toEigen(from[i] - from_centroid) * toEigen(to[i] - to_centroid).transpose();
+  }
+  return kabschFromCovariance(h, from_centroid, to_centroid);
+}
+
+Result<RigidTransform> kabschFromCovariance(const Eigen::Matrix3d& h, const Vec3& from_centroid,
+                                            const Vec3& to_centroid) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Vector3d s = svd.singularValues();
+  // Rank < 2: the points (or their images) lie on a line, and any turn about it fits as well.
+  if (!std::isfinite(s(0)) || !(s(0) > 0.0) || s(1) <= kCollinearRatio * s(0)) {
+    return degenerate("kabsch: the weighted points are collinear or coincide (singular values " +
+                      std::to_string(s(0)) + ", " + std::to_string(s(1)) + ", " + std::to_string(s(2)) + ")");
+  }
+  const Eigen::Matrix3d u = svd.matrixU();
+  const Eigen::Matrix3d v = svd.matrixV();
+  // A reflection fits better when the best orthogonal map has det -1; flipping the axis of the
+  // smallest singular value gives the best proper rotation instead.
+  Eigen::Vector3d d(1.0, 1.0, (v * u.transpose()).determinant() < 0.0 ? -1.0 : 1.0);
+  const Eigen::Matrix3d r = v * d.asDiagonal() * u.transpose();
+  glm::dmat3 m;
+  for (int col = 0; col < 3; ++col) {
+    for (int row = 0; row < 3; ++row) m[col][row] = r(row, col);
+  }
+  RigidTransform out;
+  out.rotation = glm::normalize(glm::quat_cast(m));
+  out.translation = to_centroid - out.rotation * from_centroid;
+  return out;
+}
+
+Result<std::vector<std::vector<RigidTransform>>> fitBoneTransforms(std::span<const Vec3> rest,
+                                                                   const std::vector<std::vector<Vec3>>& poses,
+                                                                   const Influences& influences,
+                                                                   const Skeleton& skeleton) {
+  ODESKIN_TRY(validateRig(Rig{skeleton, {}, {}}, 0, 0));
+  const std::size_t vertex_count = rest.size();
+  const std::size_t bone_count = skeleton.boneCount();
+  if (vertex_count == 0) return invalidArgument("fit bone transforms: the bind mesh has no vertices");
+  if (poses.empty()) return invalidArgument("fit bone transforms: no poses");
+  ODESKIN_TRY(validateInfluences(influences, vertex_count, static_cast<std::uint32_t>(bone_count)));
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    if (!finite(rest[i])) return invalidArgument("fit bone transforms: bind vertex " + std::to_string(i) + " is not finite");
+  }
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    if (poses[k].size() != vertex_count) {
+      return invalidArgument("fit bone transforms: pose " + std::to_string(k) + " has " +
+                             std::to_string(poses[k].size()) + " vertices, the bind mesh " +
+                             std::to_string(vertex_count));
+    }
+    for (std::size_t i = 0; i < vertex_count; ++i) {
+      if (!finite(poses[k][i])) {
+        return invalidArgument("fit bone transforms: pose " + std::to_string(k) + " vertex " + std::to_string(i) +
+                               " is not finite");
+      }
+    }
+  }
+  const BoneFitProblem problem = makeBoneFitProblem(rest, influences, skeleton.parents);
+  std::vector<std::vector<RigidTransform>> out(poses.size());
+  tbb::parallel_for(std::size_t{0}, poses.size(), [&](std::size_t k) {
+    out[k] = initialBoneTransforms(problem, poses[k]);
+    refineBoneTransforms(problem, poses[k], out[k], kDefaultRefineSweeps);
+  });
+  return out;
+}
+
+}  // namespace odeskin
