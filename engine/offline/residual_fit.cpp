@@ -100,6 +100,14 @@ std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, std::s
 // (closed) or the end-to-end trend (open).
 Result<FourierFit> fitCurveAdaptive(std::span<const double> v, std::span<const Vec3> values, int modes, bool closed,
                                     bool adaptive) {
+  // Least squares with more modes than the sampling resolves oscillates wildly in the gaps (cut
+  // curves are unevenly sampled: snapped points, part seams). Mode n has period 1/n, so keep n at
+  // most 1 / (2 x the widest gap in v), the sampling theorem's bound for uniform samples.
+  if (adaptive && v.size() >= 2) {
+    double gap = closed ? 1.0 - v.back() + v.front() : 0.0;
+    for (std::size_t j = 1; j < v.size(); ++j) gap = std::max(gap, v[j] - v[j - 1]);
+    if (gap > 0.0) modes = std::min(modes, static_cast<int>(std::floor(0.5 / gap)));
+  }
   for (int n = modes; n >= 1; --n) {
     Result<FourierFit> fit = fitFourier(v, values, n, closed);
     if (fit.ok() || fit.status().code() != StatusCode::kIllPosed || !adaptive) return fit;
