@@ -7,6 +7,8 @@
 #include <limits>
 #include <string>
 
+#include <Eigen/SVD>
+
 #include "../kernels/dual_quaternion.hpp"
 #include "../kernels/fourier_deform_job.hpp"
 #include "../kernels/lbs_job.hpp"
@@ -17,9 +19,55 @@
 namespace odeskin {
 namespace {
 
-// |det A| below this marks a blended rotation that mixes nearly opposed rotations (PIPELINE.md 2):
-// its inverse would amplify the corrective by more than ~1e3.
-constexpr double kSingularDet = 1e-9;
+// A blended linear part A whose smallest singular value is below this mixes nearly opposed
+// rotations (PIPELINE.md 2): A^-1 would amplify the corrective more than fourfold (two equal
+// weights on bones 150 degrees apart). Seen on cat-poses: one vertex's corrective reached 2.3x the box.
+constexpr double kMinSingularValue = 0.25;
+
+double smallestSingularValue(const glm::dmat3& a) {
+  Eigen::MatrixXd m(3, 3);  // dynamic size: GCC 12 misreads the fixed-size SVD as uninitialised
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m(r, c) = a[c][r];
+  }
+  return Eigen::JacobiSVD<Eigen::MatrixXd>(m).singularValues()(2);
+}
+
+// PIPELINE.md 2 falls back to a posed-space residual for such vertices; the deformer has one
+// residual space per asset, so instead the vertex is bound rigidly to its dominant bone. A is then
+// that bone's rotation, the bind-space residual stays exact, and the key poses are still hit.
+Influences conditionedInfluences(const FitInput& in, const FitOptions& opt, std::size_t* rebound) {
+  if (opt.skinning == SkinningMode::kDualQuaternion || opt.residual_space == ResidualSpace::kPosed) {
+    return in.influences;  // a blended dual quaternion is always a rotation; posed residuals need no inverse
+  }
+  const InfluencesView view(in.influences);
+  std::vector<std::vector<BoneTransform>> keys(in.key_poses.size(), std::vector<BoneTransform>(in.bone_count));
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    for (std::uint32_t b = 0; b < in.bone_count; ++b) keys[k][b] = in.key_poses[k][b].matrix();
+  }
+  Influences out;
+  for (std::size_t i = 0; i < in.rest_positions.size(); ++i) {
+    const std::uint32_t begin = in.influences.offsets[i];
+    const std::uint32_t end = in.influences.offsets[i + 1];
+    bool singular = false;
+    for (std::size_t k = 0; k < keys.size() && !singular && end - begin > 1; ++k) {
+      singular = smallestSingularValue(blendedLinearPart(view, keys[k], i)) < kMinSingularValue;
+    }
+    if (!singular) {
+      out.bones.insert(out.bones.end(), in.influences.bones.begin() + begin, in.influences.bones.begin() + end);
+      out.weights.insert(out.weights.end(), in.influences.weights.begin() + begin, in.influences.weights.begin() + end);
+    } else {
+      std::uint32_t dominant = begin;
+      for (std::uint32_t j = begin; j < end; ++j) {
+        if (in.influences.weights[j] > in.influences.weights[dominant]) dominant = j;
+      }
+      out.bones.push_back(in.influences.bones[dominant]);
+      out.weights.push_back(1.0);
+      ++*rebound;
+    }
+    out.offsets.push_back(static_cast<std::uint32_t>(out.bones.size()));
+  }
+  return out;
+}
 
 // The time-basis mode n that drives coefficient m of the 2N+2 layout (constant and trend: n = 0).
 int modeOfCoefficient(std::size_t m, int modes) {
@@ -72,26 +120,17 @@ Status checkInput(const FitInput& in, const FitOptions& opt) {
 }
 
 // r_i^k of PIPELINE.md 2 (bind space) or the posed-space residual of its section 6.
-std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, std::size_t k, std::size_t* ill_conditioned) {
+std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, const Influences& weights, std::size_t k) {
   std::vector<BoneTransform> bones(in.bone_count);
   for (std::uint32_t b = 0; b < in.bone_count; ++b) bones[b] = in.key_poses[k][b].matrix();
   const std::vector<DualQuaternion> dual = toDualQuaternions(bones);
-  const InfluencesView influences(in.influences);
+  const InfluencesView influences(weights);
   std::vector<Vec3> residuals(in.rest_positions.size());
   for (std::size_t i = 0; i < residuals.size(); ++i) {
     const SkinTransform skin = skinTransform(opt.skinning, influences, bones, dual, i);
     const Vec3 posed = in.poses[k][i] - skin.apply(in.rest_positions[i]);
-    if (opt.residual_space == ResidualSpace::kPosed) {
-      residuals[i] = posed;
-      continue;
-    }
-    const double det = glm::determinant(skin.linear);
-    if (std::abs(det) < kSingularDet) {
-      ++*ill_conditioned;
-      residuals[i] = posed;  // best effort; counted and reported (fit report ill_conditioned)
-    } else {
-      residuals[i] = glm::inverse(skin.linear) * posed;
-    }
+    // conditionedInfluences keeps every bind-space inverse well conditioned.
+    residuals[i] = opt.residual_space == ResidualSpace::kPosed ? posed : glm::inverse(skin.linear) * posed;
   }
   return residuals;
 }
@@ -181,7 +220,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   asset.materials = opt.materials.empty() ? std::vector<Material>{staticMaterial()} : opt.materials;
   asset.curve_materials = opt.curve_materials.empty() ? std::vector<std::uint32_t>(in.curves.size(), 0u)
                                                       : opt.curve_materials;
-  asset.influences = in.influences;
+  asset.influences = conditionedInfluences(in, opt, &rep.ill_conditioned);
   asset.bone_count = in.bone_count;
   asset.bone_pivots = in.bone_pivots;
   asset.key_poses = in.key_poses;
@@ -195,7 +234,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   };
   Clock::time_point stage = Clock::now();
   std::vector<std::vector<Vec3>> residuals(key_count);
-  for (std::size_t k = 0; k < key_count; ++k) residuals[k] = keyResiduals(in, opt, k, &rep.ill_conditioned);
+  for (std::size_t k = 0; k < key_count; ++k) residuals[k] = keyResiduals(in, opt, asset.influences, k);
   rep.seconds_geometric = seconds_since(stage);
   stage = Clock::now();
 

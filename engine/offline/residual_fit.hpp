@@ -46,7 +46,9 @@ struct FitOptions {
 struct FitReport {
   std::vector<double> key_error;      // K: max vertex error of the played key / longest box side
   std::size_t remainder_count = 0;    // sparse remainders over all segments
-  std::size_t ill_conditioned = 0;    // vertices whose blended rotation A is near singular
+  // Vertices whose blended linear part A was near singular at some key (LBS mixing nearly opposed
+  // rotations), rebound rigidly to their dominant bone so A^-1 stays well conditioned.
+  std::size_t ill_conditioned = 0;
   double max_series_error = 0.0;      // worst |eps| before remainders, / longest box side
   double rms_series_error = 0.0;      // root mean square |eps| over all vertices and segments, / box side
   std::size_t reduced_curves = 0;     // (segment, curve) fits that used fewer than N modes

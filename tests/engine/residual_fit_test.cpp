@@ -202,6 +202,30 @@ TEST(ResidualFit, CurvesWithFewPointsUseFewerModes) {
   for (double e : report.key_error) EXPECT_LT(e, 1e-4);
 }
 
+TEST(ResidualFit, NearlyOpposedBlendsAreReboundToTheirDominantBone) {
+  // At a 170 degree elbow, LBS's blend of the two bones at equal weights shrinks to cos(85 deg) =
+  // 0.09 across the bend: A^-1 would blow the corrective up elevenfold.
+  ArmOptions o;
+  o.bend_degrees = 170.0;
+  Result<ProceduralArm> arm = makeProceduralArm(o);
+  ASSERT_TRUE(arm.ok());
+  FitReport report;
+  Result<DeformAsset> asset = fitDeformAsset(arm->fit_input, FitOptions{}, &report);
+  ASSERT_TRUE(asset.ok()) << asset.status().toString();
+  EXPECT_GT(report.ill_conditioned, 0u);
+  std::size_t rigid = 0;
+  for (std::size_t i = 0; i < asset->vertexCount(); ++i) {
+    const std::uint32_t count = asset->influences.offsets[i + 1] - asset->influences.offsets[i];
+    const std::uint32_t before = arm->fit_input.influences.offsets[i + 1] - arm->fit_input.influences.offsets[i];
+    if (count == 1 && before > 1) ++rigid;
+  }
+  EXPECT_EQ(rigid, report.ill_conditioned);
+  for (double e : report.key_error) EXPECT_LT(e, 1e-4);
+  // The same arm at 100 degrees keeps every blend.
+  ASSERT_TRUE(fitDeformAsset(makeProceduralArm(ArmOptions{})->fit_input, FitOptions{}, &report).ok());
+  EXPECT_EQ(report.ill_conditioned, 0u);
+}
+
 TEST(ResidualFit, RejectsMismatchedInput) {
   Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
   ASSERT_TRUE(arm.ok());
