@@ -42,7 +42,6 @@ int runDemoCommand(const odeskin::DemoOptions& options) {
   return 0;
 }
 
-#ifdef ODESKIN_WITH_FIT
 CLI::App* addFitCommand(CLI::App& app, odeskin::FitCommandOptions& o, std::string& residual, std::string& skinning) {
   CLI::App* fit = app.add_subcommand("fit", "Fit a deformer to example poses and save it as a .odsk asset");
   fit->footer(
@@ -73,7 +72,6 @@ CLI::App* addFitCommand(CLI::App& app, odeskin::FitCommandOptions& o, std::strin
   fit->add_flag("--timings", o.timings, "Print the stage breakdown of the thesis's Table 6.3");
   return fit;
 }
-#endif
 
 }  // namespace
 
@@ -129,12 +127,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "cpu", "vulkan"}));
   play_cmd->add_flag("--validation", play.playback.validation, "Enable the Khronos validation layer; fail on any message");
 
-#ifdef ODESKIN_WITH_FIT
   odeskin::FitCommandOptions fit;
   std::string fit_residual = "bind";
   std::string fit_skinning = "lbs";
   CLI::App* fit_cmd = addFitCommand(app, fit, fit_residual, fit_skinning);
-#endif
 
   try {
     app.parse(argc, argv);
@@ -165,12 +161,10 @@ int main(int argc, char** argv) {
     play.playback.device = device;
     return odeskin::runPlayCommand(play, console);
   }
-#ifdef ODESKIN_WITH_FIT
   if (fit_cmd->parsed()) {
     fit.residual_space = fit_residual == "posed" ? odeskin::ResidualSpace::kPosed : odeskin::ResidualSpace::kBind;
     fit.skinning = fit_skinning == "dqs" ? odeskin::SkinningMode::kDualQuaternion : odeskin::SkinningMode::kLinear;
     return odeskin::runFitCommand(fit, console);
   }
-#endif
   return 2;
 }
