@@ -124,6 +124,30 @@ TEST(FitPipeline, CatPosesAutoRig) {
   expectC1AcrossJoins(result);
 }
 
+TEST(FitPipeline, CheburashkaWithItsRigOfElevenBones) {
+  const std::filesystem::path dir = testing::dataDir() / "cheburashka";
+  std::vector<std::filesystem::path> poses, tmats;
+  for (int k = 1; k <= 4; ++k) {
+    poses.push_back(dir / "poses-3" / ("cheburashka-" + std::to_string(k) + ".obj"));
+    tmats.push_back(dir / "poses-3" / ("cheburashka-" + std::to_string(k) + ".Tmat"));
+  }
+  const std::filesystem::path weights = dir / "cheburashka.DMAT";
+  Result<ExampleSet> ex = readLibiglExamples(dir / "cheburashka.obj", poses, dir / "cheburashka.tgf", &weights, tmats);
+  ASSERT_TRUE(ex.ok()) << ex.status().toString();
+  const PipelineResult result = fitOrFail(*ex, PipelineOptions{});
+  expectKeysReproduced(*ex, result, 1e-4);
+}
+
+TEST(FitPipeline, FacePosesOpenSurfaceAutoRig) {
+  // An open face mask (762 boundary edges) whose expressions are mostly non-rigid.
+  std::vector<std::filesystem::path> paths;
+  for (int k = 0; k < 3; ++k) paths.push_back(testing::dataDir() / "face-poses" / ("face-0" + std::to_string(k) + ".obj"));
+  Result<ExampleSet> ex = readObjSequence(paths);
+  ASSERT_TRUE(ex.ok()) << ex.status().toString();
+  const PipelineResult result = fitOrFail(*ex, PipelineOptions{});
+  expectKeysReproduced(*ex, result, 1e-4);
+}
+
 TEST(FitPipeline, PureFourierReportsItsKeyErrorInstead) {
   const auto paths = horseFrames({1, 9});
   Result<ExampleSet> ex = readObjSequence(paths);
