@@ -126,7 +126,13 @@ Result<PipelineResult> runFitPipeline(const ExampleSet& ex, const PipelineOption
   progress("curves", 0.25);
   stage = Clock::now();
   Result<CurveSet> curves = buildIsoCurves(ex.rest_positions, ex.faces, rig.skeleton, rig.influences);
-  if (!curves.ok()) return Status(curves.status().code(), "iso-curves: " + curves.status().message());
+  if (!curves.ok() && curves.status().code() == StatusCode::kDegenerate) {
+    // Low-poly meshes: accept short curves (the fit then uses the few modes they determine).
+    CurveOptions short_curves;
+    short_curves.min_points = 3;
+    curves = buildIsoCurves(ex.rest_positions, ex.faces, rig.skeleton, rig.influences, short_curves);
+  }
+  if (!curves.ok()) return curves.status();
   ODESKIN_TRY(validateCurveSet(*curves, ex.rest_positions.size()));
   result.timings.curve_identification = secondsSince(stage);
   std::set<std::uint32_t> parts;

@@ -17,6 +17,9 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "engine/offline/deform_player.hpp"
+#include "engine/pipeline/fit_pipeline.hpp"
 #include <tiny_gltf.h>
 
 namespace odeskin {
@@ -530,6 +533,31 @@ TEST(GltfReader, SkeletonFromSkin) {
   EXPECT_EQ(s.heads[1], kTipJoint);
   EXPECT_EQ(s.tails[0], kTipJoint);  // the first child joint's head
   EXPECT_EQ(s.tails[1], kTipJoint);  // no child: its own head
+}
+
+// End to end: the animated glTF's poses become an asset whose playback hits every key, and the asset
+// keeps the seam-split render layout so play writes the input's vertices.
+TEST(GltfPipeline, FittedAssetReproducesAnimatedPosesInRenderLayout) {
+  const Tube tube = makeTube();
+  const auto examples = read(write(tube.model, "pipeline.glb", true), {0.5, 1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  Result<PipelineResult> fit = runFitPipeline(*examples, PipelineOptions{});
+  ASSERT_TRUE(fit.ok()) << fit.status().toString();
+  EXPECT_EQ(fit->asset.render.topology_of_render.size(), tube.render_positions.size());
+  Result<DeformPlayer> player = DeformPlayer::create(fit->asset);
+  ASSERT_TRUE(player.ok());
+  std::vector<ModeBasisValue> basis(player->basisSize());
+  std::vector<BoneTransform> bones(fit->asset.bone_count);
+  std::vector<Vec3> out(fit->asset.vertexCount());
+  for (std::size_t k = 0; k < examples->poses.size(); ++k) {
+    const auto [segment, tau] = player->locate(static_cast<double>(k));
+    player->basisAt(tau, basis);
+    player->bonesAt(fit->asset, segment, tau, bones);
+    ASSERT_TRUE(referenceJob(fit->asset, segment, basis, bones, out).run().ok());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      EXPECT_LT(glm::length(out[i] - examples->poses[k][i]), 1e-4 * longestBoxSide(examples->poses[k])) << k;
+    }
+  }
 }
 
 struct WeightCase {
