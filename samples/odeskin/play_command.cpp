@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "engine/io/asset_file.hpp"
+#include "engine/io/gltf_baked_writer.hpp"
 #include "engine/io/obj_io.hpp"
 #include "progress.hpp"
 
@@ -43,9 +44,9 @@ std::string usageProblem(const PlayOptions& o) {
     return "play: --seconds must be zero or positive, got " + numberText(*o.seconds);
   }
   const std::string ext = lowerExtension(o.output);
-  if (ext == ".glb" || ext == ".gltf") return "play: " + o.output + ": glTF output is not available yet; write .obj";
-  if (ext != ".obj") return "play: " + o.output + ": unknown output format '" + ext + "' (expected .obj)";
-  if (o.fps) {
+  if (ext == ".gltf") return "play: " + o.output + ": write .glb (one self-contained binary file) or .obj";
+  if (ext != ".obj" && ext != ".glb") return "play: " + o.output + ": unknown output format '" + ext + "' (expected .obj or .glb)";
+  if (o.fps && ext == ".obj") {
     Result<FramePattern> pattern = FramePattern::parse(o.output);
     if (!pattern.ok()) return "play: " + pattern.status().message();
   }
@@ -148,12 +149,16 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       return reportUsage(console, "play: --fps " + numberText(*o.fps) + " for " + numberText(seconds) +
                                       " s is more than " + std::to_string(kMaxFrames) + " frames");
     }
-    const FramePattern pattern = *FramePattern::parse(o.output);
+    const bool glb = lowerExtension(o.output) == ".glb";
+    const FramePattern pattern = glb ? FramePattern{} : *FramePattern::parse(o.output);
     for (std::size_t f = 0; f < clock.size(); ++f) {
-      files.emplace_back(pattern.format(f));
+      files.emplace_back(glb ? std::filesystem::path(o.output) : std::filesystem::path(pattern.format(f)));
       times.push_back(std::clamp(clock[f] / asset.segment_seconds, 0.0, t_end));
     }
   }
+  // .glb: every frame goes into one file (morph target per frame, STEP weights animation).
+  const bool glb = lowerExtension(o.output) == ".glb";
+  std::vector<std::vector<Vec3>> baked;
 
   Result<AssetPlayback> playback = AssetPlayback::create(asset, o.playback, console.quiet ? nullptr : &console.err);
   if (!playback.ok()) return reportFailure(console, playback.status());
@@ -167,6 +172,11 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     if (Status s = playback->positionsAt(times[f], positions); !s.ok()) return reportFailure(console, s);
     deform_seconds += std::chrono::duration<double>(Clock::now() - start).count();
     if (Status s = ensureParentDirectory(files[f], last_directory); !s.ok()) return reportFailure(console, s);
+    if (glb) {
+      baked.push_back(outputPositions(asset, positions));
+      bar.step(f + 1);
+      continue;
+    }
     const std::string comment = "odeskin play " + o.asset.filename().string() + " t = " + numberText(times[f]);
     if (Status s = writeObj(files[f], outputPositions(asset, positions), outputFaces(asset), comment); !s.ok()) {
       return reportFailure(console, s);
@@ -175,6 +185,21 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   }
   bar.finish();
   if (Status s = playback->checkValidation(); !s.ok()) return reportFailure(console, s);
+  if (glb) {
+    std::vector<double> seconds;
+    for (double t : times) seconds.push_back(t * asset.segment_seconds);
+    // --t, or clamped times at the end of a sequence, may repeat a time: keep strictly increasing keys.
+    std::vector<std::vector<Vec3>> kept;
+    std::vector<double> kept_seconds;
+    for (std::size_t f = 0; f < baked.size(); ++f) {
+      if (!kept_seconds.empty() && !(seconds[f] > kept_seconds.back())) continue;
+      kept.push_back(std::move(baked[f]));
+      kept_seconds.push_back(seconds[f]);
+    }
+    if (Status s = writeBakedGlb(o.output, outputFaces(asset), kept, kept_seconds); !s.ok()) {
+      return reportFailure(console, s);
+    }
+  }
 
   const double mean = deform_seconds / static_cast<double>(files.size());
   if (!console.quiet) {
@@ -187,11 +212,14 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     } else {
       console.out << files.size() << " frame" << (files.size() == 1 ? "" : "s") << " at " << numberText(*o.fps)
                   << " fps (t " << numberText(times.front()) << " to " << numberText(times.back()) << ") -> "
-                  << files.front().string() << " ... " << files.back().string() << "\n";
+                  << (glb ? files.front().string() + " (one morph target per frame)"
+                          : files.front().string() + " ... " + files.back().string())
+                  << "\n";
     }
     console.out << "device: " << playback->device() << ", " << timing << " per frame (deformation only)\n";
   }
   if (report) {
+    if (glb) files.assign(1, o.output);
     report->files = std::move(files);
     report->times = std::move(times);
     report->device = playback->device();

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/io/gltf_reader.hpp"
+
 #include "engine/io/asset_file.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/offline/procedural_arm.hpp"
@@ -147,6 +149,31 @@ TEST_F(Cli, PlaySequenceMapsSecondsToKeyTime) {
   EXPECT_DOUBLE_EQ(report.times.back(), 1.0);
 }
 
+TEST_F(Cli, PlaySequenceToGlbHoldsEveryFrameAsAMorphTarget) {
+  const fs::path dir = scratch("glb");
+  PlayOptions o;
+  o.asset = assetPath();
+  o.fps = 4.0;
+  o.output = (dir / "frames" / "arm_%03d.obj").string();
+  Captured io;
+  PlayReport frames;
+  ASSERT_EQ(play(o, io, &frames), kExitOk) << io.err.str();
+  o.output = (dir / "arm.glb").string();
+  PlayReport baked;
+  ASSERT_EQ(play(o, io, &baked), kExitOk) << io.err.str();
+  ASSERT_EQ(baked.files, std::vector<fs::path>{dir / "arm.glb"});
+  // Read back with odeskin's own glTF reader: the mesh is frame 0, target k - 1 at weight 1 is frame k.
+  GltfPoseRequest request;
+  for (int k = 0; k + 1 < static_cast<int>(frames.files.size()); ++k) request.morph_targets.push_back(k);
+  Result<ExampleSet> read = readGltfExamples(dir / "arm.glb", request);
+  ASSERT_TRUE(read.ok()) << read.status().toString();
+  ASSERT_EQ(read->poses.size(), frames.files.size());
+  for (std::size_t k = 0; k < frames.files.size(); ++k) {
+    // float32 storage of positions and of the displacements from frame 0
+    EXPECT_LE(maxDistance(read->poses[k], readPositions(frames.files[k])), 1e-6 * box()) << "frame " << k;
+  }
+}
+
 TEST_F(Cli, PlayUsesTheSegmentLengthAndTheRenderLayout) {
   const fs::path dir = scratch("layout");
   DeformAsset asset = *asset_;
@@ -185,7 +212,7 @@ TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   cases.push_back({atTime(1.5, dir / "x.obj"), "--t 1.5 is outside [0, 1]"});
   cases.push_back({atTime(-0.1, dir / "x.obj"), "outside [0, 1]"});
   cases.push_back({atTime(std::nan(""), dir / "x.obj"), "--t must be a number"});
-  cases.push_back({atTime(0.5, dir / "x.glb"), "glTF output is not available"});
+  cases.push_back({atTime(0.5, dir / "x.gltf"), "write .glb"});
   cases.push_back({atTime(0.5, dir / "x.ply"), "unknown output format"});
   cases.push_back({atTime(0.5, ""), "-o OUT is required"});
   PlayOptions both = atTime(0.5, dir / "x.obj");
