@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "temp_dir_test.hpp"
+
 #include "engine/io/obj_reader.hpp"
 #include "engine/kernels/lbs_job.hpp"
 
@@ -52,23 +54,9 @@ double maxAbsDifference(const BoneTransform& a, const BoneTransform& b) {
   return worst;
 }
 
-class TempDir : public ::testing::Test {
+class TempDir : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / (std::string("odeskin_libigl_io_test_") + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
-
-  fs::path dir_;
+  TempDir() : TempDirTest("odeskin_libigl_io_test_") {}
 };
 
 // The failed Result's code, checking the message names `path` and contains `needle`.

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "temp_dir_test.hpp"
+
 #include "engine/io/obj_io.hpp"
 
 namespace odeskin {
@@ -27,22 +29,10 @@ std::vector<std::uint32_t> face(const FaceList& faces, std::size_t f) {
                                     faces.indices.begin() + faces.face_offsets[f + 1]);
 }
 
-// A fresh folder per test for synthetic files, removed afterwards.
-class ObjTempDir : public ::testing::Test {
+class ObjTempDir : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / (std::string("odeskin_obj_reader_test_") + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  ObjTempDir() : TempDirTest("odeskin_obj_reader_test_") {}
 
-  fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
   // Expects readObj(text) to fail with `code` and a message containing `path` and `needle`.
   void expectError(const std::string& text, StatusCode code, const std::string& needle) const {
     const fs::path path = write("bad.obj", text);
@@ -52,8 +42,6 @@ class ObjTempDir : public ::testing::Test {
     EXPECT_NE(mesh.status().message().find(path.string()), std::string::npos) << mesh.status().message();
     EXPECT_NE(mesh.status().message().find(needle), std::string::npos) << mesh.status().message();
   }
-
-  fs::path dir_;
 };
 
 void expectTriangles(const ObjMesh& mesh, std::size_t vertices, std::size_t faces) {
