@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -47,19 +48,21 @@ glm::vec3 curveSeries(const PackedDeformData& d, const gpu::DeformPushConstants&
   return sum;
 }
 
-// Fixed slot counts are template arguments so the 4- and 8-influence loops unroll.
+// Vertex i's entries [begin, end) in d.influences. Fixed slot counts are template arguments so the
+// 4- and 8-influence loops unroll.
+template <std::uint32_t kSlots>
+std::pair<std::size_t, std::size_t> influenceRow(const PackedDeformData& d, std::size_t i) {
+  if constexpr (kSlots == 0) {
+    return {d.influence_offsets[i], d.influence_offsets[i + 1]};
+  } else {
+    return {i * kSlots, i * kSlots + kSlots};
+  }
+}
+
 template <std::uint32_t kSlots>
 glm::vec3 skinPoint(const PackedDeformData& d, std::span<const gpu::BoneMatrix> bones, std::size_t i,
                     const glm::vec3& p) {
-  std::size_t begin;
-  std::size_t end;
-  if constexpr (kSlots == 0) {
-    begin = d.influence_offsets[i];
-    end = d.influence_offsets[i + 1];
-  } else {
-    begin = i * kSlots;
-    end = begin + kSlots;
-  }
+  const auto [begin, end] = influenceRow<kSlots>(d, i);
   const glm::vec4 h(p, 1.0f);
   glm::vec3 out(0.0f);
   for (std::size_t k = begin; k < end; ++k) {
@@ -77,15 +80,7 @@ glm::vec3 skinPoint(const PackedDeformData& d, std::span<const gpu::BoneMatrix> 
 template <std::uint32_t kSlots>
 glm::vec3 skinPointDq(const PackedDeformData& d, std::span<const gpu::BoneMatrix> bones,
                       std::span<const gpu::DualQuat> dual_quats, std::size_t i, const glm::vec3& p) {
-  std::size_t begin;
-  std::size_t end;
-  if constexpr (kSlots == 0) {
-    begin = d.influence_offsets[i];
-    end = d.influence_offsets[i + 1];
-  } else {
-    begin = i * kSlots;
-    end = begin + kSlots;
-  }
+  const auto [begin, end] = influenceRow<kSlots>(d, i);
   if (begin == end) return skinPoint<kSlots>(d, bones, i, p);
   std::size_t pivot = begin;
   for (std::size_t k = begin + 1; k < end; ++k) {
