@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Installs odeskin's build and test dependencies from Debian 12 packages (run as root). Only
-# missing packages are installed, so repeated runs are fast and need no network.
+# Installs odeskin's build and test dependencies from Debian 12 packages (run as root), then the web
+# viewer's npm packages. Only what is missing is installed, so repeated runs are fast and need no network.
 set -euo pipefail
 
 packages=(
@@ -9,7 +9,11 @@ packages=(
   glslang-tools spirv-tools
   libglm-dev libeigen3-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenmesh-dev
   libcli11-dev libgtest-dev libbenchmark-dev
+  nodejs chromium
 )
+# Debian's npm package conflicts with a nodejs that bundles npm (NodeSource builds): ask for it only
+# when no npm is on the PATH.
+command -v npm > /dev/null 2>&1 || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -17,13 +21,22 @@ for p in "${packages[@]}"; do
 done
 if ((${#missing[@]} == 0)); then
   echo "odeskin: all ${#packages[@]} packages already installed"
-  exit 0
-fi
-if [[ $(id -u) -ne 0 ]]; then
+elif [[ $(id -u) -ne 0 ]]; then
   echo "odeskin: missing packages: ${missing[*]}; run this script as root (apt-get install)" >&2
   exit 1
+else
+  echo "odeskin: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-echo "odeskin: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-apt-get update -qq
-apt-get install -y -qq --no-install-recommends "${missing[@]}"
+
+# The browser viewer, its end-to-end test and the glTF-Validator check: npm packages pinned by
+# web/package-lock.json, installed from the npm registry only when the lock file changed.
+web="$(cd "$(dirname "${BASH_SOURCE[0]}")/../web" && pwd)"
+stamp="$web/node_modules/.odeskin-lock"
+if ! cmp -s "$web/package-lock.json" "$stamp" 2>/dev/null; then
+  echo "odeskin: installing web/ npm packages"
+  (cd "$web" && npm install --no-audit --no-fund --loglevel=error)
+  cp "$web/package-lock.json" "$stamp"
+fi
