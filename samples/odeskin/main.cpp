@@ -89,7 +89,8 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
   cmd->add_flag("--bake", o.bake, "One morph target per frame (LINEAR cross-fades) instead of per-mode targets");
   cmd->add_option("--fps", fps, "Frames per second of a bake (default 30)");
   cmd->add_option("--tolerance", o.tolerance,
-                  "Position error allowed from the weight keys, and from the skeleton keys, as a fraction of the box");
+                  "Position error allowed from the weight keys, and from the skeleton keys, as a fraction of the box\n"
+                  "(default 1e-5)");
   return cmd;
 }
 

@@ -500,6 +500,21 @@ TEST_F(GltfExportTest, ArmWithTwoMaterialsOnAlternateCurves) {
 
 TEST_F(GltfExportTest, ArmDynamicSkin) { exportAndCompare(armAsset({skinMaterial()}, false), "arm_skin"); }
 
+TEST_F(GltfExportTest, RenderLayoutOfAGltfInputIsWritten) {
+  // A glTF-fitted asset keeps its render vertices (split at seams): here every face's first corner
+  // gets its own copy of the topology vertex, so render vertices outnumber topology vertices.
+  DeformAsset asset = armAsset({skinMaterial()}, false);
+  for (std::uint32_t v = 0; v < asset.vertexCount(); ++v) asset.render.topology_of_render.push_back(v);
+  asset.render.faces = asset.faces;
+  for (std::size_t f = 0; f < asset.faces.faceCount(); f += 7) {
+    std::uint32_t& corner = asset.render.faces.indices[asset.faces.face_offsets[f]];
+    asset.render.topology_of_render.push_back(corner);
+    corner = static_cast<std::uint32_t>(asset.render.topology_of_render.size() - 1);
+  }
+  const GltfExportReport report = exportAndCompare(asset, "arm_render_layout");
+  EXPECT_EQ(report.vertices, asset.render.topology_of_render.size());
+}
+
 TEST_F(GltfExportTest, CylinderWithItsRigStaticAndSkin) {
   const DeformAsset skin = fitted(testing::cylinderWithRig(true, true), skinMaterial());
   ASSERT_EQ(skin.segments.size(), 3u);
