@@ -52,8 +52,9 @@ std::string compactExportProblem(const DeformAsset& asset) {
 
 Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesystem::path& path,
                                     const GltfExportOptions& o) {
-  if (!(o.tolerance > 0.0 && o.tolerance <= 0.01)) {
-    return invalidArgument("export: tolerance " + std::to_string(o.tolerance) + " outside (0, 0.01]");
+  // Below 1e-8 of the box float32 positions round more than the keys err, and keys only multiply.
+  if (!(o.tolerance >= 1e-8 && o.tolerance <= 0.01)) {
+    return invalidArgument("export: tolerance " + std::to_string(o.tolerance) + " outside [1e-8, 0.01]");
   }
   if (!(o.bake_fps > 0.0 && o.bake_fps <= 1000.0)) {
     return invalidArgument("export: bake fps " + std::to_string(o.bake_fps) + " outside (0, 1000]");

@@ -31,8 +31,8 @@ std::string usageProblem(const ExportCommandOptions& o) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".gltf") return "export: " + o.output.string() + ": write .glb (one self-contained binary file)";
   if (ext != ".glb") return "export: " + o.output.string() + ": unknown output format '" + ext + "' (expected .glb)";
-  if (!(o.tolerance > 0.0 && o.tolerance <= 0.01)) {
-    return "export: --tolerance must be in (0, 0.01] (a fraction of the bounding box), got " + numberText(o.tolerance);
+  if (!(o.tolerance >= 1e-8 && o.tolerance <= 0.01)) {
+    return "export: --tolerance must be in [1e-8, 0.01] (a fraction of the bounding box), got " + numberText(o.tolerance);
   }
   if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0 && *o.fps <= 1000.0)) {
     return "export: --fps must be in (0, 1000], got " + numberText(*o.fps);
@@ -91,6 +91,10 @@ int runExportCommand(const ExportCommandOptions& o, Console& console, GltfExport
   options.bake_fps = o.fps.value_or(30.0);
   options.tolerance = o.tolerance;
   const std::string reason = compactExportProblem(asset);
+  if (reason.empty() && !o.bake && o.fps && !console.quiet) {
+    console.err << "note: --fps applies to bakes only; " << o.asset.string()
+                << " is exported with per-mode morph targets (add --bake for frames)\n";
+  }
   if (!reason.empty() && !o.bake && !console.quiet) {
     console.err << "note: " << o.asset.string() << " cannot be exported with per-mode morph targets: " << reason
                 << "; baking one morph target per frame at " << numberText(options.bake_fps) << " fps\n";

@@ -90,7 +90,7 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
   cmd->add_option("--fps", fps, "Frames per second of a bake (default 30)");
   cmd->add_option("--tolerance", o.tolerance,
                   "Position error allowed from the weight keys, and from the skeleton keys, as a fraction of the box\n"
-                  "(default 1e-5)");
+                  "in [1e-8, 0.01] (default 1e-5)");
   return cmd;
 }
 
