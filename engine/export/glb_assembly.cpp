@@ -330,7 +330,7 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
   std::vector<unsigned char>& data = b.model.buffers[0].data;
   data.resize((data.size() + 3) / 4 * 4, 0);
   if (data.size() >= kMaxBufferBytes) {
-    return invalidArgument("export: " + std::to_string(data.size()) + " bytes of buffer data; most glTF tools fail at 2 GiB (try a lower --fps or fewer segments)");
+    return invalidArgument("export: " + std::to_string(data.size()) + " bytes of buffer data; most glTF tools fail at 2 GiB; export fewer segments");
   }
   summary.buffer_bytes = data.size();
   ODESKIN_TRY(writeGlbAtomically(path, b.model));
