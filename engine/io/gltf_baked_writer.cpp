@@ -81,11 +81,12 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
 }  // namespace
 
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
-                     const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds) {
+                     const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
+                     const BakedGlbOptions& options) {
   ODESKIN_TRY(checkInput(faces, frames, seconds));
   tinygltf::Model m;
   m.asset.version = "2.0";
-  m.asset.generator = "odeskin play";
+  m.asset.generator = options.generator;
   m.buffers.emplace_back();
 
   std::vector<std::uint32_t> triangles;
@@ -132,7 +133,7 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   m.defaultScene = 0;
 
   if (frames.size() > 1) {
-    // STEP keys: frame f shows target f-1 alone; frame 0 none.
+    // Key f weights target f-1 by 1 (frame 0: none); STEP holds it, LINEAR fades into the next.
     const std::size_t targets = frames.size() - 1;
     std::vector<float> times(seconds.begin(), seconds.end());
     std::vector<float> weights(frames.size() * targets, 0.0f);
@@ -140,23 +141,27 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
     tinygltf::AnimationSampler sampler;
     sampler.input = addScalarAccessor(m, times, true);
     sampler.output = addScalarAccessor(m, weights, false);
-    sampler.interpolation = "STEP";
+    sampler.interpolation = options.linear ? "LINEAR" : "STEP";
     tinygltf::AnimationChannel channel;
     channel.sampler = 0;
     channel.target_node = 0;
     channel.target_path = "weights";
     tinygltf::Animation animation;
-    animation.name = "odeskin play";
+    animation.name = options.animation;
     animation.samplers.push_back(sampler);
     animation.channels.push_back(channel);
     m.animations.push_back(animation);
   }
   m.buffers[0].data.resize((m.buffers[0].data.size() + 3) / 4 * 4, 0);
 
+  return writeGlbAtomically(path, m);
+}
+
+Status writeGlbAtomically(const std::filesystem::path& path, const tinygltf::Model& model) {
   std::filesystem::path temp = path;
   temp += ".partial";
   tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToFile(&m, temp.string(), true, true, false, true)) {
+  if (!writer.WriteGltfSceneToFile(&model, temp.string(), true, true, false, true)) {
     std::error_code ignored;
     std::filesystem::remove(temp, ignored);
     return ioError(path.string() + ": cannot write the glTF file");

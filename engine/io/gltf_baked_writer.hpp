@@ -1,23 +1,41 @@
 // SPDX-License-Identifier: MIT
 // A played animation baked into one GLB any glTF viewer plays: the first frame is the mesh, every
-// later frame is a morph target (its displacement from the first), and a STEP "weights" animation
-// switches one target on per frame at its time. Meant for looking at results; the compact export
-// with skin and per-mode targets is `odeskin export`'s job.
+// later frame is a morph target (its displacement from the first), and a "weights" animation
+// switches one target on per frame at its time: STEP shows the frames as they are, LINEAR
+// cross-fades consecutive frames (key f weights target f-1 by 1, so between keys the mesh moves
+// linearly from frame to frame). Meant for looking at results; the compact export with skin and
+// per-mode targets is `odeskin export`'s job.
 #pragma once
 
 #include <filesystem>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "../core/status.hpp"
 #include "../core/types.hpp"
 
+namespace tinygltf {
+class Model;
+}
+
 namespace odeskin {
+
+struct BakedGlbOptions {
+  bool linear = false;                   // LINEAR cross-fades instead of STEP
+  std::string generator = "odeskin play";  // asset.generator
+  std::string animation = "odeskin play";  // the animation's name
+};
 
 // frames: F >= 1 vertex arrays of one mesh; seconds: F increasing times (seconds[0] >= 0).
 // Polygons are triangulated as fans. Written through a temporary file and rename. Errors:
 // kInvalidArgument (sizes, indices, non-finite values, times not increasing), kIoError naming the path.
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
-                     const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds);
+                     const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
+                     const BakedGlbOptions& options = {});
+
+// Writes `model` as one binary glTF through "<path>.partial" and a rename, so a failure never leaves
+// a half-written file at `path` (the partial file is removed). kIoError naming the path.
+Status writeGlbAtomically(const std::filesystem::path& path, const tinygltf::Model& model);
 
 }  // namespace odeskin

@@ -10,6 +10,7 @@
 #include "asset_info.hpp"
 #include "demo.hpp"
 #include "engine/offline/fourier_fit.hpp"
+#include "export_command.hpp"
 #include "fit_command.hpp"
 #include "host/device_info.hpp"
 #include "play_command.hpp"
@@ -73,6 +74,26 @@ CLI::App* addFitCommand(CLI::App& app, odeskin::FitCommandOptions& o, std::strin
   return fit;
 }
 
+CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, double& fps) {
+  CLI::App* cmd = app.add_subcommand("export", "Write a .odsk asset as a glTF 2.0 binary (.glb) any viewer plays");
+  cmd->footer(
+      "The mesh, its skin and skeletal animation, and the analytic deformation as morph targets (one per\n"
+      "segment, material and mode) whose CUBICSPLINE weights follow the time basis; time in seconds is\n"
+      "T x segment length. Assets with a posed-space residual or dual-quaternion skinning are baked instead\n"
+      "(one morph target per frame), as --bake does for any asset.\n"
+      "Examples: odeskin export horse.odsk -o horse.glb\n"
+      "          odeskin export horse.odsk -o horse.glb --tolerance 1e-6\n"
+      "          odeskin export horse.odsk -o horse-baked.glb --bake --fps 60");
+  cmd->add_option("asset", o.asset, "The .odsk asset")->required();
+  cmd->add_option("-o,--output", o.output, "The .glb file to write")->required();
+  cmd->add_flag("--bake", o.bake, "One morph target per frame (LINEAR cross-fades) instead of per-mode targets");
+  cmd->add_option("--fps", fps, "Frames per second of a bake (default 30)");
+  cmd->add_option("--tolerance", o.tolerance,
+                  "Position error allowed from the weight keys, and from the skeleton keys, as a fraction of the box\n"
+                  "in [1e-8, 0.01] (default 1e-5)");
+  return cmd;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -132,6 +153,10 @@ int main(int argc, char** argv) {
   std::string fit_skinning = "lbs";
   CLI::App* fit_cmd = addFitCommand(app, fit, fit_residual, fit_skinning);
 
+  odeskin::ExportCommandOptions export_options;
+  double export_fps = 30.0;
+  CLI::App* export_cmd = addExportCommand(app, export_options, export_fps);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -165,6 +190,10 @@ int main(int argc, char** argv) {
     fit.residual_space = fit_residual == "posed" ? odeskin::ResidualSpace::kPosed : odeskin::ResidualSpace::kBind;
     fit.skinning = fit_skinning == "dqs" ? odeskin::SkinningMode::kDualQuaternion : odeskin::SkinningMode::kLinear;
     return odeskin::runFitCommand(fit, console);
+  }
+  if (export_cmd->parsed()) {
+    if (export_cmd->get_option("--fps")->count() > 0) export_options.fps = export_fps;
+    return odeskin::runExportCommand(export_options, console);
   }
   return 2;
 }

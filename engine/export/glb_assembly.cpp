@@ -1,0 +1,340 @@
+// SPDX-License-Identifier: MIT
+#include "glb_assembly.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <tiny_gltf.h>
+
+#include "../io/gltf_baked_writer.hpp"
+
+namespace odeskin {
+namespace {
+
+constexpr std::size_t kMaxBufferBytes = std::size_t{1} << 31;
+
+// One buffer; every view is 4-byte aligned (glTF requires it of vertex attributes and matrices).
+class ModelBuilder {
+ public:
+  tinygltf::Model model;
+
+  ModelBuilder() { model.buffers.emplace_back(); }
+
+  template <class T>
+  int view(const std::vector<T>& values, int target) {
+    std::vector<unsigned char>& data = model.buffers[0].data;
+    while (data.size() % 4 != 0) data.push_back(0);
+    tinygltf::BufferView v;
+    v.buffer = 0;
+    v.byteOffset = data.size();
+    v.byteLength = values.size() * sizeof(T);
+    if (target != 0) v.target = target;
+    const auto* begin = reinterpret_cast<const unsigned char*>(values.data());
+    data.insert(data.end(), begin, begin + v.byteLength);
+    model.bufferViews.push_back(v);
+    return static_cast<int>(model.bufferViews.size() - 1);
+  }
+
+  int accessor(int view, int component_type, int type, std::size_t count) {
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.componentType = component_type;
+    a.type = type;
+    a.count = count;
+    model.accessors.push_back(a);
+    return static_cast<int>(model.accessors.size() - 1);
+  }
+
+  // Float accessor over new data, with min/max per component when asked (POSITION, times).
+  int floats(const std::vector<float>& values, int type, int components, int target, bool bounds) {
+    const int index = accessor(view(values, target), TINYGLTF_COMPONENT_TYPE_FLOAT, type,
+                               values.size() / static_cast<std::size_t>(components));
+    if (bounds) setBounds(model.accessors[static_cast<std::size_t>(index)], values, components, false);
+    return index;
+  }
+
+  static void setBounds(tinygltf::Accessor& a, const std::vector<float>& values, int components, bool with_zero) {
+    const auto n = static_cast<std::size_t>(components);
+    a.minValues.assign(n, with_zero ? 0.0 : std::numeric_limits<double>::infinity());
+    a.maxValues.assign(n, with_zero ? 0.0 : -std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      a.minValues[i % n] = std::min(a.minValues[i % n], static_cast<double>(values[i]));
+      a.maxValues[i % n] = std::max(a.maxValues[i % n], static_cast<double>(values[i]));
+    }
+  }
+};
+
+bool allFinite(const std::vector<float>& values) {
+  return std::all_of(values.begin(), values.end(), [](float x) { return std::isfinite(x); });
+}
+
+void putVec3(std::vector<float>& out, const Vec3& v) {
+  out.insert(out.end(), {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
+}
+
+void putQuat(std::vector<float>& out, const glm::dquat& q) {  // glTF order x, y, z, w
+  out.insert(out.end(), {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z), static_cast<float>(q.w)});
+}
+
+// Times in seconds as float32, strictly increasing (the validator's rule), with min/max.
+Result<int> timeAccessor(ModelBuilder& b, const std::vector<double>& t, double segment_seconds, const char* what) {
+  std::vector<float> seconds;
+  for (double x : t) {
+    seconds.push_back(static_cast<float>(x * segment_seconds));
+    if (seconds.size() > 1 && !(seconds.back() > seconds[seconds.size() - 2])) {
+      return invalidArgument(std::string("export: two ") + what + " keys fall on one float32 time near " +
+                             std::to_string(seconds.back()) + " s");
+    }
+  }
+  return b.floats(seconds, TINYGLTF_TYPE_SCALAR, 1, 0, true);
+}
+
+void writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Primitive& primitive, std::size_t joint_count) {
+  const std::size_t count = mesh.positions.size();
+  if (count < 65535) {
+    std::vector<std::uint16_t> indices(mesh.triangles.begin(), mesh.triangles.end());
+    primitive.indices = b.accessor(b.view(indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, indices.size());
+  } else {
+    primitive.indices = b.accessor(b.view(mesh.triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.triangles.size());
+  }
+  std::vector<float> xyz;
+  for (const Vec3& p : mesh.positions) putVec3(xyz, p);
+  primitive.attributes["POSITION"] = b.floats(xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  xyz.clear();
+  for (const Vec3& n : mesh.normals) putVec3(xyz, n);
+  primitive.attributes["NORMAL"] = b.floats(xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  std::vector<float> weights;
+  for (const auto& w : mesh.weights) weights.insert(weights.end(), w.begin(), w.end());
+  primitive.attributes["WEIGHTS_0"] = b.floats(weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  if (joint_count <= 256) {
+    std::vector<std::uint8_t> joints;
+    for (const auto& j : mesh.joints) {
+      for (std::uint32_t x : j) joints.push_back(static_cast<std::uint8_t>(x));
+    }
+    primitive.attributes["JOINTS_0"] = b.accessor(b.view(joints, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, count);
+  } else {
+    std::vector<std::uint16_t> joints;
+    for (const auto& j : mesh.joints) {
+      for (std::uint32_t x : j) joints.push_back(static_cast<std::uint16_t>(x));
+    }
+    primitive.attributes["JOINTS_0"] = b.accessor(b.view(joints, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, count);
+  }
+}
+
+// One morph target's POSITION deltas over the output vertices: dense, or sparse (zeros plus the
+// listed vertices, no bufferView) when that is smaller.
+Result<int> targetAccessor(ModelBuilder& b, const ExportMesh& mesh, const SparseField& field, double factor,
+                           const std::string& name, std::vector<std::int32_t>& slot_of_vertex, bool& sparse) {
+  for (std::size_t k = 0; k < field.vertices.size(); ++k) slot_of_vertex[field.vertices[k]] = static_cast<std::int32_t>(k);
+  std::vector<std::uint32_t> indices;
+  std::vector<float> values;
+  for (std::size_t i = 0; i < mesh.source_vertex.size(); ++i) {
+    const std::int32_t slot = slot_of_vertex[mesh.source_vertex[i]];
+    if (slot < 0) continue;
+    indices.push_back(static_cast<std::uint32_t>(i));
+    putVec3(values, factor * field.values[static_cast<std::size_t>(slot)]);
+  }
+  for (std::uint32_t v : field.vertices) slot_of_vertex[v] = -1;
+  if (!allFinite(values)) return invalidArgument("export: morph target " + name + " has a non-finite displacement");
+  const std::size_t count = mesh.source_vertex.size();
+  const std::size_t index_bytes = count <= 65536 ? 2 : 4;
+  sparse = indices.size() * (index_bytes + 12) < count * 12;
+  if (!sparse) {
+    std::vector<float> dense(count * 3, 0.0f);
+    for (std::size_t k = 0; k < indices.size(); ++k) std::memcpy(&dense[3 * indices[k]], &values[3 * k], 3 * sizeof(float));
+    return b.floats(dense, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  }
+  tinygltf::Accessor a;
+  a.bufferView = -1;
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.type = TINYGLTF_TYPE_VEC3;
+  a.count = count;
+  a.sparse.isSparse = true;
+  a.sparse.count = static_cast<int>(indices.size());
+  if (index_bytes == 2) {
+    a.sparse.indices.bufferView = b.view(std::vector<std::uint16_t>(indices.begin(), indices.end()), 0);
+    a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  } else {
+    a.sparse.indices.bufferView = b.view(indices, 0);
+    a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  }
+  a.sparse.indices.byteOffset = 0;
+  a.sparse.values.bufferView = b.view(values, 0);
+  a.sparse.values.byteOffset = 0;
+  ModelBuilder::setBounds(a, values, 3, indices.size() < count);  // min/max after substitution
+  b.model.accessors.push_back(a);
+  return static_cast<int>(b.model.accessors.size() - 1);
+}
+
+int sampler(tinygltf::Animation& animation, int input, int output) {
+  tinygltf::AnimationSampler s;
+  s.input = input;
+  s.output = output;
+  s.interpolation = "CUBICSPLINE";
+  animation.samplers.push_back(s);
+  return static_cast<int>(animation.samplers.size() - 1);
+}
+
+void channel(tinygltf::Animation& animation, int sampler_index, int node, const char* path) {
+  tinygltf::AnimationChannel c;
+  c.sampler = sampler_index;
+  c.target_node = node;
+  c.target_path = path;
+  animation.channels.push_back(c);
+}
+
+Status writeWeightsAnimation(ModelBuilder& b, const GlbContents& in, tinygltf::Animation& animation) {
+  const WeightKeys& w = *in.weights;
+  const std::size_t targets = w.weightCount();
+  if (targets == 0) return okStatus();
+  const double per_second = 1.0 / in.asset->segment_seconds;
+  ODESKIN_ASSIGN_OR_RETURN(const int input, timeAccessor(b, w.times, in.asset->segment_seconds, "weight"));
+  std::vector<float> output;
+  output.reserve(w.times.size() * targets * 3);
+  for (std::size_t k = 0; k < w.times.size(); ++k) {
+    for (std::size_t j = 0; j < targets; ++j) output.push_back(static_cast<float>(w.in_tangents[k * targets + j] * per_second));
+    for (std::size_t j = 0; j < targets; ++j) output.push_back(static_cast<float>(w.values[k * targets + j]));
+    for (std::size_t j = 0; j < targets; ++j) output.push_back(static_cast<float>(w.out_tangents[k * targets + j] * per_second));
+  }
+  if (!allFinite(output)) return invalidArgument("export: a morph weight key is not finite");
+  const int out = b.floats(output, TINYGLTF_TYPE_SCALAR, 1, 0, false);
+  channel(animation, sampler(animation, input, out), 0, "weights");
+  return okStatus();
+}
+
+Status writeSkeletonAnimation(ModelBuilder& b, const GlbContents& in, int first_joint, tinygltf::Animation& animation) {
+  const SkeletonKeys& s = *in.skeleton;
+  const std::size_t bones = in.asset->bone_count;
+  const double per_second = 1.0 / in.asset->segment_seconds;
+  ODESKIN_ASSIGN_OR_RETURN(const int input, timeAccessor(b, s.times, in.asset->segment_seconds, "skeleton"));
+  for (std::size_t bone = 0; bone < bones; ++bone) {
+    std::vector<float> translation, rotation;
+    for (std::size_t k = 0; k < s.times.size(); ++k) {
+      const std::size_t at = k * bones + bone;
+      putVec3(translation, s.translation_in[at] * per_second);
+      putVec3(translation, s.translations[at]);
+      putVec3(translation, s.translation_out[at] * per_second);
+      putQuat(rotation, s.rotation_in[at] * per_second);
+      putQuat(rotation, s.rotations[at]);
+      putQuat(rotation, s.rotation_out[at] * per_second);
+    }
+    if (!allFinite(translation) || !allFinite(rotation)) {
+      return invalidArgument("export: the animation of bone " + std::to_string(bone) + " is not finite");
+    }
+    const int node = first_joint + static_cast<int>(bone);
+    channel(animation, sampler(animation, input, b.floats(translation, TINYGLTF_TYPE_VEC3, 3, 0, false)), node, "translation");
+    channel(animation, sampler(animation, input, b.floats(rotation, TINYGLTF_TYPE_VEC4, 4, 0, false)), node, "rotation");
+  }
+  return okStatus();
+}
+
+std::string boneName(const DeformAsset& asset, std::size_t bone) {
+  if (bone < asset.bone_names.size() && !asset.bone_names[bone].empty()) return asset.bone_names[bone];
+  return "bone_" + std::to_string(bone);
+}
+
+}  // namespace
+
+Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbContents& in) {
+  const DeformAsset& asset = *in.asset;
+  const ExportMesh& mesh = *in.mesh;
+  const std::size_t bones = asset.bone_count;
+  if (bones == 0 || bones > 65536) return invalidArgument("export: " + std::to_string(bones) + " bones (glTF skins take 1 to 65536 joints)");
+  GlbSummary summary;
+  ModelBuilder b;
+  b.model.asset.version = "2.0";
+  b.model.asset.generator = in.generator;
+
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  writeMesh(b, mesh, primitive, bones);
+  tinygltf::Value::Array names;
+  std::vector<std::int32_t> slot_of_vertex(asset.vertexCount(), -1);
+  for (const SplitTarget& t : in.weights->targets) {
+    const ModeTarget& source = in.targets->targets[t.source];
+    const std::string name = source.name + (t.sign > 0 ? "+" : "-");
+    bool sparse = false;
+    ODESKIN_ASSIGN_OR_RETURN(const int accessor,
+                             targetAccessor(b, mesh, source.field, t.sign * t.scale, name, slot_of_vertex, sparse));
+    primitive.targets.push_back({{"POSITION", accessor}});
+    names.emplace_back(name);
+    summary.sparse_targets += sparse ? 1 : 0;
+  }
+  summary.morph_targets = primitive.targets.size();
+  tinygltf::Mesh gltf_mesh;
+  gltf_mesh.name = "odeskin";
+  gltf_mesh.primitives.push_back(primitive);
+  if (!names.empty()) {
+    gltf_mesh.weights.assign(names.size(), 0.0);
+    tinygltf::Value::Object extras;
+    extras["targetNames"] = tinygltf::Value(names);
+    gltf_mesh.extras = tinygltf::Value(extras);
+  }
+  b.model.meshes.push_back(gltf_mesh);
+
+  // Nodes: 0 the skinned mesh (scene root, identity), 1 the skeleton root, 2 + b the joints.
+  constexpr int kFirstJoint = 2;
+  tinygltf::Node mesh_node;
+  mesh_node.name = "odeskin";
+  mesh_node.mesh = 0;
+  mesh_node.skin = 0;
+  b.model.nodes.push_back(mesh_node);
+  tinygltf::Node skeleton_root;
+  skeleton_root.name = "skeleton";
+  b.model.nodes.push_back(skeleton_root);
+  const SkeletonKeys& keys = *in.skeleton;
+  std::vector<float> inverse_binds;
+  for (std::size_t bone = 0; bone < bones; ++bone) {
+    tinygltf::Node node;
+    node.name = boneName(asset, bone);
+    const Vec3& t = keys.translations[bone];  // the pose at t = 0, for viewers that show no animation
+    const glm::dquat& q = keys.rotations[bone];
+    node.translation = {t.x, t.y, t.z};
+    node.rotation = {q.x, q.y, q.z, q.w};
+    b.model.nodes.push_back(node);
+    // J_b^-1 = translation by -pivot, column-major.
+    const Vec3& p = asset.bone_pivots[bone];
+    inverse_binds.insert(inverse_binds.end(), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, static_cast<float>(-p.x),
+                                               static_cast<float>(-p.y), static_cast<float>(-p.z), 1});
+  }
+  for (std::size_t bone = 0; bone < bones; ++bone) {  // parents may come after their children
+    const std::int32_t parent = keys.parents[bone];
+    const std::size_t parent_node = parent < 0 ? 1 : static_cast<std::size_t>(kFirstJoint + parent);
+    b.model.nodes[parent_node].children.push_back(kFirstJoint + static_cast<int>(bone));
+  }
+  if (!allFinite(inverse_binds)) return invalidArgument("export: a bone pivot is not finite");
+  tinygltf::Skin skin;
+  skin.name = "odeskin";
+  skin.skeleton = 1;
+  for (std::size_t bone = 0; bone < bones; ++bone) skin.joints.push_back(kFirstJoint + static_cast<int>(bone));
+  skin.inverseBindMatrices = b.floats(inverse_binds, TINYGLTF_TYPE_MAT4, 16, 0, false);
+  b.model.skins.push_back(skin);
+
+  tinygltf::Animation animation;
+  animation.name = "odeskin";
+  ODESKIN_TRY(writeWeightsAnimation(b, in, animation));
+  ODESKIN_TRY(writeSkeletonAnimation(b, in, kFirstJoint, animation));
+  b.model.animations.push_back(animation);
+
+  tinygltf::Scene scene;
+  scene.name = "odeskin";
+  scene.nodes = {0, 1};
+  b.model.scenes.push_back(scene);
+  b.model.defaultScene = 0;
+  std::vector<unsigned char>& data = b.model.buffers[0].data;
+  data.resize((data.size() + 3) / 4 * 4, 0);
+  if (data.size() >= kMaxBufferBytes) {
+    return invalidArgument("export: " + std::to_string(data.size()) + " bytes of buffer data; most glTF tools fail at 2 GiB; export fewer segments");
+  }
+  summary.buffer_bytes = data.size();
+  ODESKIN_TRY(writeGlbAtomically(path, b.model));
+  return summary;
+}
+
+}  // namespace odeskin

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// Puts the compact export together as one glTF 2.0 binary (ECOSYSTEM.md 2): the skinned mesh node
+// at the scene root with identity transform (the spec ignores its transform; the validator warns on
+// any), a skeleton root node holding the joint nodes, the skin with inverse bind matrices J_b^-1,
+// morph targets (float POSITION deltas with min/max, sparse where that is smaller, names in
+// mesh.extras.targetNames), and one animation "odeskin": the CUBICSPLINE "weights" channel of the
+// mesh node and CUBICSPLINE translation and rotation channels of every joint, times in seconds
+// (t * segment_seconds) and tangents per second.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "../core/status.hpp"
+#include "export_mesh.hpp"
+#include "mode_targets.hpp"
+#include "skeleton_keys.hpp"
+#include "weight_keys.hpp"
+
+namespace odeskin {
+
+struct GlbContents {
+  const DeformAsset* asset = nullptr;
+  const ExportMesh* mesh = nullptr;
+  const ModeTargetSet* targets = nullptr;
+  const WeightKeys* weights = nullptr;
+  const SkeletonKeys* skeleton = nullptr;
+  std::string generator = "odeskin export";
+};
+
+struct GlbSummary {
+  std::size_t morph_targets = 0;
+  std::size_t sparse_targets = 0;  // written as sparse accessors
+  std::size_t buffer_bytes = 0;
+};
+
+// kInvalidArgument for more than 65536 joints, values that are not finite, key times that are not
+// increasing once rounded to float32, or a buffer of 2 GiB or more (most tools break there);
+// writeGlbAtomically's kIoError naming `path`.
+Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbContents& contents);
+
+}  // namespace odeskin

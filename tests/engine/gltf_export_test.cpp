@@ -1,0 +1,625 @@
+// SPDX-License-Identifier: MIT
+// `odeskin export` read back: the written GLB is decoded with tinygltf and played by an independent
+// implementation of the glTF 2.0 specification (accessors with sparse substitution, LINEAR / STEP /
+// CUBICSPLINE samplers with quaternion normalisation, node hierarchy, morph targets then linear
+// skinning with joint matrix = world(joint) * IBM, the skinned mesh node's own transform ignored),
+// and compared with odeskin's player (DeformPlayer + the reference kernel) at keys and mid-segment.
+#include "engine/export/gltf_export.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include "../pipeline/dataset_fixtures.hpp"
+#include "engine/export/mode_targets.hpp"
+#include "engine/io/obj_reader.hpp"
+#include "engine/offline/deform_player.hpp"
+#include "engine/offline/procedural_arm.hpp"
+#include "engine/pipeline/fit_pipeline.hpp"
+#include "temp_dir_test.hpp"
+
+namespace odeskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kMatchTolerance = 1e-4;  // of the bounding box's longest side (issue 4.1)
+constexpr double kKeyTolerance = 1e-6;    // at key times: float32 rounding only
+
+// ---------------------------------------------------------------------------------------------
+// glTF 2.0, read independently of the writer
+
+std::size_t componentCount(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+  }
+}
+
+double readComponent(const unsigned char* p, int component_type, bool normalized) {
+  switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float f;
+      std::memcpy(&f, p, 4);
+      return f;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      std::uint32_t v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    default: ADD_FAILURE() << "unexpected component type " << component_type; return 0.0;
+  }
+}
+
+// Every component of every element, sparse values substituted (spec 3.6.2.3).
+std::vector<double> readAccessor(const tinygltf::Model& m, int index) {
+  const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(index));
+  const std::size_t n = componentCount(a.type);
+  const std::size_t size = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType)));
+  std::vector<double> out(a.count * n, 0.0);
+  if (a.bufferView >= 0) {
+    const tinygltf::BufferView& v = m.bufferViews.at(static_cast<std::size_t>(a.bufferView));
+    const std::size_t stride = v.byteStride ? v.byteStride : n * size;
+    const unsigned char* base = m.buffers.at(static_cast<std::size_t>(v.buffer)).data.data() + v.byteOffset + a.byteOffset;
+    for (std::size_t e = 0; e < a.count; ++e) {
+      for (std::size_t c = 0; c < n; ++c) out[e * n + c] = readComponent(base + e * stride + c * size, a.componentType, a.normalized);
+    }
+  }
+  if (a.sparse.isSparse) {
+    const tinygltf::BufferView& iv = m.bufferViews.at(static_cast<std::size_t>(a.sparse.indices.bufferView));
+    const tinygltf::BufferView& vv = m.bufferViews.at(static_cast<std::size_t>(a.sparse.values.bufferView));
+    const unsigned char* ip = m.buffers[0].data.data() + iv.byteOffset + static_cast<std::size_t>(a.sparse.indices.byteOffset);
+    const unsigned char* vp = m.buffers[0].data.data() + vv.byteOffset + static_cast<std::size_t>(a.sparse.values.byteOffset);
+    const std::size_t isize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.sparse.indices.componentType)));
+    double previous = -1.0;
+    for (int k = 0; k < a.sparse.count; ++k) {
+      const double e = readComponent(ip + static_cast<std::size_t>(k) * isize, a.sparse.indices.componentType, false);
+      EXPECT_GT(e, previous) << "sparse indices must increase";
+      EXPECT_LT(e, static_cast<double>(a.count));
+      previous = e;
+      for (std::size_t c = 0; c < n; ++c) {
+        out[static_cast<std::size_t>(e) * n + c] = readComponent(vp + (static_cast<std::size_t>(k) * n + c) * size, a.componentType, a.normalized);
+      }
+    }
+  }
+  return out;
+}
+
+struct Channel {
+  int node = -1;
+  std::string path;
+  std::string interpolation;
+  std::vector<double> input, output;
+};
+
+// One sampler at time `t` (spec 3.11 and appendix C): `n` components per element.
+std::vector<double> sample(const Channel& c, double t, std::size_t n) {
+  const bool cubic = c.interpolation == "CUBICSPLINE";
+  const std::size_t per_key = cubic ? 3 * n : n;
+  const std::size_t value_offset = cubic ? n : 0;
+  auto value = [&](std::size_t k) {
+    return std::vector<double>(c.output.begin() + static_cast<std::ptrdiff_t>(k * per_key + value_offset),
+                               c.output.begin() + static_cast<std::ptrdiff_t>(k * per_key + value_offset + n));
+  };
+  const std::size_t keys = c.input.size();
+  if (t <= c.input.front()) return value(0);
+  if (t >= c.input.back()) return value(keys - 1);
+  std::size_t k = 0;
+  while (k + 2 < keys && c.input[k + 1] <= t) ++k;
+  const double td = c.input[k + 1] - c.input[k];
+  const double s = (t - c.input[k]) / td;
+  std::vector<double> out(n);
+  const std::vector<double> v0 = value(k), v1 = value(k + 1);
+  if (c.interpolation == "STEP") return v0;
+  if (c.interpolation == "LINEAR") {
+    if (c.path == "rotation") {
+      glm::dquat a(v0[3], v0[0], v0[1], v0[2]), b(v1[3], v1[0], v1[1], v1[2]);
+      double d = glm::dot(a, b);
+      if (d < 0.0) b = -b, d = -d;
+      const double angle = std::acos(std::min(d, 1.0));
+      const glm::dquat q = angle < 1e-9 ? glm::normalize(a + s * (b - a))
+                                        : (std::sin((1 - s) * angle) * a + std::sin(s * angle) * b) / std::sin(angle);
+      return {q.x, q.y, q.z, q.w};
+    }
+    for (std::size_t i = 0; i < n; ++i) out[i] = (1.0 - s) * v0[i] + s * v1[i];
+    return out;
+  }
+  const double s2 = s * s, s3 = s2 * s;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double b0 = c.output[k * per_key + 2 * n + i];  // out-tangent of key k
+    const double a1 = c.output[(k + 1) * per_key + i];    // in-tangent of key k+1
+    out[i] = (2 * s3 - 3 * s2 + 1) * v0[i] + td * (s3 - 2 * s2 + s) * b0 + (-2 * s3 + 3 * s2) * v1[i] + td * (s3 - s2) * a1;
+  }
+  if (c.path == "rotation") {  // spec: re-normalise after interpolation
+    const double len = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
+    for (double& x : out) x /= len;
+  }
+  return out;
+}
+
+glm::dmat4 trs(const std::vector<double>& t, const std::vector<double>& r, const std::vector<double>& s) {
+  glm::dmat4 m(1.0);
+  if (!t.empty()) m = glm::translate(m, Vec3(t[0], t[1], t[2]));
+  if (!r.empty()) m = m * glm::mat4_cast(glm::dquat(r[3], r[0], r[1], r[2]));
+  if (!s.empty()) m = glm::scale(m, Vec3(s[0], s[1], s[2]));
+  return m;
+}
+
+// A decoded export: the mesh of its one skinned node, played at any time in seconds.
+class GltfPlayback {
+ public:
+  explicit GltfPlayback(const fs::path& path) {
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ok_ = loader.LoadBinaryFromFile(&model_, &err, &warn, path.string());
+    EXPECT_TRUE(ok_) << err;
+    if (!ok_) return;
+    const tinygltf::Scene& scene = model_.scenes.at(static_cast<std::size_t>(std::max(model_.defaultScene, 0)));
+    parents_.assign(model_.nodes.size(), -1);
+    for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
+      for (int child : model_.nodes[n].children) parents_[static_cast<std::size_t>(child)] = static_cast<int>(n);
+    }
+    for (int n : scene.nodes) {
+      if (model_.nodes[static_cast<std::size_t>(n)].mesh >= 0) mesh_node_ = n;
+    }
+    EXPECT_GE(mesh_node_, 0) << "no mesh node at the scene root";
+    if (mesh_node_ < 0) return;
+    const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(mesh_node_)];
+    const tinygltf::Primitive& p = model_.meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
+    base_ = readAccessor(model_, p.attributes.at("POSITION"));
+    for (const auto& target : p.targets) targets_.push_back(readAccessor(model_, target.at("POSITION")));
+    default_weights_ = node.weights.empty() ? model_.meshes[static_cast<std::size_t>(node.mesh)].weights : node.weights;
+    default_weights_.resize(targets_.size(), 0.0);
+    if (node.skin >= 0) {
+      const tinygltf::Skin& skin = model_.skins.at(static_cast<std::size_t>(node.skin));
+      joint_nodes_ = skin.joints;
+      ibm_ = readAccessor(model_, skin.inverseBindMatrices);
+      joints_ = readAccessor(model_, p.attributes.at("JOINTS_0"));
+      weights_ = readAccessor(model_, p.attributes.at("WEIGHTS_0"));
+    }
+    for (const tinygltf::Animation& a : model_.animations) {
+      for (const tinygltf::AnimationChannel& ch : a.channels) {
+        const tinygltf::AnimationSampler& s = a.samplers.at(static_cast<std::size_t>(ch.sampler));
+        channels_.push_back(Channel{ch.target_node, ch.target_path, s.interpolation, readAccessor(model_, s.input),
+                                    readAccessor(model_, s.output)});
+      }
+    }
+  }
+
+  bool ok() const { return ok_ && mesh_node_ >= 0; }
+  const tinygltf::Model& model() const { return model_; }
+  const std::vector<Channel>& channels() const { return channels_; }
+  int meshNode() const { return mesh_node_; }
+  std::size_t vertexCount() const { return base_.size() / 3; }
+  const std::vector<double>& joints() const { return joints_; }
+  const std::vector<double>& weights() const { return weights_; }
+  const std::vector<double>& inverseBinds() const { return ibm_; }
+
+  std::vector<Vec3> positionsAt(double seconds) const {
+    std::vector<double> morph = default_weights_;
+    std::vector<std::vector<double>> t(model_.nodes.size()), r(model_.nodes.size()), s(model_.nodes.size());
+    for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
+      t[n] = model_.nodes[n].translation;
+      r[n] = model_.nodes[n].rotation;
+      s[n] = model_.nodes[n].scale;
+    }
+    for (const Channel& c : channels_) {
+      const auto node = static_cast<std::size_t>(c.node);
+      if (c.path == "weights") morph = sample(c, seconds, targets_.size());
+      if (c.path == "translation") t[node] = sample(c, seconds, 3);
+      if (c.path == "rotation") r[node] = sample(c, seconds, 4);
+      if (c.path == "scale") s[node] = sample(c, seconds, 3);
+    }
+    std::vector<glm::dmat4> world(model_.nodes.size());
+    std::vector<bool> done(model_.nodes.size(), false);
+    std::function<glm::dmat4(std::size_t)> worldOf = [&](std::size_t n) {
+      if (done[n]) return world[n];
+      const tinygltf::Node& node = model_.nodes[n];
+      glm::dmat4 local = trs(t[n], r[n], s[n]);
+      if (node.matrix.size() == 16) {
+        for (int c = 0; c < 4; ++c) {
+          for (int row = 0; row < 4; ++row) local[c][row] = node.matrix[static_cast<std::size_t>(4 * c + row)];
+        }
+      }
+      world[n] = parents_[n] < 0 ? local : worldOf(static_cast<std::size_t>(parents_[n])) * local;
+      done[n] = true;
+      return world[n];
+    };
+    std::vector<glm::dmat4> joint_matrices;
+    for (std::size_t j = 0; j < joint_nodes_.size(); ++j) {
+      glm::dmat4 ibm;
+      for (int c = 0; c < 4; ++c) {
+        for (int row = 0; row < 4; ++row) ibm[c][row] = ibm_[16 * j + static_cast<std::size_t>(4 * c + row)];
+      }
+      joint_matrices.push_back(worldOf(static_cast<std::size_t>(joint_nodes_[j])) * ibm);
+    }
+    std::vector<Vec3> out(vertexCount());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      Vec3 p(base_[3 * i], base_[3 * i + 1], base_[3 * i + 2]);  // morph targets first (spec 3.7.2.2)
+      for (std::size_t k = 0; k < targets_.size(); ++k) {
+        p += morph[k] * Vec3(targets_[k][3 * i], targets_[k][3 * i + 1], targets_[k][3 * i + 2]);
+      }
+      if (joint_nodes_.empty()) {
+        out[i] = Vec3(worldOf(static_cast<std::size_t>(mesh_node_)) * glm::dvec4(p, 1.0));
+        continue;
+      }
+      glm::dmat4 skin(0.0);  // then skinning; the skinned mesh node's transform is ignored
+      for (std::size_t k = 0; k < 4; ++k) {
+        skin += weights_[4 * i + k] * joint_matrices[static_cast<std::size_t>(joints_[4 * i + k])];
+      }
+      out[i] = Vec3(skin * glm::dvec4(p, 1.0));
+    }
+    return out;
+  }
+
+ private:
+  bool ok_ = false;
+  tinygltf::Model model_;
+  std::vector<int> parents_;
+  int mesh_node_ = -1;
+  std::vector<double> base_;
+  std::vector<std::vector<double>> targets_;
+  std::vector<double> default_weights_;
+  std::vector<int> joint_nodes_;
+  std::vector<double> ibm_, joints_, weights_;
+  std::vector<Channel> channels_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Assets and odeskin's own playback
+
+std::vector<Vec3> playerPositions(const DeformAsset& asset, double t) {
+  Result<DeformPlayer> player = DeformPlayer::create(asset);
+  EXPECT_TRUE(player.ok());
+  std::vector<ModeBasisValue> basis(player->basisSize());
+  std::vector<BoneTransform> bones(asset.bone_count);
+  std::vector<Vec3> out(asset.vertexCount());
+  const auto [segment, tau] = player->locate(t);
+  player->basisAt(tau, basis);
+  player->bonesAt(asset, segment, tau, bones);
+  EXPECT_TRUE(referenceJob(asset, segment, basis, bones, out).run().ok());
+  if (asset.render.empty()) return out;
+  std::vector<Vec3> render;
+  for (std::uint32_t v : asset.render.topology_of_render) render.push_back(out[v]);
+  return render;
+}
+
+// The procedural arm bent to 100 degrees and back to 40 (two segments, so the second carries a rate),
+// with the upper arm as the forearm's parent.
+DeformAsset armAsset(std::vector<Material> materials, bool alternate_materials, ResidualSpace space = ResidualSpace::kBind,
+                     SkinningMode skinning = SkinningMode::kLinear) {
+  ArmOptions bent;
+  ArmOptions half = bent;
+  half.bend_degrees = 40.0;
+  half.bulge = 0.15;
+  Result<ProceduralArm> a = makeProceduralArm(bent);
+  Result<ProceduralArm> b = makeProceduralArm(half);
+  EXPECT_TRUE(a.ok() && b.ok());
+  FitInput input = a->fit_input;
+  input.poses.push_back(b->end_positions);
+  input.key_poses.push_back(b->fit_input.key_poses[1]);
+  FitOptions options;
+  options.modes = 6;
+  options.residual_space = space;
+  options.skinning = skinning;
+  options.materials = std::move(materials);
+  if (alternate_materials) {
+    for (std::size_t c = 0; c < input.curves.size(); ++c) options.curve_materials.push_back(static_cast<std::uint32_t>(c % 2));
+  }
+  Result<DeformAsset> asset = fitDeformAsset(input, options);
+  EXPECT_TRUE(asset.ok()) << asset.status().toString();
+  DeformAsset out = std::move(asset).value();
+  out.bone_parents = {-1, 0};
+  out.bone_names = {"upper_arm", "forearm"};
+  out.segment_seconds = 0.75;
+  return out;
+}
+
+DeformAsset fitted(const Result<ExampleSet>& examples, const Material& material) {
+  EXPECT_TRUE(examples.ok()) << examples.status().toString();
+  PipelineOptions options;
+  options.material = material;
+  Result<PipelineResult> result = runFitPipeline(*examples, options);
+  EXPECT_TRUE(result.ok()) << result.status().toString();
+  return std::move(result->asset);
+}
+
+class GltfExportTest : public testing::TempDirTest {
+ protected:
+  GltfExportTest() : TempDirTest("odeskin_gltf_export_") {}
+
+  // Exports `asset`, reads it back and compares with the player at keys and inside segments.
+  GltfExportReport exportAndCompare(const DeformAsset& asset, const std::string& name) {
+    const fs::path path = dir_ / (name + ".glb");
+    Result<GltfExportReport> report = exportGltf(asset, path, GltfExportOptions{});
+    EXPECT_TRUE(report.ok()) << report.status().toString();
+    if (!report.ok()) return {};
+    EXPECT_FALSE(report->baked);
+    EXPECT_TRUE(fs::exists(path));
+    EXPECT_FALSE(fs::exists(fs::path(path.string() + ".partial")));
+    GltfPlayback gltf(path);
+    if (!gltf.ok()) return *report;
+    expectSkinRules(gltf, asset.bone_count);
+    expectWeightKeysInUnitRange(gltf);
+    const double box = report->box;
+    const double t_end = static_cast<double>(asset.segments.size());
+    double worst = 0.0, worst_t = 0.0, worst_key = 0.0;
+    for (double t = 0.0; t <= t_end + 1e-9; t += 0.125) {
+      for (const double at : {t, std::min(t + 0.0371, t_end)}) {  // keys, and times off the key grid
+        const std::vector<Vec3> expected = playerPositions(asset, at);
+        const std::vector<Vec3> played = gltf.positionsAt(at * asset.segment_seconds);
+        EXPECT_EQ(played.size(), expected.size());
+        if (played.size() != expected.size()) return *report;
+        const bool key = at == std::floor(at);
+        for (std::size_t i = 0; i < played.size(); ++i) {
+          const double e = glm::length(played[i] - expected[i]) / box;
+          if (e > worst) worst = e, worst_t = at;
+          if (key) worst_key = std::max(worst_key, e);
+        }
+      }
+    }
+    std::printf("%s: %zu targets, %zu weight keys, %zu skeleton keys, %ju bytes; max |glTF - player| %.2e of the box "
+                "(t = %.4f), at the keys %.2e; bounds: weights %.2e, skeleton %.2e, key corrections %.2e\n",
+                name.c_str(), report->morph_targets, report->weight_keys, report->skeleton_keys, report->bytes, worst,
+                worst_t, worst_key, report->weight_position_error, report->skeleton_position_error,
+                report->player_deviation);
+    EXPECT_LT(worst, kMatchTolerance) << name << " at t = " << worst_t;
+    // At the keys every weight and joint transform is a key value itself: the example poses come
+    // back to float32 rounding, however many segments were summed before (the key corrections).
+    EXPECT_LT(worst_key, kKeyTolerance) << name;
+    return *report;
+  }
+
+  // ECOSYSTEM.md 2.1-2.2: skinned mesh node at the root with no transform, IBM last rows, weights.
+  static void expectSkinRules(const GltfPlayback& gltf, std::uint32_t bones) {
+    const tinygltf::Node& node = gltf.model().nodes[static_cast<std::size_t>(gltf.meshNode())];
+    EXPECT_TRUE(node.translation.empty() && node.rotation.empty() && node.scale.empty() && node.matrix.empty());
+    for (const tinygltf::Node& n : gltf.model().nodes) {
+      EXPECT_EQ(std::count(n.children.begin(), n.children.end(), gltf.meshNode()), 0) << "the mesh node has a parent";
+    }
+    for (const Channel& c : gltf.channels()) {
+      if (c.node == gltf.meshNode()) {
+        EXPECT_EQ(c.path, "weights");
+      }
+    }
+    const std::vector<double>& ibm = gltf.inverseBinds();
+    ASSERT_EQ(ibm.size(), 16u * bones);
+    for (std::size_t j = 0; j < bones; ++j) {
+      EXPECT_EQ(ibm[16 * j + 3], 0.0);
+      EXPECT_EQ(ibm[16 * j + 7], 0.0);
+      EXPECT_EQ(ibm[16 * j + 11], 0.0);
+      EXPECT_EQ(ibm[16 * j + 15], 1.0);
+    }
+    const std::vector<double>& joints = gltf.joints();
+    const std::vector<double>& weights = gltf.weights();
+    ASSERT_EQ(weights.size(), 4 * gltf.vertexCount());
+    for (std::size_t i = 0; i < gltf.vertexCount(); ++i) {
+      float sum = 0.0f;  // accumulated in float32 as the glTF-Validator does
+      int non_zero = 0;
+      for (std::size_t k = 0; k < 4; ++k) {
+        const double w = weights[4 * i + k];
+        const double j = joints[4 * i + k];
+        EXPECT_GE(w, 0.0);
+        EXPECT_LT(j, bones);
+        if (w == 0.0) {
+          EXPECT_EQ(j, 0.0) << "unused joint slots must be 0";
+        }
+        if (w > 0.0) {
+          ++non_zero;
+          for (std::size_t other = 0; other < k; ++other) {
+            if (weights[4 * i + other] > 0.0) {
+              EXPECT_NE(joints[4 * i + other], j) << "joint twice at vertex " << i;
+            }
+          }
+        }
+        sum += static_cast<float>(w);
+      }
+      EXPECT_LE(std::abs(sum - 1.0f), 2e-7f * static_cast<float>(non_zero)) << "vertex " << i;
+    }
+  }
+
+  static void expectWeightKeysInUnitRange(const GltfPlayback& gltf) {
+    const std::size_t targets = gltf.model().meshes[0].primitives[0].targets.size();
+    for (const Channel& c : gltf.channels()) {
+      if (c.path != "weights") continue;
+      EXPECT_EQ(c.interpolation, "CUBICSPLINE");
+      EXPECT_EQ(c.output.size(), 3 * targets * c.input.size());
+      for (std::size_t k = 0; k < c.input.size(); ++k) {
+        if (k > 0) {
+          EXPECT_GT(c.input[k], c.input[k - 1]);
+        }
+        for (std::size_t j = 0; j < targets; ++j) {
+          const double w = c.output[k * 3 * targets + targets + j];
+          EXPECT_GE(w, 0.0);
+          EXPECT_LE(w, 1.0);
+        }
+      }
+    }
+  }
+};
+
+TEST_F(GltfExportTest, ModeTargetsSumToTheKernelResidual) {
+  // Inside segment s the targets of segment s weighted by their curves, plus everything earlier
+  // held, reproduce the reference kernel's bind-space residual (exactly up to rounding, except the
+  // key correction, whose difference from the player is the stated deviation bound).
+  const DeformAsset asset = armAsset({staticMaterial(), skinMaterial()}, true);
+  Result<DeformPlayer> player = DeformPlayer::create(asset);
+  ASSERT_TRUE(player.ok());
+  Result<ModeTargetSet> set = buildModeTargets(asset, *player);
+  ASSERT_TRUE(set.ok()) << set.status().toString();
+  const std::vector<BoneTransform> identity(asset.bone_count, BoneTransform(1.0));
+  std::vector<ModeBasisValue> basis(player->basisSize());
+  std::vector<Vec3> kernel(asset.vertexCount());
+  for (std::uint32_t s = 0; s < asset.segments.size(); ++s) {
+    for (const double tau : {0.0, 0.3, 0.77, 1.0}) {
+      player->basisAt(tau, basis);
+      ASSERT_TRUE(referenceJob(asset, s, basis, identity, kernel).run().ok());  // identity bones: X + residual
+      std::vector<Vec3> sum(asset.vertexCount());
+      for (std::size_t i = 0; i < sum.size(); ++i) sum[i] = asset.rest_positions[i] + asset.segments[0].base_residuals[i];
+      for (const ModeTarget& t : set->targets) {
+        if (t.segment > s) continue;
+        const double w = t.curve.at(t.segment == s ? tau : 1.0).value;
+        for (std::size_t k = 0; k < t.field.vertices.size(); ++k) sum[t.field.vertices[k]] += w * t.field.values[k];
+      }
+      double worst = 0.0;
+      for (std::size_t i = 0; i < sum.size(); ++i) worst = std::max(worst, glm::length(sum[i] - kernel[i]));
+      EXPECT_LE(worst, remainderWeight(tau) * set->max_player_deviation + 1e-12) << "segment " << s << " tau " << tau;
+    }
+  }
+}
+
+TEST_F(GltfExportTest, ArmWithTwoMaterialsOnAlternateCurves) {
+  const DeformAsset asset = armAsset({staticMaterial(), skinMaterial()}, true);
+  const GltfExportReport report = exportAndCompare(asset, "arm_two_materials");
+  EXPECT_EQ(report.joints, 2u);
+  EXPECT_GT(report.merged_fields, 0u);  // the static material's modes all follow gamma = tau
+}
+
+TEST_F(GltfExportTest, ArmDynamicSkin) { exportAndCompare(armAsset({skinMaterial()}, false), "arm_skin"); }
+
+TEST_F(GltfExportTest, RenderLayoutOfAGltfInputIsWritten) {
+  // A glTF-fitted asset keeps its render vertices (split at seams): here every face's first corner
+  // gets its own copy of the topology vertex, so render vertices outnumber topology vertices.
+  DeformAsset asset = armAsset({skinMaterial()}, false);
+  for (std::uint32_t v = 0; v < asset.vertexCount(); ++v) asset.render.topology_of_render.push_back(v);
+  asset.render.faces = asset.faces;
+  for (std::size_t f = 0; f < asset.faces.faceCount(); f += 7) {
+    std::uint32_t& corner = asset.render.faces.indices[asset.faces.face_offsets[f]];
+    asset.render.topology_of_render.push_back(corner);
+    corner = static_cast<std::uint32_t>(asset.render.topology_of_render.size() - 1);
+  }
+  const GltfExportReport report = exportAndCompare(asset, "arm_render_layout");
+  EXPECT_EQ(report.vertices, asset.render.topology_of_render.size());
+}
+
+TEST_F(GltfExportTest, CylinderWithItsRigStaticAndSkin) {
+  const DeformAsset skin = fitted(testing::cylinderWithRig(true, true), skinMaterial());
+  ASSERT_EQ(skin.segments.size(), 3u);
+  exportAndCompare(skin, "cylinder_skin");
+  exportAndCompare(fitted(testing::cylinderWithRig(true, true), staticMaterial()), "cylinder_static");
+}
+
+TEST_F(GltfExportTest, HorseFourKeysAutoRigSkin) {
+  const DeformAsset asset = fitted(readObjSequence(testing::horseFrames({1, 5, 9, 13})), skinMaterial());
+  ASSERT_EQ(asset.segments.size(), 3u);
+  const GltfExportReport report = exportAndCompare(asset, "horse");
+  EXPECT_LT(report.weight_position_error, 1e-5);
+  EXPECT_LT(report.skeleton_position_error, 1e-5);
+}
+
+TEST_F(GltfExportTest, PosedResidualAndDualQuaternionAssetsAreBaked) {
+  for (const bool posed : {true, false}) {
+    const DeformAsset asset = posed ? armAsset({skinMaterial()}, false, ResidualSpace::kPosed)
+                                    : armAsset({skinMaterial()}, false, ResidualSpace::kBind, SkinningMode::kDualQuaternion);
+    const fs::path path = dir_ / (posed ? "posed.glb" : "dqs.glb");
+    GltfExportOptions options;
+    options.bake_fps = 8.0;
+    Result<GltfExportReport> report = exportGltf(asset, path, options);
+    ASSERT_TRUE(report.ok()) << report.status().toString();
+    EXPECT_TRUE(report->baked);
+    EXPECT_NE(report->bake_reason.find(posed ? "posed space" : "dual-quaternion"), std::string::npos);
+    // 2 segments of 0.75 s at 8 fps: frames at 0, 1/8, ..., 11/8 s and the end at 1.5 s.
+    EXPECT_EQ(report->frames, 13u);
+    GltfPlayback gltf(path);
+    ASSERT_TRUE(gltf.ok());
+    EXPECT_TRUE(gltf.model().skins.empty());
+    ASSERT_EQ(gltf.channels().size(), 1u);
+    EXPECT_EQ(gltf.channels()[0].interpolation, "LINEAR");
+    // At frame times the bake is the player (float32); between them it cross-fades linearly.
+    for (const double seconds : {0.0, 0.5, 1.375, 1.5}) {
+      const std::vector<Vec3> expected = playerPositions(asset, seconds / asset.segment_seconds);
+      const std::vector<Vec3> played = gltf.positionsAt(seconds);
+      ASSERT_EQ(played.size(), expected.size());
+      double worst = 0.0;
+      for (std::size_t i = 0; i < played.size(); ++i) worst = std::max(worst, glm::length(played[i] - expected[i]));
+      EXPECT_LT(worst, 1e-6) << "t = " << seconds << " s";
+    }
+    const std::vector<Vec3> a = playerPositions(asset, 0.5 / 0.75), b = playerPositions(asset, 0.625 / 0.75);
+    const std::vector<Vec3> mid = gltf.positionsAt(0.5625);
+    for (std::size_t i = 0; i < mid.size(); ++i) ASSERT_LT(glm::length(mid[i] - 0.5 * (a[i] + b[i])), 1e-6);
+  }
+}
+
+TEST_F(GltfExportTest, BakeOnRequest) {
+  const DeformAsset asset = armAsset({skinMaterial()}, false);
+  GltfExportOptions options;
+  options.bake = true;
+  options.bake_fps = 4.0;
+  Result<GltfExportReport> report = exportGltf(asset, dir_ / "bake.glb", options);
+  ASSERT_TRUE(report.ok()) << report.status().toString();
+  EXPECT_TRUE(report->baked);
+  EXPECT_TRUE(report->bake_reason.empty());
+  EXPECT_EQ(report->frames, 7u);  // 0 .. 1.5 s at 4 fps
+  EXPECT_EQ(report->morph_targets, 6u);
+}
+
+TEST_F(GltfExportTest, UnwritableOutputLeavesNoFile) {
+  const DeformAsset asset = armAsset({skinMaterial()}, false);
+  // The parent is a regular file: nothing can be created there.
+  const fs::path blocker = write("not-a-folder", "x");
+  Result<GltfExportReport> report = exportGltf(asset, blocker / "out.glb", GltfExportOptions{});
+  ASSERT_FALSE(report.ok());
+  EXPECT_EQ(report.status().code(), StatusCode::kIoError);
+  EXPECT_NE(report.status().message().find("out.glb"), std::string::npos);
+  // The output is a non-empty folder: the file is written, then cannot replace it, and is removed.
+  const fs::path folder = dir_ / "taken.glb";
+  fs::create_directories(folder / "inside");
+  report = exportGltf(asset, folder, GltfExportOptions{});
+  ASSERT_FALSE(report.ok());
+  EXPECT_EQ(report.status().code(), StatusCode::kIoError);
+  EXPECT_TRUE(fs::is_directory(folder / "inside"));
+  EXPECT_FALSE(fs::exists(dir_ / "taken.glb.partial"));
+  report = exportGltf(asset, folder, [] {
+    GltfExportOptions o;
+    o.bake = true;
+    return o;
+  }());
+  ASSERT_FALSE(report.ok());
+  EXPECT_FALSE(fs::exists(dir_ / "taken.glb.partial"));
+}
+
+TEST_F(GltfExportTest, RejectsBadOptionsAndAssets) {
+  DeformAsset asset = armAsset({skinMaterial()}, false);
+  GltfExportOptions options;
+  options.tolerance = 0.0;
+  Result<GltfExportReport> report = exportGltf(asset, dir_ / "x.glb", options);
+  ASSERT_FALSE(report.ok());
+  EXPECT_EQ(report.status().code(), StatusCode::kInvalidArgument);
+  options = GltfExportOptions{};
+  options.bake_fps = -1.0;
+  EXPECT_FALSE(exportGltf(asset, dir_ / "x.glb", options).ok());
+  asset.bone_parents = {1, 0};  // a cycle
+  report = exportGltf(asset, dir_ / "x.glb", GltfExportOptions{});
+  ASSERT_FALSE(report.ok());
+  EXPECT_NE(report.status().message().find("cycle"), std::string::npos);
+  asset.bone_parents.clear();
+  asset.segments[0].coefficients.pop_back();  // inconsistent sizes
+  EXPECT_FALSE(exportGltf(asset, dir_ / "x.glb", GltfExportOptions{}).ok());
+  EXPECT_FALSE(fs::exists(dir_ / "x.glb"));
+}
+
+}  // namespace
+}  // namespace odeskin
