@@ -66,6 +66,10 @@ class Baseline {
 
  protected:
   explicit Baseline(std::size_t vertex_count) : vertex_count_(vertex_count) {}
+  Baseline(const Baseline&) = default;
+  Baseline(Baseline&&) = default;
+  Baseline& operator=(const Baseline&) = default;
+  Baseline& operator=(Baseline&&) = default;
   // The checks shared by every method; bone_count 0 skips the bone check.
   Status checkFrame(const BaselineFrameInput& frame, std::span<const Vec3> out, std::uint32_t segment_count,
                     std::size_t bone_count) const;

@@ -10,6 +10,7 @@
 
 #include "arm_fixture.hpp"
 #include "engine/baselines/odeskin_baseline.hpp"
+#include "engine/kernels/fourier_deform_job.hpp"
 #include "engine/offline/residual_fit.hpp"
 
 namespace odeskin {
@@ -38,11 +39,10 @@ FdCurveDeformer makeFd(const DeformAsset& asset, std::uint32_t points, std::uint
   return std::move(*fd);
 }
 
-TEST(FdCurveDeformer, ConvergesToTheAnalyticDeformerAtSecondOrder) {
-  const testing::ArmKeys arm = makeArmKeys({0.0, 60.0, 120.0}, 0.4);
-  Result<OdeskinBaseline> analytic = OdeskinBaseline::create(arm.asset, kDynamic, BaselineMethod::kOdeskinDynamic);
+// Refines J and T together and checks the FD deformer's order against the analytic deformer.
+void expectSecondOrder(const DeformAsset& asset, double box, const char* label) {
+  Result<OdeskinBaseline> analytic = OdeskinBaseline::create(asset, kDynamic, BaselineMethod::kOdeskinDynamic);
   ASSERT_TRUE(analytic.ok()) << analytic.status().toString();
-  const double box = longestBoxSide(arm.keys[1]);
   // Frames on every grid's levels (tau = 1/2) and between levels (tau = 0.3), in the first segment
   // (from rest) and the second (the FD method's own carried rate against the analytic one).
   struct Frame {
@@ -53,18 +53,35 @@ TEST(FdCurveDeformer, ConvergesToTheAnalyticDeformerAtSecondOrder) {
     const std::vector<Vec3> exact = evaluate(*analytic, f.segment, f.tau);
     std::vector<double> errors;
     for (std::uint32_t scale : {1u, 2u, 4u, 8u}) {
-      FdCurveDeformer fd = makeFd(arm.asset, 12 * scale, 8 * scale);
+      FdCurveDeformer fd = makeFd(asset, 12 * scale, 8 * scale);
       errors.push_back(maxDistance(evaluate(fd, f.segment, f.tau), exact) / box);
     }
     for (std::size_t k = 0; k + 1 < errors.size(); ++k) {
       const double order = std::log2(errors[k] / errors[k + 1]);
-      std::printf("[ fd vs analytic ] segment %u tau %.1f  J=%2u T=%2u  MVE %.3e -> %.3e  order %.2f\n", f.segment,
-                  f.tau, 12u << k, 8u << k, errors[k], errors[k + 1], order);
+      std::printf("[ fd vs analytic ] %-12s segment %u tau %.1f  J=%2u T=%2u  MVE %.3e -> %.3e  order %.2f\n", label,
+                  f.segment, f.tau, 12u << k, 8u << k, errors[k], errors[k + 1], order);
       EXPECT_GT(order, 1.6);
       EXPECT_LT(order, 2.5);
     }
     EXPECT_LT(errors.back(), 1e-3);
   }
+}
+
+TEST(FdCurveDeformer, ConvergesToTheAnalyticDeformerAtSecondOrder) {
+  const testing::ArmKeys arm = makeArmKeys({0.0, 60.0, 120.0}, 0.4);
+  const double box = longestBoxSide(arm.keys[1]);
+  expectSecondOrder(arm.asset, box, "closed");
+  // Open curves carry a linear trend slope * v (the last coefficient), solved on its own J = 1
+  // grid; give every curve one, as an open curve's fit would.
+  DeformAsset open = arm.asset;
+  const std::size_t m_count = coefficientsPerCurve(open.modes);
+  for (std::size_t s = 0; s < open.segments.size(); ++s) {
+    for (std::size_t c = 0; c < open.curveCount(); ++c) {
+      open.segments[s].coefficients[c * m_count + m_count - 1] = Vec3(0.01 * static_cast<double>(s + 1), -0.02, 0.005 * static_cast<double>(c));
+    }
+  }
+  ASSERT_TRUE(chainSegmentRates(open).ok());
+  expectSecondOrder(open, box, "open trend");
 }
 
 TEST(FdCurveDeformer, ReproducesTheSegmentEndsLikeOdeskin) {
