@@ -200,6 +200,25 @@ double longestBoxSide(std::span<const Vec3> positions) {
   return std::max({size.x, size.y, size.z});
 }
 
+Status chainSegmentRates(DeformAsset& asset) {
+  ODESKIN_ASSIGN_OR_RETURN(DeformPlayer player, DeformPlayer::create(asset));
+  const std::size_t m_count = coefficientsPerCurve(asset.modes);
+  if (!asset.segments.empty()) asset.segments[0].rates.assign(asset.curveCount() * m_count, Vec3(0.0));
+  // Rate continuity across keys (PIPELINE.md 3): the end rate of segment s-1 starts segment s.
+  for (std::size_t s = 1; s < asset.segments.size(); ++s) {
+    const DeformSegment& prev = asset.segments[s - 1];
+    DeformSegment& seg = asset.segments[s];
+    for (std::size_t c = 0; c < asset.curveCount(); ++c) {
+      for (std::size_t m = 0; m < m_count; ++m) {
+        const TimeBasisSample end = player.basis(asset.curve_materials[c], modeOfCoefficient(m, asset.modes)).at(1.0);
+        const std::size_t k = c * m_count + m;
+        seg.rates[k] = end.dgamma * prev.coefficients[k] + end.dpsi * prev.rates[k];
+      }
+    }
+  }
+  return okStatus();
+}
+
 Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, FitReport* report) {
   if (opt.modes < 1 || opt.modes > kMaxFourierModes) {
     return outOfRange("fit: modes N = " + std::to_string(opt.modes) + " outside 1.." + std::to_string(kMaxFourierModes));
@@ -277,19 +296,8 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   rep.rms_series_error = std::sqrt(sum_squares / static_cast<double>(v_count * (key_count - 1)));
   rep.seconds_fourier = seconds_since(stage);
   stage = Clock::now();
+  ODESKIN_TRY(chainSegmentRates(asset));
   ODESKIN_ASSIGN_OR_RETURN(DeformPlayer player, DeformPlayer::create(asset));
-  // Rate continuity across keys (PIPELINE.md 3): the end rate of segment s-1 starts segment s.
-  for (std::size_t s = 1; s < asset.segments.size(); ++s) {
-    const DeformSegment& prev = asset.segments[s - 1];
-    DeformSegment& seg = asset.segments[s];
-    for (std::size_t c = 0; c < asset.curveCount(); ++c) {
-      for (std::size_t m = 0; m < m_count; ++m) {
-        const TimeBasisSample end = player.basis(asset.curve_materials[c], modeOfCoefficient(m, opt.modes)).at(1.0);
-        const std::size_t k = c * m_count + m;
-        seg.rates[k] = end.dgamma * prev.coefficients[k] + end.dpsi * prev.rates[k];
-      }
-    }
-  }
 
   // Play every key back with the reference kernel: the error users will see, not an estimate.
   rep.key_error.assign(key_count, 0.0);

@@ -65,6 +65,11 @@ struct FitReport {
 // errors of fitFourier / ModeTimeBasis::create, each prefixed with the curve or material concerned.
 Result<DeformAsset> fitDeformAsset(const FitInput& input, const FitOptions& options, FitReport* report = nullptr);
 
+// Recomputes every segment's carried rates from its predecessor with the asset's current materials
+// (PIPELINE.md 3: rdot^s = gamma_n'(1) d^{s-1} + psi_n'(1) rdot^{s-1}, rdot^0 = 0), e.g. after
+// replacing the materials of a fitted asset. Errors: those of DeformPlayer::create.
+Status chainSegmentRates(DeformAsset& asset);
+
 // Longest side of the axis-aligned bounding box (MATH.md 6.1's Lbox).
 double longestBoxSide(std::span<const Vec3> positions);
 

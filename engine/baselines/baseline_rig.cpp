@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+#include "baseline_rig.hpp"
+
+#include <string>
+
+#include "../rig/kabsch.hpp"
+
+namespace odeskin {
+
+Result<BaselineRig> BaselineRig::fromAsset(const DeformAsset& asset) {
+  ODESKIN_TRY(validateDeformAsset(asset));
+  BaselineRig rig;
+  rig.rest_positions_ = asset.rest_positions;
+  rig.influences_ = asset.influences;
+  rig.pivots_ = asset.bone_pivots;
+  rig.parents_ = asset.bone_parents;
+  rig.key_poses_ = asset.key_poses;
+  std::vector<RigidTransform> keys(rig.key_poses_.size());
+  rig.paths_.reserve(asset.bone_count);
+  for (std::uint32_t b = 0; b < asset.bone_count; ++b) {
+    for (std::size_t k = 0; k < keys.size(); ++k) keys[k] = rig.key_poses_[k][b];
+    rig.paths_.emplace_back(keys, rig.pivots_[b]);
+  }
+  return rig;
+}
+
+void BaselineRig::keyBones(std::size_t k, std::span<BoneTransform> out) const {
+  for (std::size_t b = 0; b < pivots_.size() && b < out.size(); ++b) out[b] = key_poses_[k][b].matrix();
+}
+
+void BaselineRig::keyBones(std::uint32_t segment, double tau, std::span<BoneTransform> out) const {
+  for (std::size_t b = 0; b < paths_.size() && b < out.size(); ++b) out[b] = paths_[b].at(segment, tau).matrix();
+}
+
+std::span<const BoneTransform> BaselineRig::frameBones(std::uint32_t segment, double tau,
+                                                     std::span<const BoneTransform> given,
+                                                     std::vector<BoneTransform>& scratch) const {
+  if (!given.empty()) return given;
+  scratch.resize(pivots_.size());
+  keyBones(segment, tau, scratch);
+  return scratch;
+}
+
+Result<std::vector<BoneTransform>> BaselineRig::fitFrameBones(std::span<const Vec3> frame) const {
+  if (frame.size() != rest_positions_.size()) {
+    return invalidArgument("fit frame bones: the frame has " + std::to_string(frame.size()) +
+                           " vertices, the bind mesh " + std::to_string(rest_positions_.size()));
+  }
+  Skeleton skeleton;
+  skeleton.heads = pivots_;
+  skeleton.tails = pivots_;
+  skeleton.names.assign(pivots_.size(), std::string());
+  skeleton.parents = parents_.empty() ? std::vector<std::int32_t>(pivots_.size(), -1) : parents_;
+  const std::vector<std::vector<Vec3>> poses{std::vector<Vec3>(frame.begin(), frame.end())};
+  Result<std::vector<std::vector<RigidTransform>>> fitted =
+      fitBoneTransforms(rest_positions_, poses, influences_, skeleton);
+  if (!fitted.ok()) return Status(fitted.status().code(), "fit frame bones: " + fitted.status().message());
+  std::vector<BoneTransform> bones;
+  bones.reserve(pivots_.size());
+  for (const RigidTransform& t : (*fitted)[0]) bones.push_back(t.matrix());
+  return bones;
+}
+
+}  // namespace odeskin
