@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -72,48 +73,116 @@ Vec3 viewDirection(const ViewSpec& view) {
   return glm::normalize(std::cos(el) * horizontal + std::sin(el) * view.up);
 }
 
-double framingDistance(const Bounds& bounds, double aspect, const ViewSpec& view) {
-  const Vec3 dir = viewDirection(view);
-  const Vec3 right = glm::normalize(glm::cross(-dir, view.up));
-  const Vec3 up = glm::cross(right, -dir);
-  const double ty = std::tan(0.5 * radians(view.fov_y_deg)) * (1.0 - 2.0 * view.margin);
-  const double tx = ty * aspect;
-  const Vec3 centre = bounds.centre();
-  double distance = 0.0;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Vec3 c((corner & 1) ? bounds.max.x : bounds.min.x, (corner & 2) ? bounds.max.y : bounds.min.y,
-                 (corner & 4) ? bounds.max.z : bounds.min.z);
-    const Vec3 q = c - centre;
-    // A corner at depth (distance - q.dir) in front of the camera projects inside when
-    // |q.right| <= tx depth and |q.up| <= ty depth.
-    const double toward = glm::dot(q, dir);
-    distance = std::max({distance, std::abs(glm::dot(q, right)) / tx + toward, std::abs(glm::dot(q, up)) / ty + toward});
-  }
-  return distance;
+namespace {
+
+// The camera frame for `view`: dir towards the camera, right and up across the image.
+struct ViewBasis {
+  Vec3 dir;
+  Vec3 right;
+  Vec3 up;
+};
+
+ViewBasis viewBasis(const ViewSpec& view) {
+  ViewBasis b;
+  b.dir = viewDirection(view);
+  b.right = glm::normalize(glm::cross(-b.dir, view.up));
+  b.up = glm::cross(b.right, -b.dir);
+  return b;
 }
 
-Camera orbitCamera(const Vec3& target, double distance, double radius, double aspect, const ViewSpec& view) {
+Status checkFraming(std::span<const Vec3> points, double aspect, const ViewSpec& view) {
+  if (points.empty()) return invalidArgument("view: nothing to frame (no vertices)");
+  if (!(aspect > 0.0 && std::isfinite(aspect))) return invalidArgument("view: the image aspect must be positive");
+  return validateViewSpec(view);
+}
+
+// Points that all coincide get a unit box's corners instead, so there is something to frame.
+std::vector<Vec3> framable(std::span<const Vec3> points) {
+  const Bounds b = boundsOf(points);
+  if (b.diagonal() > 0.0) return {points.begin(), points.end()};
+  std::vector<Vec3> corners;
+  for (int c = 0; c < 8; ++c) {
+    corners.push_back(b.min + Vec3((c & 1) - 0.5, ((c >> 1) & 1) - 0.5, ((c >> 2) & 1) - 0.5));
+  }
+  return corners;
+}
+
+// A camera at `eye` looking along -basis.dir, with near and far planes around the points.
+Camera cameraAt(const Vec3& eye, const ViewBasis& basis, std::span<const Vec3> points, double aspect,
+                const ViewSpec& view) {
+  double nearest = 1e300;
+  double farthest = 0.0;
+  for (const Vec3& p : points) {
+    const double depth = glm::dot(eye - p, basis.dir);
+    nearest = std::min(nearest, depth);
+    farthest = std::max(farthest, depth);
+  }
   Camera camera;
-  const Vec3 eye = target + distance * viewDirection(view);
-  camera.view = glm::lookAt(eye, target, view.up);
+  camera.view = glm::lookAt(eye, eye - basis.dir, view.up);
   camera.fov_y_rad = radians(view.fov_y_deg);
   camera.aspect = aspect;
-  // Planes just outside the sphere holding the model: tight planes keep depth precision.
-  camera.near = std::max(distance - 1.05 * radius, 1e-3 * distance);
-  camera.far = distance + 1.05 * radius;
+  // Planes just outside the points: tight planes keep depth precision.
+  camera.far = 1.05 * farthest;
+  camera.near = std::max(0.9 * nearest, 1e-4 * camera.far);
   return camera;
 }
 
-Result<Camera> frameBounds(const Bounds& bounds, double aspect, const ViewSpec& view) {
-  if (bounds.empty()) return invalidArgument("view: nothing to frame (no vertices)");
-  if (!(aspect > 0.0 && std::isfinite(aspect))) return invalidArgument("view: the image aspect must be positive");
-  ODESKIN_TRY(validateViewSpec(view));
-  Bounds box = bounds;
-  if (box.diagonal() == 0.0) {
-    box.add(bounds.min - Vec3(0.5));
-    box.add(bounds.max + Vec3(0.5));
+}  // namespace
+
+Result<Camera> framePoints(std::span<const Vec3> input, double aspect, const ViewSpec& view) {
+  ODESKIN_TRY(checkFraming(input, aspect, view));
+  const std::vector<Vec3> points = framable(input);
+  const ViewBasis basis = viewBasis(view);
+  const double ty = std::tan(0.5 * radians(view.fov_y_deg)) * (1.0 - view.margin);
+  const double tx = ty * aspect;
+  // Per image axis a with half-angle tangent t: every point needs |a_i - c| <= t (d - z_i), i.e.
+  // max(a_i + t z_i) - t d <= c <= min(a_i - t z_i) + t d. The smallest d makes both bounds meet.
+  double x_hi = -1e300;
+  double x_lo = 1e300;
+  double y_hi = -1e300;
+  double y_lo = 1e300;
+  for (const Vec3& p : points) {
+    const double x = glm::dot(p, basis.right);
+    const double y = glm::dot(p, basis.up);
+    const double z = glm::dot(p, basis.dir);
+    x_hi = std::max(x_hi, x + tx * z);
+    x_lo = std::min(x_lo, x - tx * z);
+    y_hi = std::max(y_hi, y + ty * z);
+    y_lo = std::min(y_lo, y - ty * z);
   }
-  return orbitCamera(box.centre(), framingDistance(box, aspect, view), 0.5 * box.diagonal(), aspect, view);
+  const double d = std::max((x_hi - x_lo) / (2.0 * tx), (y_hi - y_lo) / (2.0 * ty));
+  const Vec3 eye = 0.5 * (x_hi + x_lo) * basis.right + 0.5 * (y_hi + y_lo) * basis.up + d * basis.dir;
+  return cameraAt(eye, basis, points, aspect, view);
+}
+
+Result<std::vector<Camera>> turntableCameras(std::span<const Vec3> input, double aspect, const ViewSpec& view,
+                                             std::span<const double> azimuths_deg) {
+  ODESKIN_TRY(checkFraming(input, aspect, view));
+  const std::vector<Vec3> points = framable(input);
+  const Vec3 centre = boundsOf(points).centre();
+  const double ty = std::tan(0.5 * radians(view.fov_y_deg)) * (1.0 - view.margin);
+  const double tx = ty * aspect;
+  // Looking at the centre: |a_i| <= t (d - z_i) for every point, so d >= |a_i| / t + z_i.
+  double distance = 0.0;
+  for (double azimuth : azimuths_deg) {
+    ViewSpec turned = view;
+    turned.azimuth_deg += azimuth;
+    const ViewBasis basis = viewBasis(turned);
+    for (const Vec3& p : points) {
+      const Vec3 q = p - centre;
+      const double z = glm::dot(q, basis.dir);
+      distance = std::max({distance, std::abs(glm::dot(q, basis.right)) / tx + z,
+                           std::abs(glm::dot(q, basis.up)) / ty + z});
+    }
+  }
+  std::vector<Camera> cameras;
+  for (double azimuth : azimuths_deg) {
+    ViewSpec turned = view;
+    turned.azimuth_deg += azimuth;
+    const ViewBasis basis = viewBasis(turned);
+    cameras.push_back(cameraAt(centre + distance * basis.dir, basis, points, aspect, turned));
+  }
+  return cameras;
 }
 
 Vec3 projectToPixel(const Camera& camera, const Vec3& world, double width, double height) {

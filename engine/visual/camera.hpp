@@ -5,6 +5,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -42,7 +43,7 @@ struct ViewSpec {
   double azimuth_deg = 30.0;
   double elevation_deg = 15.0;  // in (-90, 90)
   double fov_y_deg = 30.0;      // vertical field of view, in (0, 180)
-  double margin = 0.05;         // free border on each side, a fraction of the image's half extent
+  double margin = 0.08;         // free border on each side, a fraction of the image's half extent
 };
 
 // kInvalidArgument naming the field: up not unit length (within 1e-6), |elevation| >= 89, field of
@@ -63,22 +64,23 @@ struct Camera {
   Vec3 position() const;  // camera centre in world space
 };
 
-// Unit direction from the box centre towards the camera for `view` (see ViewSpec for the angles).
+// Unit direction from the model towards the camera for `view` (see ViewSpec for the angles).
 Vec3 viewDirection(const ViewSpec& view);
 
-// The smallest distance from bounds.centre() along viewDirection(view) at which every corner of
-// `bounds` projects inside the image of aspect `aspect`, less the margin. Precondition: bounds not
-// empty, view valid, aspect > 0.
-double framingDistance(const Bounds& bounds, double aspect, const ViewSpec& view);
+// The tightest camera looking along -viewDirection(view) that keeps every point inside the image
+// of aspect `aspect` less the margin: the distance and the sideways shift that centre the points'
+// projection are solved exactly (per image axis, |x - c| <= tan(fov / 2) (d - z) for all points is
+// a pair of linear bounds on d and c). Near and far planes enclose the points. kInvalidArgument for
+// no points, a non-positive aspect, or validateViewSpec's errors. Points that all coincide are
+// framed as a unit box around them.
+Result<Camera> framePoints(std::span<const Vec3> points, double aspect, const ViewSpec& view);
 
-// The camera at `distance` from `target` along viewDirection(view), looking at target, with near
-// and far planes that enclose a sphere of radius `radius` about target.
-Camera orbitCamera(const Vec3& target, double distance, double radius, double aspect, const ViewSpec& view);
-
-// orbitCamera at framingDistance: the picture's camera. kInvalidArgument for an empty box, a
-// non-positive aspect, or validateViewSpec's errors. A box with no extent (one point) is framed as a
-// box of size 1 around it.
-Result<Camera> frameBounds(const Bounds& bounds, double aspect, const ViewSpec& view);
+// A turntable: one camera per azimuth offset (degrees added to view.azimuth_deg), each looking at
+// the centre of the points' bounding box from the same distance, the smallest that frames the
+// points from every one of them, so the model turns in place without changing size. Errors as
+// framePoints'; an empty `azimuths_deg` gives no cameras.
+Result<std::vector<Camera>> turntableCameras(std::span<const Vec3> points, double aspect, const ViewSpec& view,
+                                             std::span<const double> azimuths_deg);
 
 // A world point in pixels of a width x height image: x right, y down from the top left corner
 // (pixel centres at +0.5), z the Vulkan depth in [0, 1] (outside when the point is behind near or

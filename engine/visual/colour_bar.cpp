@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "compose.hpp"
 #include "render_shading.h"
@@ -54,6 +55,9 @@ std::int64_t colourBarWidth(double heat_max, const ColourBarStyle& style) {
   const double step = ticks.size() > 1 ? ticks[1] : heat_max * kPercent;
   std::int64_t label = 0;
   for (double t : ticks) label = std::max(label, textSize(tickLabel(t, step), style.text_scale).width);
+  char top[32];
+  std::snprintf(top, sizeof top, "%.3g", heat_max * kPercent);
+  label = std::max(label, textSize(top, style.text_scale).width);
   const std::int64_t gap = 2 * style.text_scale;
   const std::int64_t body = style.bar_width + style.tick_length + gap + label;
   const std::int64_t title =
@@ -84,12 +88,21 @@ void drawColourBar(Image& image, std::int64_t x, std::int64_t top, std::int64_t 
 
   const std::vector<double> ticks = niceTicks(heat_max * kPercent, 5);
   const double step = ticks.size() > 1 ? ticks[1] : heat_max * kPercent;
-  for (double t : ticks) {
+  // The top of the bar is labelled too when the last round tick sits well below it, so the scale's
+  // end is always readable.
+  std::vector<std::pair<double, std::string>> labels;
+  for (double t : ticks) labels.emplace_back(t, tickLabel(t, step));
+  const double top_value = heat_max * kPercent;
+  if (!ticks.empty() && ticks.back() < 0.9 * top_value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", top_value);
+    labels.emplace_back(top_value, text);
+  }
+  for (const auto& [t, label] : labels) {
     const std::int64_t row = top + height - std::llround(t / (heat_max * kPercent) * double(height));
     const std::int64_t y = std::clamp<std::int64_t>(row, top, top + height - 1);
     fillRect(image, bar_x + style.bar_width, y, style.tick_length, std::max(1, style.text_scale / 2), style.ink);
-    drawText(image, bar_x + style.bar_width + style.tick_length + gap, y - line / 2, tickLabel(t, step), style.ink,
-             style.text_scale);
+    drawText(image, bar_x + style.bar_width + style.tick_length + gap, y - line / 2, label, style.ink, style.text_scale);
   }
 }
 

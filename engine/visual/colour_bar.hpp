@@ -33,7 +33,8 @@ std::int64_t colourBarWidth(double heat_max, const ColourBarStyle& style);
 
 // Draws the bar in the column [x, x + colourBarWidth) of `image`, the bar itself spanning rows
 // [top, bottom) with the title above it. Row r of the bar has heatColour(s) with s = (bottom - r -
-// 0.5) / (bottom - top), unlit. Labels are heat values x 100 (percent). Precondition: heat_max > 0.
+// 0.5) / (bottom - top), unlit. Labels are heat values x 100 (percent): the round ticks, and the
+// top value itself when the last tick is below 90% of it. Precondition: heat_max > 0.
 void drawColourBar(Image& image, std::int64_t x, std::int64_t top, std::int64_t bottom, double heat_max,
                    const ColourBarStyle& style);
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <utility>
 
+#include "text.hpp"
+
 namespace odeskin::visual {
 
 Image overBackground(const Image& src, Rgba8 background) {
@@ -89,21 +91,35 @@ Image resize(const Image& image, std::uint32_t width, std::uint32_t height) {
 }
 
 Image contactSheet(std::span<const Image> frames, std::uint32_t columns, std::uint32_t thumb_width, std::uint32_t gap,
-                   Rgba8 background) {
+                   Rgba8 background, std::span<const std::string> captions, Rgba8 ink) {
   if (frames.empty() || frames.front().empty() || columns == 0 || thumb_width == 0) return {};
   const Image& first = frames.front();
   const auto thumb_height = std::max<std::uint32_t>(
       1, static_cast<std::uint32_t>(std::lround(double(thumb_width) * first.height / first.width)));
+  const int text_scale = thumb_height >= 400 ? 2 : 1;
+  const std::int64_t caption_height = captions.empty() ? 0 : textSize("0", text_scale).height + 4 * text_scale;
   columns = std::min<std::uint32_t>(columns, static_cast<std::uint32_t>(frames.size()));
   const auto rows = static_cast<std::uint32_t>((frames.size() + columns - 1) / columns);
-  Image sheet(gap + columns * (thumb_width + gap), gap + rows * (thumb_height + gap), background);
+  const std::int64_t cell_height = thumb_height + caption_height;
+  Image sheet(gap + columns * (thumb_width + gap), static_cast<std::uint32_t>(gap + rows * (cell_height + gap)),
+              background);
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    const auto column = static_cast<std::uint32_t>(i % columns);
-    const auto row = static_cast<std::uint32_t>(i / columns);
-    blit(sheet, resize(frames[i], thumb_width, thumb_height), gap + column * (thumb_width + gap),
-         gap + row * (thumb_height + gap));
+    const std::int64_t left = gap + static_cast<std::int64_t>(i % columns) * (thumb_width + gap);
+    const std::int64_t top = gap + static_cast<std::int64_t>(i / columns) * (cell_height + gap);
+    blit(sheet, resize(frames[i], thumb_width, thumb_height), left, top);
+    if (i < captions.size()) {
+      const std::int64_t width = textSize(captions[i], text_scale).width;
+      drawText(sheet, left + (std::int64_t(thumb_width) - width) / 2, top + thumb_height + text_scale, captions[i], ink,
+               text_scale);
+    }
   }
   return sheet;
+}
+
+std::uint32_t balancedColumns(std::size_t count, std::uint32_t max_columns) {
+  if (count == 0 || max_columns == 0) return 1;
+  const std::size_t rows = (count + max_columns - 1) / max_columns;
+  return static_cast<std::uint32_t>((count + rows - 1) / rows);
 }
 
 }  // namespace odeskin::visual

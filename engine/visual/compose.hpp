@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include "image.hpp"
 
@@ -26,8 +27,13 @@ Image resize(const Image& image, std::uint32_t width, std::uint32_t height);
 
 // Frames in rows of `columns`, each shrunk to `thumb_width` wide (height in proportion, taken from
 // the first frame), `gap` pixels apart and around, on `background`. Every frame should have the
-// first frame's size; others are resized to it. Empty input gives an empty image.
+// first frame's size; others are resized to it. With captions (one per frame, or empty), each is
+// written in `ink` centred under its thumbnail. Empty input gives an empty image.
 Image contactSheet(std::span<const Image> frames, std::uint32_t columns, std::uint32_t thumb_width, std::uint32_t gap,
-                   Rgba8 background);
+                   Rgba8 background, std::span<const std::string> captions = {}, Rgba8 ink = {40, 40, 46, 255});
+
+// Columns for a contact sheet of `count` frames with at most `max_columns` per row, balanced so the
+// last row is not nearly empty (8 frames, 6 at most: 2 rows of 4).
+std::uint32_t balancedColumns(std::size_t count, std::uint32_t max_columns);
 
 }  // namespace odeskin::visual

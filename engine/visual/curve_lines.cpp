@@ -22,6 +22,7 @@ Result<CurveSegments> curveSegments(std::span<const IsoCurve> curves, std::span<
       out.endpoints.push_back(curvePointPosition(positions, points[k]));
       out.endpoints.push_back(curvePointPosition(positions, points[(k + 1) % points.size()]));
       out.curve_of_segment.push_back(static_cast<std::uint32_t>(c));
+      out.part_of_segment.push_back(curves[c].part);
     }
   }
   return out;

@@ -18,13 +18,14 @@ namespace odeskin::visual {
 struct CurveSegments {
   std::vector<Vec3> endpoints;                 // 2 per segment
   std::vector<std::uint32_t> curve_of_segment;  // 1 per segment: index into the curves
+  std::vector<std::uint32_t> part_of_segment;   // 1 per segment: the curve's body part (IsoCurve::part)
 };
 
 // Consecutive points of every curve, plus last -> first for closed curves. kInvalidArgument naming
 // the curve and point when a vertex index is out of range of `positions`.
 Result<CurveSegments> curveSegments(std::span<const IsoCurve> curves, std::span<const Vec3> positions);
 
-// A colour per curve index, cycling through a palette that reads on grey and white.
+// A colour per curve or part index, cycling through a palette that reads on grey and white.
 glm::vec3 curveColour(std::uint32_t index);
 
 }  // namespace odeskin::visual
