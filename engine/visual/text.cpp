@@ -53,9 +53,9 @@ void drawText(Image& image, std::int64_t x, std::int64_t y, std::string_view tex
       y0 = std::min(y0, v[k].y);
       y1 = std::max(y1, v[k].y);
     }
-    // The font's capitals start one unit below its origin.
+    // Capitals span font units [0, 7) below the origin; descenders reach 9.
     const std::int64_t px = x + std::llround(x0 * static_cast<float>(scale));
-    const std::int64_t py = y + std::llround((y0 - 1.0f) * static_cast<float>(scale));
+    const std::int64_t py = y + std::llround(y0 * static_cast<float>(scale));
     fillRect(image, px, py, std::llround((x1 - x0) * static_cast<float>(scale)),
              std::llround((y1 - y0) * static_cast<float>(scale)), colour);
   }

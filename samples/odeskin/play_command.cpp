@@ -40,7 +40,7 @@ std::string lowerExtension(const std::string& name) {
 std::string usageProblem(const PlayOptions& o) {
   if (o.t.has_value() == o.fps.has_value()) return "play: give either --t T (one frame) or --fps F (a sequence)";
   if (o.seconds && !o.fps) return "play: --seconds needs --fps";
-  if (o.output.empty() && o.png_dir.empty()) return "play: give -o OUT (.obj or .glb) and/or --png DIR";
+  if (o.output.empty() && o.png_dir.empty()) return "play: -o OUT is required (.obj or .glb), or --png DIR for pictures only";
   if (o.t && !std::isfinite(*o.t)) return "play: --t must be a number in [0, K-1]";
   if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0)) return "play: --fps must be positive, got " + numberText(*o.fps);
   if (o.seconds && !(std::isfinite(*o.seconds) && *o.seconds >= 0.0)) {
