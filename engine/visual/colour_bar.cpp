@@ -50,6 +50,12 @@ std::string tickLabel(double value, double step) {
   return text;
 }
 
+std::int64_t colourBarTitleHeight(const ColourBarStyle& style) {
+  const std::int64_t gap = 2 * style.text_scale;
+  const std::int64_t line = textSize("0", style.text_scale).height;
+  return line / 2 + 4 * gap + 2 * line;
+}
+
 std::int64_t colourBarWidth(double heat_max, const ColourBarStyle& style) {
   const std::vector<double> ticks = niceTicks(heat_max * kPercent, 5);
   const double step = ticks.size() > 1 ? ticks[1] : heat_max * kPercent;
@@ -62,7 +68,7 @@ std::int64_t colourBarWidth(double heat_max, const ColourBarStyle& style) {
   const std::int64_t body = style.bar_width + style.tick_length + gap + label;
   const std::int64_t title =
       std::max(textSize(style.title, style.text_scale).width, textSize(style.unit, style.text_scale).width);
-  return std::max(body, title) + 2 * gap;
+  return std::max(body, title) + 4 * gap;  // a margin each side; more on the right, at the edge
 }
 
 void drawColourBar(Image& image, std::int64_t x, std::int64_t top, std::int64_t bottom, double heat_max,
@@ -72,9 +78,10 @@ void drawColourBar(Image& image, std::int64_t x, std::int64_t top, std::int64_t 
   const std::int64_t bar_x = x + gap;
   const std::int64_t height = std::max<std::int64_t>(bottom - top, 1);
 
-  // Title: two lines above the bar.
-  drawText(image, x + gap, top - 2 * gap - 2 * line - line / 2, style.title, style.ink, style.text_scale);
-  drawText(image, x + gap, top - gap - line, style.unit, style.ink, style.text_scale);
+  // Title: two lines above the bar, clear of the top tick's label (which is centred on `top`).
+  const std::int64_t unit_y = top - line / 2 - 2 * gap - line;
+  drawText(image, x + gap, unit_y - 2 * gap - line, style.title, style.ink, style.text_scale);
+  drawText(image, x + gap, unit_y, style.unit, style.ink, style.text_scale);
 
   for (std::int64_t r = top; r < top + height; ++r) {
     const float s = static_cast<float>((double(top + height - r) - 0.5) / double(height));

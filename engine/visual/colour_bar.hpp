@@ -28,11 +28,14 @@ struct ColourBarStyle {
   std::string unit = "% of diag";  // second title line (values are shown as percent)
 };
 
+// Rows above the bar that its two title lines take.
+std::int64_t colourBarTitleHeight(const ColourBarStyle& style);
+
 // Width in pixels that drawColourBar needs for `heat_max` (title, bar, ticks and labels).
 std::int64_t colourBarWidth(double heat_max, const ColourBarStyle& style);
 
 // Draws the bar in the column [x, x + colourBarWidth) of `image`, the bar itself spanning rows
-// [top, bottom) with the title above it. Row r of the bar has heatColour(s) with s = (bottom - r -
+// [top, bottom) with the title above it (colourBarTitleHeight rows). Row r of the bar has heatColour(s) with s = (bottom - r -
 // 0.5) / (bottom - top), unlit. Labels are heat values x 100 (percent): the round ticks, and the
 // top value itself when the last tick is below 90% of it. Precondition: heat_max > 0.
 void drawColourBar(Image& image, std::int64_t x, std::int64_t top, std::int64_t bottom, double heat_max,

@@ -27,8 +27,8 @@ Result<PictureLayout> layoutPicture(const PictureSpec& spec) {
   layout.height = spec.height;
   layout.label_lines = spec.label_lines;
   layout.heat_max = spec.heat_max;
-  // Labels about 2% of the height tall: scale 2 at 600 pixels, 1 below 400.
-  layout.text_scale = static_cast<int>(std::clamp<std::int64_t>(std::lround(spec.height / 320.0), 1, 4));
+  // Labels about 3% of the height tall: scale 1 below 375 pixels, 2 up to 625, 3 up to 875.
+  layout.text_scale = static_cast<int>(std::clamp<std::int64_t>(std::lround(spec.height / 250.0), 1, 4));
   layout.bar_style.text_scale = layout.text_scale;
   layout.bar_style.bar_width = 11 * layout.text_scale;
   layout.bar_style.tick_length = 3 * layout.text_scale;
@@ -57,7 +57,7 @@ Result<PictureLayout> layoutPicture(const PictureSpec& spec) {
   if (spec.heat_max) {
     layout.bar_left = panels_width;
     // Room above the bar for its two title lines, and a shorter bar than the panel, as in a figure.
-    const std::int64_t title = 2 * kLinePitch * layout.text_scale + 4 * layout.text_scale;
+    const std::int64_t title = colourBarTitleHeight(layout.bar_style);
     layout.bar_top = std::max<std::int64_t>(title + 2 * layout.text_scale, std::llround(0.16 * double(panel_height)));
     layout.bar_bottom = std::max<std::int64_t>(layout.bar_top + 8, std::llround(0.88 * double(panel_height)));
   }

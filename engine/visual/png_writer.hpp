@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
-// PNG files through stb_image_write (Debian libstb-dev): 8-bit RGBA, written atomically.
+// PNG files through stb_image_write (Debian libstb-dev), compressed with zlib when the build found
+// it (stb's own deflate otherwise): 8-bit RGB when every pixel is opaque, else RGBA; written
+// atomically.
 #pragma once
 
 #include <filesystem>
