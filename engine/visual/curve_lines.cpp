@@ -28,12 +28,19 @@ Result<CurveSegments> curveSegments(std::span<const IsoCurve> curves, std::span<
   return out;
 }
 
-glm::vec3 curveColour(std::uint32_t index) {
-  // Saturated and mid-dark, so every one stands out from the clay grey surface.
-  static constexpr std::array<glm::vec3, 6> kPalette{
-      glm::vec3(0.80f, 0.12f, 0.10f), glm::vec3(0.10f, 0.35f, 0.80f), glm::vec3(0.05f, 0.55f, 0.25f),
-      glm::vec3(0.75f, 0.40f, 0.00f), glm::vec3(0.50f, 0.15f, 0.65f), glm::vec3(0.00f, 0.50f, 0.55f)};
-  return kPalette[index % kPalette.size()];
-}
+namespace {
+
+// Tableau's ten categorical colours without its grey (which would vanish on the clay surface),
+// slightly darkened so thin lines stay visible on a light surface.
+constexpr std::array<glm::vec3, 9> kPalette{
+    glm::vec3(0.12f, 0.42f, 0.68f), glm::vec3(0.92f, 0.45f, 0.04f), glm::vec3(0.15f, 0.56f, 0.15f),
+    glm::vec3(0.80f, 0.14f, 0.15f), glm::vec3(0.52f, 0.36f, 0.70f), glm::vec3(0.50f, 0.30f, 0.26f),
+    glm::vec3(0.86f, 0.40f, 0.70f), glm::vec3(0.62f, 0.62f, 0.08f), glm::vec3(0.05f, 0.64f, 0.72f)};
+
+}  // namespace
+
+std::uint32_t curvePaletteSize() { return static_cast<std::uint32_t>(kPalette.size()); }
+
+glm::vec3 curveColour(std::uint32_t index) { return kPalette[index % kPalette.size()]; }
 
 }  // namespace odeskin::visual

@@ -25,7 +25,9 @@ struct CurveSegments {
 // the curve and point when a vertex index is out of range of `positions`.
 Result<CurveSegments> curveSegments(std::span<const IsoCurve> curves, std::span<const Vec3> positions);
 
-// A colour per curve or part index, cycling through a palette that reads on grey and white.
+// A colour per curve or part index, cycling through a palette of curvePaletteSize() colours that
+// read on the clay surface and on white.
 glm::vec3 curveColour(std::uint32_t index);
+std::uint32_t curvePaletteSize();
 
 }  // namespace odeskin::visual

@@ -311,7 +311,7 @@ TEST_F(RenderCommand, AssetsDrawCurvesAndTheirLbsTwin) {
   ASSERT_EQ(render(o, io), kExitOk) << io.err.str();
   auto curvePixels = [](const Image& image) {
     return countIf(image, [](Rgba8 p) {
-      for (std::uint32_t k = 0; k < 6; ++k) {
+      for (std::uint32_t k = 0; k < visual::curvePaletteSize(); ++k) {
         if (visual::channelDistance(p, visual::toRgba8(visual::curveColour(k))) <= 1) return true;
       }
       return false;
