@@ -96,7 +96,7 @@ void addFramingPoints(const std::vector<Vec3>& positions, std::size_t frame_coun
 }
 
 // Draws every frame again (the playback is deterministic) with one camera that frames them all.
-Status playPictures(const PlayOptions& o, const DeformAsset& asset, AssetPlayback& playback,
+Status playPictures(const PlayOptions& o, const DeformAsset& asset, AssetPlayback& playback, RenderSession& session,
                     const std::vector<double>& times, const std::vector<Vec3>& framing, Console& console,
                     std::vector<std::filesystem::path>& pictures) {
   const auto [width, height] = *parseImageSize(o.png_size);
@@ -109,8 +109,6 @@ Status playPictures(const PlayOptions& o, const DeformAsset& asset, AssetPlaybac
   view.elevation_deg = o.png_elevation_deg;
   ODESKIN_ASSIGN_OR_RETURN(const visual::Camera camera,
                            visual::framePoints(framing, double(layout.panel_width) / layout.panel_height, view));
-  ODESKIN_ASSIGN_OR_RETURN(RenderSession session,
-                           RenderSession::open(o.playback.device, o.playback.validation, vk::PictureStyle{}));
   std::error_code ec;
   std::filesystem::create_directories(o.png_dir, ec);
   if (ec) return ioError(o.png_dir.string() + ": cannot create directory: " + ec.message());
@@ -250,6 +248,13 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
 
   Result<AssetPlayback> playback = AssetPlayback::create(asset, o.playback, console.quiet ? nullptr : &console.err);
   if (!playback.ok()) return reportFailure(console, playback.status());
+  // --png: the device is opened before anything is written, so a missing one fails early.
+  std::optional<RenderSession> session;
+  if (!o.png_dir.empty()) {
+    Result<RenderSession> opened = RenderSession::open(o.playback.device, o.playback.validation, vk::PictureStyle{});
+    if (!opened.ok()) return reportFailure(console, Status(opened.status().code(), "play: " + opened.status().message()));
+    session.emplace(std::move(opened).value());
+  }
 
   ProgressBar bar(console.err, "play", times.size(), !console.quiet && console.interactive && times.size() > 1);
   std::vector<Vec3> positions;
@@ -297,7 +302,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
 
   std::vector<std::filesystem::path> pictures;
   if (!o.png_dir.empty()) {
-    if (Status s = playPictures(o, asset, *playback, times, framing, console, pictures); !s.ok()) {
+    if (Status s = playPictures(o, asset, *playback, *session, times, framing, console, pictures); !s.ok()) {
       return reportFailure(console, s);
     }
   }
