@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <system_error>
 #include <tuple>
 
@@ -192,16 +193,7 @@ Result<Panels> loadPanels(const RenderOptions& o, int& code) {
   return panels;
 }
 
-}  // namespace
-
-int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* report) {
-  if (const std::string problem = usageProblem(o); !problem.empty()) return reportUsage(console, problem);
-
-  int load_code = kExitFailure;
-  Result<Panels> loaded = loadPanels(o, load_code);
-  if (!loaded.ok()) return reportError(console, "render: " + loaded.status().message(), load_code);
-  Panels& panels = *loaded;
-
+Result<visual::PictureLayout> pictureLayout(const RenderOptions& o, const Panels& panels) {
   visual::PictureSpec spec;
   spec.width = 0;  // 720 per panel plus the colour bar
   spec.height = 540;
@@ -210,29 +202,58 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
   spec.heat_max = panels.heat_max;
   const bool labelled = !o.no_labels && (panels.heat_max || panels.geometry.size() > 1 || !o.labels.empty());
   spec.label_lines = !labelled ? 0 : (panels.heat_max ? 2 : 1);
-  Result<visual::PictureLayout> layout = visual::layoutPicture(spec);
-  if (!layout.ok()) return reportUsage(console, "render: " + layout.status().message());
+  return visual::layoutPicture(spec);
+}
 
+// One camera per picture. A still is framed as tightly as its view allows; a turntable keeps the
+// model centred on its axis at one distance.
+Result<std::vector<visual::Camera>> pictureCameras(const RenderOptions& o, const Panels& panels,
+                                                   const visual::PictureLayout& layout) {
   visual::ViewSpec view;
   view.up = *parseUpAxis(o.up);
   view.azimuth_deg = o.azimuth_deg;
   view.elevation_deg = o.elevation_deg;
   view.fov_y_deg = o.fov_deg;
-  std::vector<double> azimuths{0.0};
+  const double aspect = double(layout.panel_width) / double(layout.panel_height);
   if (o.turntable > 0) {
-    azimuths.clear();
+    std::vector<double> azimuths;
     for (std::size_t f = 0; f < o.turntable; ++f) azimuths.push_back(360.0 * double(f) / double(o.turntable));
+    return visual::turntableCameras(panels.points, aspect, view, azimuths);
   }
-  const double aspect = double(layout->panel_width) / double(layout->panel_height);
-  // A still is framed as tightly as its view allows; a turntable keeps the model centred on its axis.
-  Result<std::vector<visual::Camera>> cameras = std::vector<visual::Camera>{};
-  if (o.turntable > 0) {
-    cameras = visual::turntableCameras(panels.points, aspect, view, azimuths);
-  } else if (Result<visual::Camera> still = visual::framePoints(panels.points, aspect, view); still.ok()) {
-    cameras = std::vector<visual::Camera>{*still};
-  } else {
-    cameras = still.status();
+  ODESKIN_ASSIGN_OR_RETURN(visual::Camera still, visual::framePoints(panels.points, aspect, view));
+  return std::vector<visual::Camera>{still};
+}
+
+void printSummary(const RenderOptions& o, const Panels& panels, const RenderReport& r, std::size_t frames,
+                  std::ostream& out) {
+  char line[160];
+  std::snprintf(line, sizeof line, "%u x %u, %zu panel%s, %.1f ms per picture on %s\n", r.width, r.height, r.panels,
+                r.panels == 1 ? "" : "s", 1e3 * r.mean_frame_seconds, r.device.c_str());
+  out << (frames == 1 ? r.files.front().string()
+                      : std::to_string(frames) + " frames: " + r.files.front().string() + " ... " +
+                            r.files[frames - 1].string())
+      << ": " << line;
+  if (!o.strip.empty()) out << "strip: " << o.strip << "\n";
+  if (panels.heat_max) {
+    out << "heat: error / diagonal of " << o.heat->filename().string() << ", colour bar 0 to "
+        << percentText(*panels.heat_max) << ";";
+    for (double e : panels.max_errors) out << " max " << percentText(e);
+    out << "\n";
   }
+}
+
+}  // namespace
+
+int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* report) {
+  if (const std::string problem = usageProblem(o); !problem.empty()) return reportUsage(console, problem);
+
+  int load_code = kExitFailure;
+  Result<Panels> loaded = loadPanels(o, load_code);
+  if (!loaded.ok()) return reportError(console, "render: " + loaded.status().message(), load_code);
+  const Panels& panels = *loaded;
+  Result<visual::PictureLayout> layout = pictureLayout(o, panels);
+  if (!layout.ok()) return reportUsage(console, "render: " + layout.status().message());
+  Result<std::vector<visual::Camera>> cameras = pictureCameras(o, panels, *layout);
   if (!cameras.ok()) return reportUsage(console, "render: " + cameras.status().message());
 
   vk::PictureStyle style;
@@ -245,7 +266,7 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
   for (const PanelGeometry& g : panels.geometry) contents.push_back(g.content());
   const std::vector<std::filesystem::path> files =
       o.turntable > 0 ? frameNames(o.output, o.turntable) : std::vector<std::filesystem::path>{o.output};
-  std::vector<visual::Image> frames;
+  std::vector<visual::Image> frames;  // kept for --strip
   ProgressBar bar(console.err, "render", files.size(), !console.quiet && console.interactive && files.size() > 1);
   double draw_seconds = 0.0;
   for (std::size_t f = 0; f < files.size(); ++f) {
@@ -258,44 +279,26 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
     bar.step(f + 1);
   }
   bar.finish();
-  std::vector<std::filesystem::path> written = files;
+  RenderReport result;
+  result.files = files;
   if (!o.strip.empty()) {
     const std::uint32_t columns = visual::balancedColumns(frames.size(), kStripColumns);
     const std::uint32_t thumb = std::min(layout->width, kStripWidth / columns);
     const visual::Image sheet = visual::contactSheet(frames, columns, thumb, 4, style.background);
     if (Status s = writePicture(o.strip, sheet); !s.ok()) return reportFailure(console, s);
-    written.emplace_back(o.strip);
+    result.files.emplace_back(o.strip);
   }
   if (Status s = session->checkValidation(); !s.ok()) return reportFailure(console, s);
 
-  const double mean = draw_seconds / double(files.size());
-  if (!console.quiet) {
-    char line[160];
-    std::snprintf(line, sizeof line, "%u x %u, %zu panel%s, %.1f ms per picture on %s\n", layout->width,
-                  layout->height, panels.geometry.size(), panels.geometry.size() == 1 ? "" : "s", 1e3 * mean,
-                  session->deviceName().c_str());
-    console.out << (files.size() == 1 ? files.front().string()
-                                      : std::to_string(files.size()) + " frames: " + files.front().string() + " ... " +
-                                            files.back().string())
-                << ": " << line;
-    if (!o.strip.empty()) console.out << "strip: " << o.strip << "\n";
-    if (panels.heat_max) {
-      console.out << "heat: error / diagonal of " << o.heat->filename().string() << ", colour bar 0 to "
-                  << percentText(*panels.heat_max) << ";";
-      for (double e : panels.max_errors) console.out << " max " << percentText(e);
-      console.out << "\n";
-    }
-  }
-  if (report) {
-    report->files = std::move(written);
-    report->width = layout->width;
-    report->height = layout->height;
-    report->panels = panels.geometry.size();
-    report->mean_frame_seconds = mean;
-    report->heat_max = panels.heat_max;
-    report->max_errors = panels.max_errors;
-    report->device = session->deviceName();
-  }
+  result.width = layout->width;
+  result.height = layout->height;
+  result.panels = panels.geometry.size();
+  result.mean_frame_seconds = draw_seconds / double(files.size());
+  result.heat_max = panels.heat_max;
+  result.max_errors = panels.max_errors;
+  result.device = session->deviceName();
+  if (!console.quiet) printSummary(o, panels, result, files.size(), console.out);
+  if (report) *report = std::move(result);
   return kExitOk;
 }
 
