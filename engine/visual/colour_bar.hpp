@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The colour bar beside a heat map (as the thesis's Fig. 6.15): the error colour map from 0 at the
-// bottom to heat_max at the top, with ticks at round values labelled in percent of the reference's
-// bounding-box diagonal.
+// bottom to heat_max at the top, with ticks at round values labelled in percent of Lbox, the longest
+// side of the reference's bounding box (MATH.md 6.1).
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,7 @@ struct ColourBarStyle {
   std::int64_t tick_length = 6;   // pixels
   Rgba8 ink{40, 40, 46, 255};     // ticks, labels, outline
   std::string title = "error";    // first title line
-  std::string unit = "% of diag";  // second title line (values are shown as percent)
+  std::string unit = "% of box";  // second title line (values are shown as percent)
 };
 
 // Rows above the bar that its two title lines take.

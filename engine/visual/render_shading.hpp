@@ -15,7 +15,7 @@ using shader::RenderPushConstants;
 struct SurfaceVertex {
   float position[3];  // view space
   float normal[3];    // view space, unit
-  float value;        // heat value (error as a fraction of the reference's box diagonal), or 0
+  float value;        // heat value (error as a fraction of the reference's longest box side), or 0
 };
 
 // One vertex of the curve pipeline (locations ODESKIN_CURVE_*), 40 bytes, tightly packed.

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "camera.hpp"
+#include "../offline/residual_fit.hpp"
 
 namespace odeskin::visual {
 
@@ -12,10 +12,10 @@ Result<std::vector<double>> relativeVertexErrors(std::span<const Vec3> positions
     return invalidArgument(std::to_string(positions.size()) + " vertices but the reference has " +
                            std::to_string(reference.size()));
   }
-  const double diagonal = boundsOf(reference).diagonal();
-  if (!(diagonal > 0.0)) return invalidArgument("the reference mesh has no extent (zero bounding box)");
+  const double box_side = longestBoxSide(reference);
+  if (!(box_side > 0.0)) return invalidArgument("the reference mesh has no extent (zero bounding box)");
   std::vector<double> errors(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) errors[i] = glm::length(positions[i] - reference[i]) / diagonal;
+  for (std::size_t i = 0; i < positions.size(); ++i) errors[i] = glm::length(positions[i] - reference[i]) / box_side;
   return errors;
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Per-vertex error of a mesh against a reference with the same vertices, as the thesis reports it
-// (Fig. 6.15, Table 6.2): distance over the reference's bounding-box diagonal.
+// (Fig. 6.15, Table 6.2) and MATH.md 6.1 defines it: distance over Lbox, the longest side of the
+// reference's axis-aligned bounding box. The same Lbox as `odeskin evaluate` and the fit's key
+// tolerance, so a heat map's maximum is the Maximum Vertex Error.
 #pragma once
 
 #include <span>
@@ -11,7 +13,7 @@
 
 namespace odeskin::visual {
 
-// e_i = |p_i - r_i| / diag(bbox(r)). kInvalidArgument when the counts differ (both named) or the
+// e_i = |p_i - r_i| / Lbox(r). kInvalidArgument when the counts differ (both named) or the
 // reference is empty or has no extent.
 Result<std::vector<double>> relativeVertexErrors(std::span<const Vec3> positions, std::span<const Vec3> reference);
 

@@ -108,7 +108,7 @@ CLI::App* addRenderCommand(CLI::App& app, odeskin::RenderOptions& o, RenderCliVa
   CLI::App* render = app.add_subcommand("render", "Draw meshes to PNG without a display (Vulkan; lavapipe works)");
   render->footer(
       "Several inputs are drawn side by side with one camera and scale. --heat REF colours each panel by\n"
-      "its distance to REF per vertex, as a fraction of REF's bounding-box diagonal, with a colour bar.\n"
+      "its distance to REF per vertex, as a fraction of REF's longest bounding-box side (MATH.md 6.1), with a colour bar.\n"
       "--t: global time T in [0, K-1] for .odsk assets, seconds into the animation for .gltf/.glb.\n"
       "Examples: odeskin render horse-01.obj -o horse.png --azimuth 90\n"
       "          odeskin render horse.odsk horse-03.obj --t 0.5 --lbs --heat horse-03.obj -o compare.png\n"
@@ -119,7 +119,7 @@ CLI::App* addRenderCommand(CLI::App& app, odeskin::RenderOptions& o, RenderCliVa
   v.t_opt = render->add_option("--t", v.t, "Asset time T in [0, K-1] (default 0); glTF animation seconds");
   render->add_option("--size", o.size, "Whole picture WIDTHxHEIGHT (default 720x540 per panel, plus the colour bar)");
   v.heat_opt = render->add_option("--heat", v.heat, "Reference mesh with the same vertices: per-vertex error heat map");
-  v.heat_max_opt = render->add_option("--heat-max", v.heat_max, "Top of the colour bar as a fraction of REF's diagonal (default: the largest error)");
+  v.heat_max_opt = render->add_option("--heat-max", v.heat_max, "Top of the colour bar as a fraction of REF's longest box side (default: the largest error)");
   render->add_flag("--curves", o.curves, "Draw the assets' iso-parametric curves over the surface");
   render->add_flag("--lbs", o.lbs, "Also draw each asset skinned without its residual (plain LBS), in a panel before it");
   render->add_option("--turntable", o.turntable, "Write N frames turning once about the up axis");

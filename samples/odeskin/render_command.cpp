@@ -48,7 +48,7 @@ std::string usageProblem(const RenderOptions& o) {
   if (o.turntable > kMaxTurntable) return "render: --turntable " + std::to_string(o.turntable) + " is above 3600 frames";
   if (o.t && !std::isfinite(*o.t)) return "render: --t must be a finite number";
   if (o.heat_max && !(std::isfinite(*o.heat_max) && *o.heat_max > 0.0)) {
-    return "render: --heat-max must be positive (a fraction of the reference's box diagonal, 0.01 = 1%)";
+    return "render: --heat-max must be positive (a fraction of the reference's longest box side, 0.01 = 1%)";
   }
   if (o.heat_max && !o.heat) return "render: --heat-max needs --heat REF";
   if (o.samples == 0 || o.samples > 64) return "render: --samples must lie in [1, 64]";
@@ -188,7 +188,7 @@ Result<Panels> loadPanels(const RenderOptions& o, int& code) {
     if (!note.empty()) geometry->label.push_back(note);
     panels.geometry.push_back(std::move(geometry).value());
   }
-  // A heat map of identical meshes still needs a scale: one millionth of the diagonal.
+  // A heat map of identical meshes still needs a scale: one millionth of the box side.
   if (reference) panels.heat_max = o.heat_max.value_or(std::max(worst, 1e-6));
   return panels;
 }
@@ -235,7 +235,7 @@ void printSummary(const RenderOptions& o, const Panels& panels, const RenderRepo
       << ": " << line;
   if (!o.strip.empty()) out << "strip: " << o.strip << "\n";
   if (panels.heat_max) {
-    out << "heat: error / diagonal of " << o.heat->filename().string() << ", colour bar 0 to "
+    out << "heat: error / longest box side of " << o.heat->filename().string() << ", colour bar 0 to "
         << percentText(*panels.heat_max) << ";";
     for (double e : panels.max_errors) out << " max " << percentText(e);
     out << "\n";

@@ -193,7 +193,7 @@ TEST_F(RenderCommand, HeatMapMatchesTheCpuErrorsAndDrawsAColourBar) {
   const Image left = crop(image, 0, 250);
   EXPECT_GT(countIf(left, red), 0u);
   EXPECT_GT(countIf(left, blue), 50u);
-  EXPECT_NE(io.out.str().find("heat: error / diagonal of cylinder-1.obj"), std::string::npos) << io.out.str();
+  EXPECT_NE(io.out.str().find("heat: error / longest box side of cylinder-1.obj"), std::string::npos) << io.out.str();
 
   // A fixed scale far above every error: no red anywhere in the panels.
   o.heat_max = 1.0;

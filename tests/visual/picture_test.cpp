@@ -82,7 +82,7 @@ TEST(Compose, ContactSheetTilesFramesInBalancedRows) {
 }
 
 TEST(Text, DrawsInsideItsBoxAndDistinguishesCharacters) {
-  for (const std::string text : {"0", "0.25", "1e-05", "error", "% of diag"}) {
+  for (const std::string text : {"0", "0.25", "1e-05", "error", "% of box"}) {
     Image image(200, 40, kWhite);
     const TextSize size = textSize(text, 2);
     drawText(image, 10, 10, text, kInk, 2);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Mesh preparation for drawing: fan triangulation, area-weighted normals, per-vertex errors over
-// the reference's diagonal, curve segments as lerps of the (deformed) edge ends.
+// the reference's longest box side (MATH.md 6.1), curve segments as lerps of the (deformed) edge ends.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -47,9 +47,9 @@ TEST(SurfaceMesh, NormalsAreAreaWeightedAndUnit) {
   EXPECT_EQ(lonely[0], Vec3(0, 0, 1));
 }
 
-TEST(VertexError, IsDistanceOverTheReferenceDiagonal) {
-  const std::vector<Vec3> ref{{0, 0, 0}, {3, 4, 0}};  // diagonal 5
-  const std::vector<Vec3> p{{0, 0, 1}, {3, 4, 0}};
+TEST(VertexError, IsDistanceOverTheLongestBoxSide) {
+  const std::vector<Vec3> ref{{0, 0, 0}, {5, 4, 0}};  // longest side 5 (the diagonal would be 6.4)
+  const std::vector<Vec3> p{{0, 0, 1}, {5, 4, 0}};
   Result<std::vector<double>> e = relativeVertexErrors(p, ref);
   ASSERT_TRUE(e.ok());
   EXPECT_DOUBLE_EQ((*e)[0], 0.2);
