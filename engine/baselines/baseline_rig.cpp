@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "../offline/deform_player.hpp"
 #include "../rig/kabsch.hpp"
 
 namespace odeskin {
@@ -15,12 +16,7 @@ Result<BaselineRig> BaselineRig::fromAsset(const DeformAsset& asset) {
   rig.pivots_ = asset.bone_pivots;
   rig.parents_ = asset.bone_parents;
   rig.key_poses_ = asset.key_poses;
-  std::vector<RigidTransform> keys(rig.key_poses_.size());
-  rig.paths_.reserve(asset.bone_count);
-  for (std::uint32_t b = 0; b < asset.bone_count; ++b) {
-    for (std::size_t k = 0; k < keys.size(); ++k) keys[k] = rig.key_poses_[k][b];
-    rig.paths_.emplace_back(keys, rig.pivots_[b]);
-  }
+  rig.paths_ = boneKeyPaths(asset);
   return rig;
 }
 

@@ -21,13 +21,19 @@ Result<DeformPlayer> DeformPlayer::create(const DeformAsset& asset) {
       player.bases_.push_back(*basis);
     }
   }
+  player.bone_paths_ = boneKeyPaths(asset);
+  return player;
+}
+
+std::vector<RigidKeyPath> boneKeyPaths(const DeformAsset& asset) {
+  std::vector<RigidKeyPath> paths;
   std::vector<RigidTransform> keys(asset.key_poses.size());
-  player.bone_paths_.reserve(asset.bone_count);
+  paths.reserve(asset.bone_count);
   for (std::uint32_t b = 0; b < asset.bone_count; ++b) {
     for (std::size_t k = 0; k < keys.size(); ++k) keys[k] = asset.key_poses[k][b];
-    player.bone_paths_.emplace_back(keys, asset.bone_pivots[b]);
+    paths.emplace_back(keys, asset.bone_pivots[b]);
   }
-  return player;
+  return paths;
 }
 
 std::pair<std::uint32_t, double> DeformPlayer::locate(double t) const {

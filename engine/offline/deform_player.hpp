@@ -43,6 +43,9 @@ class DeformPlayer {
   std::vector<RigidKeyPath> bone_paths_;  // B
 };
 
+// The C1 bone path of every bone through the asset's key poses (asset.bone_count entries).
+std::vector<RigidKeyPath> boneKeyPaths(const DeformAsset& asset);
+
 // The reference job of `asset` for one frame (spans into asset and the caller's frame buffers).
 FourierDeformJob referenceJob(const DeformAsset& asset, std::uint32_t segment, std::span<const ModeBasisValue> basis,
                               std::span<const BoneTransform> bones, std::span<Vec3> out_positions);

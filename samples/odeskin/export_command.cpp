@@ -8,22 +8,11 @@
 #include <system_error>
 
 #include "engine/io/asset_file.hpp"
+#include "number_text.hpp"
 #include "progress.hpp"
 
 namespace odeskin {
 namespace {
-
-std::string scientific(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2e", x);
-  return text;
-}
-
-std::string numberText(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
 
 std::string usageProblem(const ExportCommandOptions& o) {
   if (o.output.empty()) return "export: -o OUT.glb is required";

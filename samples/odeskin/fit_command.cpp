@@ -11,16 +11,11 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "material_options.hpp"
+#include "number_text.hpp"
 #include "progress.hpp"
 
 namespace odeskin {
 namespace {
-
-std::string scientific(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2e", x);
-  return text;
-}
 
 Result<ExampleSet> readExamples(const FitCommandOptions& o) {
   std::string ignored;

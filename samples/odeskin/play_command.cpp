@@ -13,6 +13,7 @@
 #include "engine/io/obj_io.hpp"
 #include "engine/visual/compose.hpp"
 #include "engine/visual/png_writer.hpp"
+#include "number_text.hpp"
 #include "progress.hpp"
 #include "render_session.hpp"
 
@@ -23,12 +24,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr std::size_t kMaxFrames = 1000000;  // a typo like --fps 30000 --seconds 600 stops here
 constexpr std::size_t kMaxPatternWidth = 32;
-
-std::string numberText(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
 
 std::string lowerExtension(const std::string& name) {
   std::string ext = std::filesystem::path(name).extension().string();

@@ -6,18 +6,13 @@
 #include <cstdio>
 
 #include "asset_playback.hpp"
+#include "number_text.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/io/gltf_reader.hpp"
 #include "engine/io/obj_reader.hpp"
 
 namespace odeskin {
 namespace {
-
-std::string numberText(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
 
 Result<RenderInput> loadAssetInput(const std::filesystem::path& path, const RenderInputOptions& options) {
   ODESKIN_ASSIGN_OR_RETURN(DeformAsset asset, loadAsset(path));
