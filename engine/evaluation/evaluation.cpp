@@ -8,6 +8,7 @@
 
 #include "../baselines/baseline_rig.hpp"
 #include "../baselines/vertex_error.hpp"
+#include "../rig/kabsch.hpp"
 
 namespace odeskin {
 namespace {
@@ -114,6 +115,25 @@ Result<EvaluationResult> runEvaluation(const ExampleSet& frames, std::span<const
   if (key_set.rig && key_set.rig->key_poses.size() != keys.size()) key_set.rig->key_poses.clear();
   const auto fit_start = std::chrono::steady_clock::now();
   ODESKIN_ASSIGN_OR_RETURN(PipelineResult fit, runFitPipeline(key_set, options.pipeline));
+  if (options.skeleton_fit == SkeletonFit::kPerBoneRigid) {
+    // Keep the fitted rig's bones and weights; refit the keys' transforms rigidly and fit again, so
+    // that the residual is measured against the same kind of skeleton the in-betweens get.
+    const DeformAsset& a = fit.asset;
+    Rig rig;
+    rig.skeleton.heads = a.bone_pivots;
+    rig.skeleton.tails = a.bone_pivots;
+    rig.skeleton.names.assign(a.bone_pivots.size(), std::string());
+    rig.skeleton.parents = a.bone_parents.empty() ? std::vector<std::int32_t>(a.bone_pivots.size(), -1) : a.bone_parents;
+    rig.influences = a.influences;
+    ODESKIN_ASSIGN_OR_RETURN(rig.key_poses,
+                             fitRigidBoneTransforms(key_set.rest_positions, key_set.poses, rig.influences, rig.skeleton));
+    const std::string first_rig = fit.rig_summary;
+    key_set.rig = std::move(rig);
+    PipelineOptions rigid = options.pipeline;
+    rigid.force_auto_rig = false;
+    ODESKIN_ASSIGN_OR_RETURN(fit, runFitPipeline(key_set, rigid));
+    fit.rig_summary = first_rig + "; transforms refitted per bone rigidly";
+  }
 
   EvaluationResult result;
   result.fit_seconds = secondsSince(fit_start);
@@ -143,7 +163,7 @@ Result<EvaluationResult> runEvaluation(const ExampleSet& frames, std::span<const
     const std::vector<Vec3>& truth = frames.poses[ib.frame];
     std::vector<BoneTransform> bones;  // empty: the keys protocol
     if (source == PoseSource::kTruth) {
-      Result<std::vector<BoneTransform>> fitted = rig.fitFrameBones(truth);
+      Result<std::vector<BoneTransform>> fitted = rig.fitFrameBones(truth, options.skeleton_fit);
       if (!fitted.ok()) {
         return Status(fitted.status().code(), frameLabel(frames, ib.frame) + ": " + fitted.status().message());
       }

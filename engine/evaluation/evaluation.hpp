@@ -13,6 +13,7 @@
 
 #include "../baselines/baseline.hpp"
 #include "../baselines/baseline_factory.hpp"
+#include "../baselines/baseline_rig.hpp"
 #include "../core/result.hpp"
 #include "../io/example_set.hpp"
 #include "../pipeline/fit_pipeline.hpp"
@@ -30,6 +31,13 @@ bool parsePoseSource(std::string_view name, PoseSource* source);
 struct EvaluationOptions {
   PipelineOptions pipeline;   // how the keys are fitted (modes = --terms, rig, ...)
   BaselineOptions baselines;  // PSD, FD and the odeskin materials
+  // How every skeleton is fitted to its frame, the keys' (the asset's key transforms) and, under
+  // the truth protocol, the in-betweens' alike, so that the keys and the frames between them come
+  // from one animation system. kLbsOptimal: the rig's own transforms (SSDR sweeps minimising each
+  // frame's LBS error: the best LBS the rig allows, which leaks the surface into the skeleton).
+  // kPerBoneRigid: per-bone rigid fits (issue 5's "per-bone rigid fit on the rig's vertices"); the
+  // automatic rig's bones and weights are kept, only the transforms are refitted.
+  SkeletonFit skeleton_fit = SkeletonFit::kPerBoneRigid;
 };
 
 struct MethodFrameScore {

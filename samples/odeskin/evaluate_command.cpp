@@ -95,6 +95,9 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console) {
     return reportUsage(console, "evaluate: --pose-source must be truth or keys, not '" + o.pose_source + "'");
   }
   if (o.frames.size() < 2) return reportUsage(console, "evaluate: give at least 2 frames");
+  if (o.skeleton_fit != "rigid" && o.skeleton_fit != "lbs") {
+    return reportUsage(console, "evaluate: --skeleton-fit must be rigid or lbs, not '" + o.skeleton_fit + "'");
+  }
   if (o.terms < 1 || o.terms > kMaxFourierModes) {
     return reportUsage(console, "evaluate: --terms must be in [1, " + std::to_string(kMaxFourierModes) + "]");
   }
@@ -128,6 +131,7 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console) {
   options.pipeline.modes = o.terms;
   options.pipeline.force_auto_rig = o.rig == "auto";
   options.pipeline.auto_bones = o.bones;
+  options.skeleton_fit = o.skeleton_fit == "lbs" ? SkeletonFit::kLbsOptimal : SkeletonFit::kPerBoneRigid;
   Result<EvaluationResult> result = runEvaluation(*frames, keys, methods, source, o.times, options);
   if (!result.ok()) return reportFailure(console, result.status());
 

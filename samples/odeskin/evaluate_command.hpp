@@ -26,6 +26,7 @@ struct EvaluateCommandOptions {
   std::filesystem::path bind;                 // rest mesh, with a .tgf rig
   std::filesystem::path weights;              // .dmat, with a .tgf rig
   int bones = 0;                              // automatic rig: bone count, 0 = chosen from the mesh
+  std::string skeleton_fit = "rigid";         // rigid (per-bone) | lbs (SSDR, the rig's own); evaluation.hpp
 };
 
 // Exit status as console.hpp: usage (2) for option errors (unknown method or protocol, bad keys or

@@ -103,7 +103,8 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
       "index within each segment (or from --times, one per frame). Errors are fractions of the ground\n"
       "truth's longest bounding-box side: MVE = max vertex distance, mean = mean vertex distance (the\n"
       "table prints them in %). --pose-source truth fits each frame's skeleton to that frame (only the\n"
-      "skeleton); keys interpolates the key skeletons. Methods: linear, lbs, dqs, psd_lbs, psd_dqs,\n"
+      "skeleton, per-bone rigid fits like the keys' unless --skeleton-fit lbs); keys interpolates the key\n"
+      "skeletons. Methods: linear, lbs, dqs, psd_lbs, psd_dqs,\n"
       "fd_curve, odeskin_static, odeskin_dynamic.\n"
       "JSON: {\"pose_source\", \"frames\": [{\"frame\", \"t\", \"methods\": {name: {\"mve\", \"mean\",\n"
       "\"ms_per_frame\"}}}], \"summary\": {name: {\"mve_max\", \"mean_mean\"}}}.\n"
@@ -125,6 +126,10 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
   cmd->add_option("--bind", o.bind, "Rest mesh (.obj) for --rig SKELETON.tgf");
   cmd->add_option("--weights", o.weights, "Skinning weights (.dmat) for --rig SKELETON.tgf");
   cmd->add_option("--bones", o.bones, "Automatic rig: bone count (0: chosen from the mesh)");
+  cmd->add_option("--skeleton-fit", o.skeleton_fit,
+                  "rigid (default: per-bone rigid fits, keys and truth frames alike) or lbs (the rig's SSDR\n"
+                  "transforms, which minimise each frame's LBS error)")
+      ->check(CLI::IsMember({"rigid", "lbs"}));
   return cmd;
 }
 
