@@ -7,7 +7,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools
-  libglm-dev libeigen3-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenmesh-dev
+  libglm-dev libeigen3-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev libstb-dev zlib1g-dev libopenmesh-dev
   libcli11-dev libgtest-dev libbenchmark-dev
   nodejs chromium
 )

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "gltf_reader.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -260,8 +261,10 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
 Result<ExampleSet> readGltfExamples(const std::filesystem::path& path, const GltfPoseRequest& request) {
   const std::size_t poses =
       (request.include_bind_pose ? 1 : 0) + request.times.size() + request.morph_targets.size();
-  if (poses < 2) {
-    return invalidArgument(path.string() + ": " + std::to_string(poses) + " example poses requested, at least 2 are needed");
+  const std::size_t needed = std::max<std::size_t>(request.min_poses, 1);
+  if (poses < needed) {
+    return invalidArgument(path.string() + ": " + std::to_string(poses) + " example poses requested, at least " +
+                           std::to_string(needed) + " are needed");
   }
   for (double t : request.times) {
     if (!std::isfinite(t)) return invalidArgument(path.string() + ": a requested time is not finite");

@@ -21,6 +21,7 @@ struct GltfPoseRequest {
   std::vector<double> times;        // seconds: one example pose per time (skinned with the animated joints)
   std::vector<int> morph_targets;   // each: the bind mesh with that target's weight set to 1, in bind space
   bool include_bind_pose = true;    // pose 0 is the bind mesh (the mesh with its default morph weights)
+  std::size_t min_poses = 2;        // fewest poses accepted: fitting needs 2, drawing one pose 1
 };
 
 // Example poses of one mesh, in this order: the bind pose (if asked), one pose per time, one per
@@ -44,7 +45,7 @@ struct GltfPoseRequest {
 // JOINTS_n/WEIGHTS_n of each topology vertex's first render vertex, normalised per vertex; key
 // poses: the rigid part of every S_j (polar decomposition), identity for bind and morph poses.
 //
-// Errors name the file. kInvalidArgument: fewer than 2 poses, a non-finite time, times without a
+// Errors name the file. kInvalidArgument: fewer than max(min_poses, 1) poses, a non-finite time, times without a
 // skin, an unknown animation (the message lists the available ones), a morph target out of range,
 // an unknown mesh node name, an extensionsRequired entry odeskin does not handle (named; see
 // gltf_load.hpp), a skin matrix that scales or shears by more than 1e-4 (naming joint and pose).

@@ -16,6 +16,7 @@
 #include "host/device_info.hpp"
 #include "play_command.hpp"
 #include "progress.hpp"
+#include "render_command.hpp"
 
 namespace {
 
@@ -133,6 +134,47 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
   return cmd;
 }
 
+struct RenderCliValues {
+  double t = 0.0;
+  double heat_max = 0.0;
+  std::filesystem::path heat;
+  CLI::Option* t_opt = nullptr;
+  CLI::Option* heat_opt = nullptr;
+  CLI::Option* heat_max_opt = nullptr;
+};
+
+CLI::App* addRenderCommand(CLI::App& app, odeskin::RenderOptions& o, RenderCliValues& v) {
+  CLI::App* render = app.add_subcommand("render", "Draw meshes to PNG without a display (Vulkan; lavapipe works)");
+  render->footer(
+      "Several inputs are drawn side by side with one camera and scale. --heat REF colours each panel by\n"
+      "its distance to REF per vertex, as a fraction of REF's bounding-box diagonal, with a colour bar.\n"
+      "--t: global time T in [0, K-1] for .odsk assets, seconds into the animation for .gltf/.glb.\n"
+      "Examples: odeskin render horse-01.obj -o horse.png --azimuth 90\n"
+      "          odeskin render horse.odsk horse-03.obj --t 0.5 --lbs --heat horse-03.obj -o compare.png\n"
+      "          odeskin render arm.odsk --curves --turntable 8 -o turn/arm_%02d.png --strip turn.png");
+  render->add_option("inputs", o.inputs, "Meshes: .obj, .gltf/.glb (bind pose or --t seconds), .odsk (at --t)")->required();
+  render->add_option("-o,--output", o.output, "OUT.png; with --turntable a pattern OUT_%03d.png (default: OUT_NNN.png)")
+      ->required();
+  v.t_opt = render->add_option("--t", v.t, "Asset time T in [0, K-1] (default 0); glTF animation seconds");
+  render->add_option("--size", o.size, "Whole picture WIDTHxHEIGHT (default 720x540 per panel, plus the colour bar)");
+  v.heat_opt = render->add_option("--heat", v.heat, "Reference mesh with the same vertices: per-vertex error heat map");
+  v.heat_max_opt = render->add_option("--heat-max", v.heat_max, "Top of the colour bar as a fraction of REF's diagonal (default: the largest error)");
+  render->add_flag("--curves", o.curves, "Draw the assets' iso-parametric curves over the surface");
+  render->add_flag("--lbs", o.lbs, "Also draw each asset skinned without its residual (plain LBS), in a panel before it");
+  render->add_option("--turntable", o.turntable, "Write N frames turning once about the up axis");
+  render->add_option("--strip", o.strip, "With --turntable: also a contact sheet of the frames (PNG)");
+  render->add_option("--azimuth", o.azimuth_deg, "Camera angle about the up axis in degrees (0: looking down -z for up y)");
+  render->add_option("--elevation", o.elevation_deg, "Camera height above the horizon in degrees");
+  render->add_option("--fov", o.fov_deg, "Vertical field of view in degrees");
+  render->add_option("--up", o.up, "Up axis: x, y, z, -x, -y or -z");
+  render->add_option("--labels", o.labels, "Panel names, comma separated (default: file names)")->delimiter(',');
+  render->add_flag("--no-labels", o.no_labels, "No text under the panels");
+  render->add_option("--background", o.background, "Background colour RRGGBB");
+  render->add_option("--samples", o.samples, "Multisampling per pixel (1 turns it off)");
+  render->add_flag("--validation", o.validation, "Enable the Khronos validation layer; fail on any message");
+  return render;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -147,12 +189,17 @@ int main(int argc, char** argv) {
   std::filesystem::path info_asset;
   CLI::App* info = app.add_subcommand("info", "Describe a .odsk asset, or without one list the Vulkan devices");
   info->add_option("asset", info_asset, "A .odsk asset: counts, coefficient and byte sizes, size ratios");
-  info->footer("Example: odeskin info arm.odsk");
+  info->footer("Examples: odeskin info              (the Vulkan devices)\n"
+               "          odeskin info arm.odsk     (an asset)");
 
   odeskin::DemoOptions demo;
   std::string demo_backend = "auto";
   std::string residual = "bind";
   CLI::App* demo_cmd = app.add_subcommand("demo", "Fit the procedural arm's two poses and play the in-betweens");
+  demo_cmd->footer(
+      "Checks that the first and last frames reproduce the two poses, and prints the per-frame time.\n"
+      "Examples: odeskin demo\n"
+      "          odeskin demo --backend cpu --frames 60 --material static -o arm-frames");
   demo_cmd->add_option("-o,--output", demo.output_dir, "Output folder for start.obj, end.obj, frame_NNNN.obj");
   demo_cmd->add_option("--frames", demo.frames, "Frames from t = 0 to t = 1")->check(CLI::Range(2, 100000));
   demo_cmd->add_option("--backend", demo_backend, "cpu, vulkan or auto")->check(CLI::IsMember({"auto", "cpu", "vulkan"}));
@@ -174,7 +221,8 @@ int main(int argc, char** argv) {
       "T runs over [0, K-1] for K example poses: integer T is example pose T, T = 1.5 the middle of the\n"
       "second segment. A sequence maps seconds to T = seconds / segment length.\n"
       "Examples: odeskin play arm.odsk --t 0.5 -o mid.obj\n"
-      "          odeskin play arm.odsk --fps 30 --seconds 1 -o frames/arm_%04d.obj --backend vulkan");
+      "          odeskin play arm.odsk --fps 30 --seconds 1 -o frames/arm_%04d.obj --backend vulkan\n"
+      "          odeskin play horse.odsk --fps 8 --png preview --size 480x360");
   play_cmd->add_option("asset", play.asset, "The .odsk asset")->required();
   CLI::Option* t_opt = play_cmd->add_option("--t", play_t, "One frame at global time T in [0, K-1]");
   CLI::Option* fps_opt = play_cmd->add_option("--fps", play_fps, "A sequence at this frame rate");
@@ -182,7 +230,12 @@ int main(int argc, char** argv) {
       play_cmd->add_option("--seconds", play_seconds, "Sequence length in seconds (default: the whole asset)");
   t_opt->excludes(fps_opt);
   seconds_opt->needs(fps_opt);
-  play_cmd->add_option("-o,--output", play.output, "OUT.obj, or a pattern with one frame number: OUT_%04d.obj")->required();
+  play_cmd->add_option("-o,--output", play.output, "OUT.obj, or a pattern with one frame number: OUT_%04d.obj");
+  play_cmd->add_option("--png", play.png_dir, "Also draw the frames to DIR/frame_NNNN.png and DIR/strip.png (Vulkan)");
+  play_cmd->add_option("--size", play.png_size, "--png picture size WIDTHxHEIGHT");
+  play_cmd->add_flag("--curves", play.png_curves, "--png: draw the iso-parametric curves");
+  play_cmd->add_option("--azimuth", play.png_azimuth_deg, "--png camera angle about +y in degrees");
+  play_cmd->add_option("--elevation", play.png_elevation_deg, "--png camera height above the horizon in degrees");
   play_cmd->add_option("--backend", play_backend, "cpu (double reference), vulkan, or auto")
       ->check(CLI::IsMember({"auto", "cpu", "vulkan"}));
   play_cmd->add_flag("--validation", play.playback.validation, "Enable the Khronos validation layer; fail on any message");
@@ -195,6 +248,9 @@ int main(int argc, char** argv) {
   odeskin::ExportCommandOptions export_options;
   double export_fps = 30.0;
   CLI::App* export_cmd = addExportCommand(app, export_options, export_fps);
+  odeskin::RenderOptions render;
+  RenderCliValues render_values;
+  CLI::App* render_cmd = addRenderCommand(app, render, render_values);
 
   odeskin::EvaluateCommandOptions evaluate_options;
   CLI::App* evaluate_cmd = addEvaluateCommand(app, evaluate_options);
@@ -227,6 +283,13 @@ int main(int argc, char** argv) {
     play.playback.backend = kBackends.at(play_backend);
     play.playback.device = device;
     return odeskin::runPlayCommand(play, console);
+  }
+  if (render_cmd->parsed()) {
+    if (render_values.t_opt->count() > 0) render.t = render_values.t;
+    if (render_values.heat_opt->count() > 0) render.heat = render_values.heat;
+    if (render_values.heat_max_opt->count() > 0) render.heat_max = render_values.heat_max;
+    render.device = device;
+    return odeskin::runRenderCommand(render, console);
   }
   if (fit_cmd->parsed()) {
     fit.residual_space = fit_residual == "posed" ? odeskin::ResidualSpace::kPosed : odeskin::ResidualSpace::kBind;

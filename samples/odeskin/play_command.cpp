@@ -11,7 +11,10 @@
 #include "engine/io/asset_file.hpp"
 #include "engine/io/gltf_baked_writer.hpp"
 #include "engine/io/obj_io.hpp"
+#include "engine/visual/compose.hpp"
+#include "engine/visual/png_writer.hpp"
 #include "progress.hpp"
+#include "render_session.hpp"
 
 namespace odeskin {
 namespace {
@@ -37,12 +40,22 @@ std::string lowerExtension(const std::string& name) {
 std::string usageProblem(const PlayOptions& o) {
   if (o.t.has_value() == o.fps.has_value()) return "play: give either --t T (one frame) or --fps F (a sequence)";
   if (o.seconds && !o.fps) return "play: --seconds needs --fps";
-  if (o.output.empty()) return "play: -o OUT is required";
+  if (o.output.empty() && o.png_dir.empty()) return "play: -o OUT is required (.obj or .glb), or --png DIR for pictures only";
   if (o.t && !std::isfinite(*o.t)) return "play: --t must be a number in [0, K-1]";
   if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0)) return "play: --fps must be positive, got " + numberText(*o.fps);
   if (o.seconds && !(std::isfinite(*o.seconds) && *o.seconds >= 0.0)) {
     return "play: --seconds must be zero or positive, got " + numberText(*o.seconds);
   }
+  if (!o.png_dir.empty()) {
+    if (Result<std::pair<std::uint32_t, std::uint32_t>> size = parseImageSize(o.png_size); !size.ok()) {
+      return "play: " + size.status().message();
+    }
+    visual::ViewSpec view;
+    view.azimuth_deg = o.png_azimuth_deg;
+    view.elevation_deg = o.png_elevation_deg;
+    if (Status s = visual::validateViewSpec(view); !s.ok()) return "play: " + s.message();
+  }
+  if (o.output.empty()) return {};
   const std::string ext = lowerExtension(o.output);
   if (ext == ".gltf") return "play: " + o.output + ": write .glb (one self-contained binary file) or .obj";
   if (ext != ".obj" && ext != ".glb") return "play: " + o.output + ": unknown output format '" + ext + "' (expected .obj or .glb)";
@@ -61,6 +74,76 @@ Status ensureParentDirectory(const std::filesystem::path& file, std::filesystem:
   if (ec) return ioError(parent.string() + ": cannot create directory: " + ec.message());
   last_created = parent;
   return okStatus();
+}
+
+// --png: about this many vertices over all frames decide the pictures' camera, plus each frame's
+// extreme vertices along every axis, so long sequences of big meshes stay cheap to frame.
+constexpr std::size_t kFramingBudget = 500000;
+constexpr std::size_t kStripFrames = 12;
+constexpr std::uint32_t kStripColumns = 6;
+constexpr std::uint32_t kStripWidth = 1536;
+
+void addFramingPoints(const std::vector<Vec3>& positions, std::size_t frame_count, std::vector<Vec3>& framing) {
+  if (positions.empty()) return;
+  const std::size_t stride = std::max<std::size_t>(1, positions.size() * frame_count / kFramingBudget);
+  for (std::size_t i = 0; i < positions.size(); i += stride) framing.push_back(positions[i]);
+  for (int axis = 0; axis < 3; ++axis) {
+    const auto [lo, hi] = std::minmax_element(positions.begin(), positions.end(),
+                                              [axis](const Vec3& a, const Vec3& b) { return a[axis] < b[axis]; });
+    framing.push_back(*lo);
+    framing.push_back(*hi);
+  }
+}
+
+// Draws every frame again (the playback is deterministic) with one camera that frames them all.
+Status playPictures(const PlayOptions& o, const DeformAsset& asset, AssetPlayback& playback, RenderSession& session,
+                    const std::vector<double>& times, const std::vector<Vec3>& framing, Console& console,
+                    std::vector<std::filesystem::path>& pictures) {
+  const auto [width, height] = *parseImageSize(o.png_size);
+  visual::PictureSpec spec;
+  spec.width = width;
+  spec.height = height;
+  ODESKIN_ASSIGN_OR_RETURN(const visual::PictureLayout layout, visual::layoutPicture(spec));
+  visual::ViewSpec view;
+  view.azimuth_deg = o.png_azimuth_deg;
+  view.elevation_deg = o.png_elevation_deg;
+  ODESKIN_ASSIGN_OR_RETURN(const visual::Camera camera,
+                           visual::framePoints(framing, double(layout.panel_width) / layout.panel_height, view));
+  std::error_code ec;
+  std::filesystem::create_directories(o.png_dir, ec);
+  if (ec) return ioError(o.png_dir.string() + ": cannot create directory: " + ec.message());
+
+  const double scene_size = visual::boundsOf(framing).diagonal();
+  std::vector<std::size_t> strip_frames;
+  for (std::size_t k = 0; k < std::min(kStripFrames, times.size()); ++k) {
+    strip_frames.push_back(times.size() <= kStripFrames ? k : k * (times.size() - 1) / (kStripFrames - 1));
+  }
+  std::vector<visual::Image> strip;
+  std::vector<std::string> captions;
+  ProgressBar bar(console.err, "pictures", times.size(), !console.quiet && console.interactive && times.size() > 1);
+  std::vector<Vec3> positions;
+  const FramePattern names = *FramePattern::parse((o.png_dir / "frame_%04d.png").string());
+  for (std::size_t f = 0; f < times.size(); ++f) {
+    ODESKIN_TRY(playback.positionsAt(times[f], positions));
+    ODESKIN_ASSIGN_OR_RETURN(PanelGeometry panel, preparePanel(o.asset.string(), positions, asset.faces,
+                                                               o.png_curves ? &asset.curves : nullptr));
+    const vk::PanelContent content = panel.content();
+    ODESKIN_ASSIGN_OR_RETURN(visual::Image picture, session.draw(layout, camera, scene_size, {&content, 1}));
+    pictures.emplace_back(names.format(f));
+    ODESKIN_TRY(visual::writePng(pictures.back(), picture));
+    if (std::find(strip_frames.begin(), strip_frames.end(), f) != strip_frames.end()) {
+      strip.push_back(std::move(picture));
+      captions.push_back("t = " + numberText(times[f]));
+    }
+    bar.step(f + 1);
+  }
+  bar.finish();
+  const std::uint32_t columns = visual::balancedColumns(strip.size(), kStripColumns);
+  const visual::Image sheet = visual::contactSheet(strip, columns, std::min(width, kStripWidth / columns), 4,
+                                                   vk::PictureStyle{}.background, captions);
+  pictures.push_back(o.png_dir / "strip.png");
+  ODESKIN_TRY(visual::writePng(pictures.back(), sheet));
+  return session.checkValidation();
 }
 
 }  // namespace
@@ -131,6 +214,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   const double t_end = static_cast<double>(asset.key_poses.size() - 1);
 
   // Frame names and global times.
+  const bool write_meshes = !o.output.empty();
   std::vector<std::filesystem::path> files;
   std::vector<double> times;
   if (o.t) {
@@ -139,7 +223,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
                                       "]: " + o.asset.string() + " has " + std::to_string(asset.key_poses.size()) +
                                       " key poses");
     }
-    files.push_back(o.output);
+    if (write_meshes) files.push_back(o.output);
     times.push_back(*o.t);
   } else {
     const double length = t_end * asset.segment_seconds;
@@ -150,9 +234,11 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
                                       " s is more than " + std::to_string(kMaxFrames) + " frames");
     }
     const bool glb = lowerExtension(o.output) == ".glb";
-    const FramePattern pattern = glb ? FramePattern{} : *FramePattern::parse(o.output);
+    const FramePattern pattern = glb || !write_meshes ? FramePattern{} : *FramePattern::parse(o.output);
     for (std::size_t f = 0; f < clock.size(); ++f) {
-      files.emplace_back(glb ? std::filesystem::path(o.output) : std::filesystem::path(pattern.format(f)));
+      if (write_meshes) {
+        files.emplace_back(glb ? std::filesystem::path(o.output) : std::filesystem::path(pattern.format(f)));
+      }
       times.push_back(std::clamp(clock[f] / asset.segment_seconds, 0.0, t_end));
     }
   }
@@ -162,15 +248,28 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
 
   Result<AssetPlayback> playback = AssetPlayback::create(asset, o.playback, console.quiet ? nullptr : &console.err);
   if (!playback.ok()) return reportFailure(console, playback.status());
+  // --png: the device is opened before anything is written, so a missing one fails early.
+  std::optional<RenderSession> session;
+  if (!o.png_dir.empty()) {
+    Result<RenderSession> opened = RenderSession::open(o.playback.device, o.playback.validation, vk::PictureStyle{});
+    if (!opened.ok()) return reportFailure(console, Status(opened.status().code(), "play: " + opened.status().message()));
+    session.emplace(std::move(opened).value());
+  }
 
-  ProgressBar bar(console.err, "play", files.size(), !console.quiet && console.interactive && files.size() > 1);
+  ProgressBar bar(console.err, "play", times.size(), !console.quiet && console.interactive && times.size() > 1);
   std::vector<Vec3> positions;
+  std::vector<Vec3> framing;  // --png: vertices the pictures' camera must see (playPictures)
   std::filesystem::path last_directory;
   double deform_seconds = 0.0;
-  for (std::size_t f = 0; f < files.size(); ++f) {
+  for (std::size_t f = 0; f < times.size(); ++f) {
     const Clock::time_point start = Clock::now();
     if (Status s = playback->positionsAt(times[f], positions); !s.ok()) return reportFailure(console, s);
     deform_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+    if (!o.png_dir.empty()) addFramingPoints(positions, times.size(), framing);
+    if (!write_meshes) {
+      bar.step(f + 1);
+      continue;
+    }
     if (Status s = ensureParentDirectory(files[f], last_directory); !s.ok()) return reportFailure(console, s);
     if (glb) {
       baked.push_back(outputPositions(asset, positions));
@@ -185,7 +284,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   }
   bar.finish();
   if (Status s = playback->checkValidation(); !s.ok()) return reportFailure(console, s);
-  if (glb) {
+  if (glb && write_meshes) {
     std::vector<double> seconds;
     for (double t : times) seconds.push_back(t * asset.segment_seconds);
     // --t, or clamped times at the end of a sequence, may repeat a time: keep strictly increasing keys.
@@ -201,26 +300,40 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     }
   }
 
-  const double mean = deform_seconds / static_cast<double>(files.size());
+  std::vector<std::filesystem::path> pictures;
+  if (!o.png_dir.empty()) {
+    if (Status s = playPictures(o, asset, *playback, *session, times, framing, console, pictures); !s.ok()) {
+      return reportFailure(console, s);
+    }
+  }
+
+  const double mean = deform_seconds / static_cast<double>(times.size());
   if (!console.quiet) {
     char timing[64];
     std::snprintf(timing, sizeof timing, "%.3f ms", 1e3 * mean);
     if (o.t) {
       const auto segment = static_cast<std::size_t>(std::min(std::floor(*o.t), std::max(t_end - 1.0, 0.0)));
       console.out << "t = " << numberText(*o.t) << " (segment " << segment << ", tau " << numberText(*o.t - static_cast<double>(segment))
-                  << ") -> " << files.front().string() << "\n";
+                  << ") -> " << (write_meshes ? files.front().string() : pictures.front().string()) << "\n";
     } else {
-      console.out << files.size() << " frame" << (files.size() == 1 ? "" : "s") << " at " << numberText(*o.fps)
-                  << " fps (t " << numberText(times.front()) << " to " << numberText(times.back()) << ") -> "
-                  << (glb ? files.front().string() + " (one morph target per frame)"
-                          : files.front().string() + " ... " + files.back().string())
-                  << "\n";
+      console.out << times.size() << " frame" << (times.size() == 1 ? "" : "s") << " at " << numberText(*o.fps)
+                  << " fps (t " << numberText(times.front()) << " to " << numberText(times.back()) << ")";
+      if (write_meshes) {
+        console.out << " -> "
+                    << (glb ? files.front().string() + " (one morph target per frame)"
+                            : files.front().string() + " ... " + files.back().string());
+      }
+      console.out << "\n";
     }
     console.out << "device: " << playback->device() << ", " << timing << " per frame (deformation only)\n";
+    if (!pictures.empty()) {
+      console.out << "pictures: " << pictures.front().string() << " ... " << pictures.back().string() << "\n";
+    }
   }
   if (report) {
-    if (glb) files.assign(1, o.output);
+    if (glb && write_meshes) files.assign(1, o.output);
     report->files = std::move(files);
+    report->pictures = std::move(pictures);
     report->times = std::move(times);
     report->device = playback->device();
     report->mean_frame_seconds = mean;

@@ -2,7 +2,9 @@
 // `odeskin play ASSET --t T -o OUT.obj` writes the deformation at global time T in [0, K-1] (integer
 // T: example pose T; T = 1.5: the middle of the second segment). `odeskin play ASSET --fps F
 // [--seconds S] -o OUT_%04d.obj` writes a sequence: frame f at f / F seconds, t = seconds /
-// segment_seconds (clamped to [0, K-1]); S defaults to the asset's length.
+// segment_seconds (clamped to [0, K-1]); S defaults to the asset's length. `--png DIR` (with or
+// without -o) also draws every frame to DIR/frame_%04d.png with one fixed camera, and a contact
+// sheet of up to 12 evenly spaced frames to DIR/strip.png as a quick preview.
 #pragma once
 
 #include <cstddef>
@@ -37,12 +39,18 @@ struct PlayOptions {
   std::optional<double> t;        // one frame at global time t
   std::optional<double> fps;      // a sequence at this frame rate
   std::optional<double> seconds;  // sequence length; default: (K-1) x segment_seconds
-  std::string output;             // .obj file (--t) or .obj pattern (--fps)
+  std::string output;             // .obj file (--t) or .obj pattern (--fps), or .glb; may be empty with png_dir
   PlaybackOptions playback;
+  std::filesystem::path png_dir;  // --png DIR: pictures of the frames (Vulkan; lavapipe works)
+  std::string png_size = "640x480";
+  bool png_curves = false;        // draw the asset's iso-parametric curves on the pictures
+  double png_azimuth_deg = 30.0;  // camera as `odeskin render --azimuth/--elevation` (up: +y)
+  double png_elevation_deg = 15.0;
 };
 
 struct PlayReport {
-  std::vector<std::filesystem::path> files;  // written, in frame order
+  std::vector<std::filesystem::path> files;  // meshes written, in frame order
+  std::vector<std::filesystem::path> pictures;  // --png: frame pictures, in frame order, then the strip
   std::vector<double> times;                 // global t of each file
   std::string device;
   double mean_frame_seconds = 0.0;           // deformation only, not file writing
@@ -53,7 +61,8 @@ struct PlayReport {
 std::vector<double> sequenceSeconds(double fps, double seconds);
 
 // Exit status as console.hpp: usage (2) for option errors, including T outside [0, K-1]; failure
-// (1) for a missing or corrupt asset (the message starts with its path) and write errors.
+// (1) for a missing or corrupt asset (the message starts with its path), write errors, and --png
+// without a Vulkan device.
 int runPlayCommand(const PlayOptions& options, Console& console, PlayReport* report = nullptr);
 
 }  // namespace odeskin

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// The meshes `odeskin render` draws, from any of the files odeskin reads: an OBJ (as it is), a
+// glTF/GLB (its mesh at the bind pose, or skinned at an animation time), or a .odsk asset played
+// at a global time with the CPU reference (optionally with the residual switched off, plain LBS).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/core/iso_curve.hpp"
+#include "engine/core/result.hpp"
+#include "engine/core/types.hpp"
+#include "engine/offline/deform_asset.hpp"
+
+namespace odeskin {
+
+enum class RenderInputKind { kObj, kGltf, kAsset };
+
+// By extension, ignoring case: .obj, .gltf/.glb, .odsk. kInvalidArgument naming the file otherwise.
+Result<RenderInputKind> renderInputKind(const std::filesystem::path& path);
+
+struct RenderInputOptions {
+  // Asset: global time in [0, K-1] (default 0). glTF: seconds into the animation (default: the
+  // bind pose). OBJ: ignored.
+  std::optional<double> t;
+  bool skin_only = false;  // asset: skinning without the analytic residual (what LBS alone gives)
+};
+
+struct RenderInput {
+  std::filesystem::path path;
+  std::string label;               // "horse.odsk t=0.5 LBS", "horse-03.obj"
+  std::vector<Vec3> positions;     // world space
+  FaceList faces;                  // over positions (welded topology for glTF and assets)
+  std::vector<IsoCurve> curves;    // assets: the iso-parametric curves, on these vertices
+};
+
+// Errors name the file: readObj's, readGltfExamples' and loadAsset's; kOutOfRange when an asset's t
+// lies outside [0, K-1] (naming the range); kInvalidArgument for skin_only on a non-asset.
+Result<RenderInput> loadRenderInput(const std::filesystem::path& path, const RenderInputOptions& options);
+
+// The asset with every residual term zeroed (base residuals, Fourier coefficients and rates,
+// sparse remainders): playing it gives linear blend (or dual-quaternion) skinning of the bind mesh
+// with the same interpolated bones, the baseline the analytic residual improves on.
+DeformAsset skinOnlyAsset(const DeformAsset& asset);
+
+}  // namespace odeskin
