@@ -187,6 +187,7 @@ Result<EvaluationResult> runEvaluation(const ExampleSet& frames, std::span<const
         return Status(e.status().code(), std::string(baselineMethodName(methods[m])) + " at " +
                                              frameLabel(frames, ib.frame) + ": " + e.status().message());
       }
+      if (options.on_frame) ODESKIN_TRY(options.on_frame(ib.frame, methods[m], out));
       row.scores.push_back({e->mve, e->mean, ms});
       MethodSummary& s = result.summary[m];
       s.mve_max = std::max(s.mve_max, e->mve);

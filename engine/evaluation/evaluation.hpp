@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -38,6 +39,10 @@ struct EvaluationOptions {
   // kPerBoneRigid: per-bone rigid fits (issue 5's "per-bone rigid fit on the rig's vertices"); the
   // automatic rig's bones and weights are kept, only the transforms are refitted.
   SkeletonFit skeleton_fit = SkeletonFit::kPerBoneRigid;
+  // Called after each scored evaluation (outside the timing) with the in-between frame's index, the
+  // method and its deformed positions (valid during the call), e.g. to draw heat maps; an error
+  // stops the evaluation and is returned.
+  std::function<Status(std::uint32_t frame, BaselineMethod method, std::span<const Vec3> deformed)> on_frame;
 };
 
 struct MethodFrameScore {

@@ -12,6 +12,7 @@
 #include "engine/io/obj_io.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/offline/fourier_fit.hpp"
+#include "render_command.hpp"
 
 namespace odeskin {
 namespace {
@@ -84,9 +85,37 @@ void printTable(std::ostream& out, const EvaluationResult& r) {
   }
 }
 
+std::string frameName(std::uint32_t frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04u", frame);
+  return name;
+}
+
+// One picture per in-between frame: a panel per method, heat = distance to the ground truth.
+int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Console& console, const std::string& device) {
+  for (const EvaluatedFrame& f : r.frames) {
+    RenderOptions render;
+    render.output = (o.png_dir / (frameName(f.frame) + ".png")).string();
+    render.heat = o.frames[f.frame];
+    render.device = device;
+    for (std::size_t m = 0; m < r.methods.size(); ++m) {
+      const std::string name(baselineMethodName(r.methods[m]));
+      render.inputs.push_back(o.png_dir / "obj" / (frameName(f.frame) + "_" + name + ".obj"));
+      char label[96];
+      std::snprintf(label, sizeof label, "%s %.2f%%", name.c_str(), 100.0 * f.scores[m].mean);
+      render.labels.push_back(label);
+    }
+    render.size = std::to_string(360 * r.methods.size()) + "x400";
+    Console quiet{console.out, console.err, true, false};
+    if (const int code = runRenderCommand(render, quiet); code != kExitOk) return code;
+    if (!console.quiet) console.out << "wrote " << render.output << "\n";
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
-int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console) {
+int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const std::string& device) {
   std::string problem;
   const std::vector<BaselineMethod> methods = parseMethods(o.methods, &problem);
   if (!problem.empty()) return reportUsage(console, problem);
@@ -132,6 +161,17 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console) {
   options.pipeline.force_auto_rig = o.rig == "auto";
   options.pipeline.auto_bones = o.bones;
   options.skeleton_fit = o.skeleton_fit == "lbs" ? SkeletonFit::kLbsOptimal : SkeletonFit::kPerBoneRigid;
+  if (!o.png_dir.empty()) {
+    std::error_code made;
+    std::filesystem::create_directories(o.png_dir / "obj", made);
+    if (made) return reportFailure(console, ioError((o.png_dir / "obj").string() + ": cannot create directory: " + made.message()));
+    const ExampleSet& topology = *frames;
+    options.on_frame = [&o, &topology](std::uint32_t frame, BaselineMethod method, std::span<const Vec3> deformed) {
+      const std::string name(baselineMethodName(method));
+      return writeObj(o.png_dir / "obj" / (frameName(frame) + "_" + name + ".obj"), deformed, topology.faces,
+                      name + " at " + o.frames[frame].filename().string());
+    };
+  }
   Result<EvaluationResult> result = runEvaluation(*frames, keys, methods, source, o.times, options);
   if (!result.ok()) return reportFailure(console, result.status());
 
@@ -147,6 +187,7 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console) {
     printTable(console.out, *result);
     console.out << "wrote " << o.json.string() << "\n";
   }
+  if (!o.png_dir.empty()) return drawHeatMaps(o, *result, console, device);
   return kExitOk;
 }
 

@@ -26,12 +26,16 @@ struct EvaluateCommandOptions {
   std::filesystem::path bind;                 // rest mesh, with a .tgf rig
   std::filesystem::path weights;              // .dmat, with a .tgf rig
   int bones = 0;                              // automatic rig: bone count, 0 = chosen from the mesh
+  std::filesystem::path png_dir;              // --png DIR: a heat-map picture per in-between frame
   std::string skeleton_fit = "rigid";         // rigid (per-bone) | lbs (SSDR, the rig's own); evaluation.hpp
 };
 
 // Exit status as console.hpp: usage (2) for option errors (unknown method or protocol, bad keys or
 // times for the frame count), failure (1) for unreadable or mismatched frames (naming the file),
-// a failed fit or method, or an unwritable JSON (nothing is left at `json` then).
-int runEvaluateCommand(const EvaluateCommandOptions& options, Console& console);
+// a failed fit or method, or an unwritable JSON (nothing is left at `json` then). --png DIR writes
+// DIR/frame_NNNN.png per in-between frame (one panel per method, coloured by its per-vertex error
+// against the ground truth, `odeskin render --heat`) and the deformed meshes as DIR/obj/*.obj; it
+// needs a Vulkan device (lavapipe works). `device` as the global --device.
+int runEvaluateCommand(const EvaluateCommandOptions& options, Console& console, const std::string& device = "auto");
 
 }  // namespace odeskin

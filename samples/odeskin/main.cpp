@@ -131,6 +131,9 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
                   "rigid (default: per-bone rigid fits, keys and truth frames alike) or lbs (the rig's SSDR\n"
                   "transforms, which minimise each frame's LBS error)")
       ->check(CLI::IsMember({"rigid", "lbs"}));
+  cmd->add_option("--png", o.png_dir,
+                  "Also DIR/frame_NNNN.png per in-between frame: a panel per method coloured by its error\n"
+                  "against the truth (fraction of the truth's box diagonal, as render --heat), and DIR/obj/");
   return cmd;
 }
 
@@ -300,6 +303,6 @@ int main(int argc, char** argv) {
     if (export_cmd->get_option("--fps")->count() > 0) export_options.fps = export_fps;
     return odeskin::runExportCommand(export_options, console);
   }
-  if (evaluate_cmd->parsed()) return odeskin::runEvaluateCommand(evaluate_options, console);
+  if (evaluate_cmd->parsed()) return odeskin::runEvaluateCommand(evaluate_options, console, device);
   return 2;
 }
