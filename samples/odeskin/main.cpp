@@ -105,13 +105,13 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
       "truth's longest bounding-box side: MVE = max vertex distance, mean = mean vertex distance (the\n"
       "table prints them in %). --pose-source truth fits each frame's skeleton to that frame (only the\n"
       "skeleton, per-bone rigid fits like the keys' unless --skeleton-fit lbs); keys interpolates the key\n"
-      "skeletons. Methods: linear, lbs, dqs, psd_lbs, psd_dqs,\n"
-      "fd_curve, odeskin_static, odeskin_dynamic.\n"
+      "skeletons. Methods: linear, lbs, dqs, psd_lbs, psd_dqs, fd_curve, odeskin_static, odeskin_dynamic.\n"
       "JSON: {\"pose_source\", \"frames\": [{\"frame\", \"t\", \"methods\": {name: {\"mve\", \"mean\",\n"
       "\"ms_per_frame\"}}}], \"summary\": {name: {\"mve_max\", \"mean_mean\"}}}.\n"
       "Examples: odeskin evaluate horse-0{1..9}.obj --keys 0,4,8 --pose-source truth --json truth.json\n"
       "          odeskin evaluate horse-*.obj --keys 0,4,8,12,16,20,24 --methods lbs,odeskin_static \\\n"
-      "              --pose-source keys --json keys.json --terms 9");
+      "              --pose-source keys --json keys.json --terms 9\n"
+      "          odeskin evaluate horse-0{1..5}.obj --keys 0,4 --json h.json --png heat/");
   cmd->add_option("frames", o.frames, "Ground-truth frames: OBJ files of one mesh, in time order")->required();
   cmd->add_option("--keys", o.keys, "Key frame indices into FRAMES, strictly increasing, at least 2")
       ->delimiter(',')->required();
