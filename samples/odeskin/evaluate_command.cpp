@@ -101,9 +101,7 @@ int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Con
     for (std::size_t m = 0; m < r.methods.size(); ++m) {
       const std::string name(baselineMethodName(r.methods[m]));
       render.inputs.push_back(o.png_dir / "obj" / (frameName(f.frame) + "_" + name + ".obj"));
-      char label[96];
-      std::snprintf(label, sizeof label, "%s: mean %.3f%% of box side", name.c_str(), 100.0 * f.scores[m].mean);
-      render.labels.push_back(label);
+      render.labels.push_back(name);  // the panel adds its max and mean error (of the diagonal)
     }
     render.size = std::to_string(360 * r.methods.size()) + "x400";
     Console quiet{console.out, console.err, true, false};
