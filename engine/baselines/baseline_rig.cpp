@@ -37,7 +37,7 @@ std::span<const BoneTransform> BaselineRig::frameBones(std::uint32_t segment, do
   return scratch;
 }
 
-Result<std::vector<BoneTransform>> BaselineRig::fitFrameBones(std::span<const Vec3> frame) const {
+Result<std::vector<BoneTransform>> BaselineRig::fitFrameBones(std::span<const Vec3> frame, SkeletonFit fit) const {
   if (frame.size() != rest_positions_.size()) {
     return invalidArgument("fit frame bones: the frame has " + std::to_string(frame.size()) +
                            " vertices, the bind mesh " + std::to_string(rest_positions_.size()));
@@ -49,7 +49,8 @@ Result<std::vector<BoneTransform>> BaselineRig::fitFrameBones(std::span<const Ve
   skeleton.parents = parents_.empty() ? std::vector<std::int32_t>(pivots_.size(), -1) : parents_;
   const std::vector<std::vector<Vec3>> poses{std::vector<Vec3>(frame.begin(), frame.end())};
   Result<std::vector<std::vector<RigidTransform>>> fitted =
-      fitBoneTransforms(rest_positions_, poses, influences_, skeleton);
+      fit == SkeletonFit::kPerBoneRigid ? fitRigidBoneTransforms(rest_positions_, poses, influences_, skeleton)
+                                        : fitBoneTransforms(rest_positions_, poses, influences_, skeleton);
   if (!fitted.ok()) return Status(fitted.status().code(), "fit frame bones: " + fitted.status().message());
   std::vector<BoneTransform> bones;
   bones.reserve(pivots_.size());

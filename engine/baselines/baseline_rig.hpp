@@ -18,6 +18,13 @@
 
 namespace odeskin {
 
+// How a frame's skeleton is fitted to its surface (the truth protocol, and the keys when the
+// evaluation asks for the same fit there).
+enum class SkeletonFit : std::uint32_t {
+  kLbsOptimal = 0,  // fitBoneTransforms: per-bone Kabsch, then SSDR sweeps minimising the frame's LBS error
+  kPerBoneRigid,    // fitRigidBoneTransforms: per-bone weighted Kabsch only, as an animation skeleton
+};
+
 class BaselineRig {
  public:
   // Copies the rig of `asset` (its influences are the fit's, with ill-conditioned vertices rebound
@@ -48,7 +55,9 @@ class BaselineRig {
   // fitBoneTransforms (per-bone weighted Kabsch, then SSDR sweeps that minimise the frame's LBS
   // error). Only the skeleton comes from the frame. Errors: kInvalidArgument for a frame of the
   // wrong size or with non-finite positions, and those of fitBoneTransforms.
-  Result<std::vector<BoneTransform>> fitFrameBones(std::span<const Vec3> frame) const;
+  // `fit` kPerBoneRigid: the per-bone rigid fit alone (fitRigidBoneTransforms).
+  Result<std::vector<BoneTransform>> fitFrameBones(std::span<const Vec3> frame,
+                                                   SkeletonFit fit = SkeletonFit::kLbsOptimal) const;
 
  private:
   std::vector<Vec3> rest_positions_;

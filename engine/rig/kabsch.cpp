@@ -83,10 +83,11 @@ Result<RigidTransform> kabschFromCovariance(const Eigen::Matrix3d& h, const Vec3
   return out;
 }
 
-Result<std::vector<std::vector<RigidTransform>>> fitBoneTransforms(std::span<const Vec3> rest,
-                                                                   const std::vector<std::vector<Vec3>>& poses,
-                                                                   const Influences& influences,
-                                                                   const Skeleton& skeleton) {
+namespace {
+
+// The inputs fitBoneTransforms and fitRigidBoneTransforms share, checked alike.
+Status checkBoneFitInputs(std::span<const Vec3> rest, const std::vector<std::vector<Vec3>>& poses,
+                          const Influences& influences, const Skeleton& skeleton) {
   ODESKIN_TRY(validateRig(Rig{skeleton, {}, {}}, 0, 0));
   const std::size_t vertex_count = rest.size();
   const std::size_t bone_count = skeleton.boneCount();
@@ -109,13 +110,37 @@ Result<std::vector<std::vector<RigidTransform>>> fitBoneTransforms(std::span<con
       }
     }
   }
+  return okStatus();
+}
+
+Result<std::vector<std::vector<RigidTransform>>> fitTransforms(std::span<const Vec3> rest,
+                                                               const std::vector<std::vector<Vec3>>& poses,
+                                                               const Influences& influences, const Skeleton& skeleton,
+                                                               int sweeps) {
+  ODESKIN_TRY(checkBoneFitInputs(rest, poses, influences, skeleton));
   const BoneFitProblem problem = makeBoneFitProblem(rest, influences, skeleton.parents);
   std::vector<std::vector<RigidTransform>> out(poses.size());
   tbb::parallel_for(std::size_t{0}, poses.size(), [&](std::size_t k) {
     out[k] = initialBoneTransforms(problem, poses[k]);
-    refineBoneTransforms(problem, poses[k], out[k], kDefaultRefineSweeps);
+    if (sweeps > 0) refineBoneTransforms(problem, poses[k], out[k], sweeps);
   });
   return out;
+}
+
+}  // namespace
+
+Result<std::vector<std::vector<RigidTransform>>> fitBoneTransforms(std::span<const Vec3> rest,
+                                                                   const std::vector<std::vector<Vec3>>& poses,
+                                                                   const Influences& influences,
+                                                                   const Skeleton& skeleton) {
+  return fitTransforms(rest, poses, influences, skeleton, kDefaultRefineSweeps);
+}
+
+Result<std::vector<std::vector<RigidTransform>>> fitRigidBoneTransforms(std::span<const Vec3> rest,
+                                                                        const std::vector<std::vector<Vec3>>& poses,
+                                                                        const Influences& influences,
+                                                                        const Skeleton& skeleton) {
+  return fitTransforms(rest, poses, influences, skeleton, 0);
 }
 
 }  // namespace odeskin

@@ -33,4 +33,12 @@ Result<std::vector<std::vector<RigidTransform>>> fitBoneTransforms(std::span<con
                                                                    const Influences& influences,
                                                                    const Skeleton& skeleton);
 
+// The per-bone rigid fit alone (fitBoneTransforms without the SSDR sweeps): each bone is the
+// weighted Kabsch of its own region, as a motion-capture or animation skeleton would be, not the
+// transforms that minimise the pose's LBS error. Same inputs and errors as fitBoneTransforms.
+Result<std::vector<std::vector<RigidTransform>>> fitRigidBoneTransforms(std::span<const Vec3> rest,
+                                                                        const std::vector<std::vector<Vec3>>& poses,
+                                                                        const Influences& influences,
+                                                                        const Skeleton& skeleton);
+
 }  // namespace odeskin

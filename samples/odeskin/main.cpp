@@ -10,6 +10,7 @@
 #include "asset_info.hpp"
 #include "demo.hpp"
 #include "engine/offline/fourier_fit.hpp"
+#include "evaluate_command.hpp"
 #include "export_command.hpp"
 #include "fit_command.hpp"
 #include "host/device_info.hpp"
@@ -92,6 +93,47 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
   cmd->add_option("--tolerance", o.tolerance,
                   "Position error allowed from the weight keys, and from the skeleton keys, as a fraction of the box\n"
                   "in [1e-8, 0.01] (default 1e-5)");
+  return cmd;
+}
+
+CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("evaluate", "Score every in-between method against ground-truth frames");
+  cmd->footer(
+      "FRAMES are OBJ files of one mesh; --keys are indices into them (from 0). Every method is fitted on\n"
+      "the keys and played at the other frames between the first and last key, at tau uniform in frame\n"
+      "index within each segment (or from --times, one per frame). Errors are fractions of the ground\n"
+      "truth's longest bounding-box side: MVE = max vertex distance, mean = mean vertex distance (the\n"
+      "table prints them in %). --pose-source truth fits each frame's skeleton to that frame (only the\n"
+      "skeleton, per-bone rigid fits like the keys' unless --skeleton-fit lbs); keys interpolates the key\n"
+      "skeletons. Methods: linear, lbs, dqs, psd_lbs, psd_dqs, fd_curve, odeskin_static, odeskin_dynamic.\n"
+      "JSON: {\"pose_source\", \"frames\": [{\"frame\", \"t\", \"methods\": {name: {\"mve\", \"mean\",\n"
+      "\"ms_per_frame\"}}}], \"summary\": {name: {\"mve_max\", \"mean_mean\"}}}.\n"
+      "Examples: odeskin evaluate horse-0{1..9}.obj --keys 0,4,8 --pose-source truth --json truth.json\n"
+      "          odeskin evaluate horse-*.obj --keys 0,4,8,12,16,20,24 --methods lbs,odeskin_static \\\n"
+      "              --pose-source keys --json keys.json --terms 9\n"
+      "          odeskin evaluate horse-0{1..5}.obj --keys 0,4 --json h.json --png heat/");
+  cmd->add_option("frames", o.frames, "Ground-truth frames: OBJ files of one mesh, in time order")->required();
+  cmd->add_option("--keys", o.keys, "Key frame indices into FRAMES, strictly increasing, at least 2")
+      ->delimiter(',')->required();
+  cmd->add_option("--methods", o.methods, "all, or a comma list of method names (default all)");
+  cmd->add_option("--pose-source", o.pose_source, "truth or keys (default truth)")
+      ->check(CLI::IsMember({"truth", "keys"}));
+  cmd->add_option("--json", o.json, "Write the per-frame and summary numbers here")->required();
+  cmd->add_option("--times", o.times, "One time per frame, strictly increasing (default: the frame index)")
+      ->delimiter(',');
+  cmd->add_option("--terms", o.terms, "Fourier terms N per curve of the odeskin fit (default 9)")
+      ->check(CLI::Range(1, odeskin::kMaxFourierModes));
+  cmd->add_option("--rig", o.rig, "auto (default: bones derived from the keys) or a libigl .tgf skeleton");
+  cmd->add_option("--bind", o.bind, "Rest mesh (.obj) for --rig SKELETON.tgf");
+  cmd->add_option("--weights", o.weights, "Skinning weights (.dmat) for --rig SKELETON.tgf");
+  cmd->add_option("--bones", o.bones, "Automatic rig: bone count (0: chosen from the mesh)");
+  cmd->add_option("--skeleton-fit", o.skeleton_fit,
+                  "rigid (default: per-bone rigid fits, keys and truth frames alike) or lbs (the rig's SSDR\n"
+                  "transforms, which minimise each frame's LBS error)")
+      ->check(CLI::IsMember({"rigid", "lbs"}));
+  cmd->add_option("--png", o.png_dir,
+                  "Also DIR/frame_NNNN.png per in-between frame: a panel per method coloured by its error\n"
+                  "against the truth (fraction of the truth's box diagonal, as render --heat), and DIR/obj/");
   return cmd;
 }
 
@@ -213,6 +255,9 @@ int main(int argc, char** argv) {
   RenderCliValues render_values;
   CLI::App* render_cmd = addRenderCommand(app, render, render_values);
 
+  odeskin::EvaluateCommandOptions evaluate_options;
+  CLI::App* evaluate_cmd = addEvaluateCommand(app, evaluate_options);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -258,5 +303,6 @@ int main(int argc, char** argv) {
     if (export_cmd->get_option("--fps")->count() > 0) export_options.fps = export_fps;
     return odeskin::runExportCommand(export_options, console);
   }
+  if (evaluate_cmd->parsed()) return odeskin::runEvaluateCommand(evaluate_options, console, device);
   return 2;
 }

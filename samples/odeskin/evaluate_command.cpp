@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: MIT
+#include "evaluate_command.hpp"
+
+#include <cstdio>
+#include <sstream>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/evaluation/evaluation.hpp"
+#include "engine/io/libigl_io.hpp"
+#include "engine/io/obj_io.hpp"
+#include "engine/io/obj_reader.hpp"
+#include "engine/offline/fourier_fit.hpp"
+#include "render_command.hpp"
+
+namespace odeskin {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// "all" or a comma list; *problem names the first unknown or repeated name.
+std::vector<BaselineMethod> parseMethods(const std::string& text, std::string* problem) {
+  std::vector<BaselineMethod> methods;
+  if (text == "all") {
+    for (std::uint32_t m = 0; m < kBaselineMethodCount; ++m) methods.push_back(static_cast<BaselineMethod>(m));
+    return methods;
+  }
+  std::stringstream in(text);
+  std::string name;
+  while (std::getline(in, name, ',')) {
+    BaselineMethod method{};
+    if (!parseBaselineMethod(name, &method)) {
+      *problem = "evaluate: unknown method '" + name +
+                 "' (all, or a comma list of linear, lbs, dqs, psd_lbs, psd_dqs, fd_curve, odeskin_static, "
+                 "odeskin_dynamic)";
+      return {};
+    }
+    for (const BaselineMethod seen : methods) {
+      if (seen == method) {
+        *problem = "evaluate: method '" + name + "' is listed twice";
+        return {};
+      }
+    }
+    methods.push_back(method);
+  }
+  if (methods.empty()) *problem = "evaluate: --methods names no method";
+  return methods;
+}
+
+Json toJson(const EvaluationResult& r) {
+  Json frames = Json::array();
+  for (const EvaluatedFrame& f : r.frames) {
+    Json methods = Json::object();
+    for (std::size_t m = 0; m < r.methods.size(); ++m) {
+      const MethodFrameScore& s = f.scores[m];
+      methods[std::string(baselineMethodName(r.methods[m]))] = {{"mve", s.mve}, {"mean", s.mean},
+                                                                {"ms_per_frame", s.ms_per_frame}};
+    }
+    frames.push_back({{"frame", f.frame}, {"t", f.t}, {"methods", std::move(methods)}});
+  }
+  Json summary = Json::object();
+  for (std::size_t m = 0; m < r.methods.size(); ++m) {
+    summary[std::string(baselineMethodName(r.methods[m]))] = {{"mve_max", r.summary[m].mve_max},
+                                                              {"mean_mean", r.summary[m].mean_mean}};
+  }
+  return {{"pose_source", std::string(poseSourceName(r.pose_source))}, {"frames", std::move(frames)},
+          {"summary", std::move(summary)}};
+}
+
+void printTable(std::ostream& out, const EvaluationResult& r) {
+  char line[160];
+  out << "rig: " << r.rig_summary << "\n";
+  std::snprintf(line, sizeof line, "curves: %zu, N = %d, fit %.1f s; %zu in-between frames, pose source %s\n",
+                r.curve_count, r.modes, r.fit_seconds, r.frames.size(), std::string(poseSourceName(r.pose_source)).c_str());
+  out << line;
+  std::snprintf(line, sizeof line, "%-16s %10s %10s %12s %12s\n", "method", "mean %", "MVE %", "ms/frame", "set-up ms");
+  out << line;
+  for (std::size_t m = 0; m < r.methods.size(); ++m) {
+    const MethodSummary& s = r.summary[m];
+    std::snprintf(line, sizeof line, "%-16s %10.4f %10.4f %12.3f %12.1f\n",
+                  std::string(baselineMethodName(r.methods[m])).c_str(), 100.0 * s.mean_mean, 100.0 * s.mve_max,
+                  s.ms_per_frame, s.setup_ms);
+    out << line;
+  }
+}
+
+std::string frameName(std::uint32_t frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04u", frame);
+  return name;
+}
+
+// One picture per in-between frame: a panel per method, heat = distance to the ground truth.
+int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Console& console, const std::string& device) {
+  for (const EvaluatedFrame& f : r.frames) {
+    RenderOptions render;
+    render.output = (o.png_dir / (frameName(f.frame) + ".png")).string();
+    render.heat = o.frames[f.frame];
+    render.device = device;
+    for (std::size_t m = 0; m < r.methods.size(); ++m) {
+      const std::string name(baselineMethodName(r.methods[m]));
+      render.inputs.push_back(o.png_dir / "obj" / (frameName(f.frame) + "_" + name + ".obj"));
+      render.labels.push_back(name);  // the panel adds its max and mean error (of the diagonal)
+    }
+    render.size = std::to_string(360 * r.methods.size()) + "x400";
+    Console quiet{console.out, console.err, true, false};
+    if (const int code = runRenderCommand(render, quiet); code != kExitOk) return code;
+    if (!console.quiet) console.out << "wrote " << render.output << "\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const std::string& device) {
+  std::string problem;
+  const std::vector<BaselineMethod> methods = parseMethods(o.methods, &problem);
+  if (!problem.empty()) return reportUsage(console, problem);
+  PoseSource source{};
+  if (!parsePoseSource(o.pose_source, &source)) {
+    return reportUsage(console, "evaluate: --pose-source must be truth or keys, not '" + o.pose_source + "'");
+  }
+  if (o.frames.size() < 2) return reportUsage(console, "evaluate: give at least 2 frames");
+  if (o.skeleton_fit != "rigid" && o.skeleton_fit != "lbs") {
+    return reportUsage(console, "evaluate: --skeleton-fit must be rigid or lbs, not '" + o.skeleton_fit + "'");
+  }
+  if (o.terms < 1 || o.terms > kMaxFourierModes) {
+    return reportUsage(console, "evaluate: --terms must be in [1, " + std::to_string(kMaxFourierModes) + "]");
+  }
+  const bool libigl_rig = !o.rig.empty() && o.rig != "auto";
+  if (libigl_rig && o.bind.empty()) return reportUsage(console, "evaluate: --rig SKELETON.tgf needs --bind REST.obj");
+  if (!libigl_rig && (!o.bind.empty() || !o.weights.empty())) {
+    return reportUsage(console, "evaluate: --bind and --weights apply to --rig SKELETON.tgf");
+  }
+  std::vector<std::uint32_t> keys;
+  for (const int k : o.keys) {
+    if (k < 0) return reportUsage(console, "evaluate: key " + std::to_string(k) + " is negative");
+    keys.push_back(static_cast<std::uint32_t>(k));
+  }
+  // Keys and times are checked against the frame count before any file is read.
+  if (Result<std::vector<InBetween>> ib = inBetweenFrames(o.frames.size(), keys, o.times); !ib.ok()) {
+    return reportUsage(console, ib.status().message());
+  } else if (ib->empty()) {
+    return reportUsage(console, "evaluate: the keys leave no in-between frame to score");
+  }
+
+  Result<ExampleSet> frames = [&]() -> Result<ExampleSet> {
+    if (libigl_rig) {
+      const std::filesystem::path* weights = o.weights.empty() ? nullptr : &o.weights;
+      return readLibiglExamples(o.bind, o.frames, o.rig, weights, {});
+    }
+    return readObjSequence(o.frames);
+  }();
+  if (!frames.ok()) return reportFailure(console, frames.status());
+
+  EvaluationOptions options;
+  options.pipeline.modes = o.terms;
+  options.pipeline.force_auto_rig = o.rig == "auto";
+  options.pipeline.auto_bones = o.bones;
+  options.skeleton_fit = o.skeleton_fit == "lbs" ? SkeletonFit::kLbsOptimal : SkeletonFit::kPerBoneRigid;
+  if (!o.png_dir.empty()) {
+    std::error_code made;
+    std::filesystem::create_directories(o.png_dir / "obj", made);
+    if (made) return reportFailure(console, ioError((o.png_dir / "obj").string() + ": cannot create directory: " + made.message()));
+    const ExampleSet& topology = *frames;
+    options.on_frame = [&o, &topology](std::uint32_t frame, BaselineMethod method, std::span<const Vec3> deformed) {
+      const std::string name(baselineMethodName(method));
+      return writeObj(o.png_dir / "obj" / (frameName(frame) + "_" + name + ".obj"), deformed, topology.faces,
+                      name + " at " + o.frames[frame].filename().string());
+    };
+  }
+  Result<EvaluationResult> result = runEvaluation(*frames, keys, methods, source, o.times, options);
+  if (!result.ok()) return reportFailure(console, result.status());
+
+  std::error_code ec;
+  if (o.json.has_parent_path()) {
+    std::filesystem::create_directories(o.json.parent_path(), ec);
+    if (ec) return reportFailure(console, ioError(o.json.parent_path().string() + ": cannot create directory: " + ec.message()));
+  }
+  if (Status st = writeFileAtomically(o.json, toJson(*result).dump(2) + "\n"); !st.ok()) {
+    return reportFailure(console, st);
+  }
+  if (!console.quiet) {
+    printTable(console.out, *result);
+    console.out << "wrote " << o.json.string() << "\n";
+  }
+  if (!o.png_dir.empty()) return drawHeatMaps(o, *result, console, device);
+  return kExitOk;
+}
+
+}  // namespace odeskin
