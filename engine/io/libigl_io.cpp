@@ -2,75 +2,18 @@
 #include "libigl_io.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <string_view>
 
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
+#include "text_tokens.hpp"
+
 namespace odeskin {
 namespace {
-
-Result<std::string> readText(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return ioError(path.string() + ": cannot open for reading");
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  if (file.bad()) return ioError(path.string() + ": read failed");
-  return buffer.str();
-}
-
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-// The file's lines one by one (LF or CRLF, last line with or without a newline), numbered from 1.
-class LineReader {
- public:
-  explicit LineReader(const std::string& text) : text_(text) {}
-  bool next(std::string_view& line) {
-    if (pos_ >= text_.size()) return false;
-    std::size_t end = text_.find('\n', pos_);
-    if (end == std::string::npos) end = text_.size();
-    line = std::string_view(text_.data() + pos_, end - pos_);
-    pos_ = end + 1;
-    ++number_;
-    return true;
-  }
-  std::size_t number() const { return number_; }
-
- private:
-  const std::string& text_;
-  std::size_t pos_ = 0;
-  std::size_t number_ = 0;
-};
-
-// Next whitespace-separated token of `line` (advanced past it); empty at the end.
-std::string_view nextToken(std::string_view& line) {
-  while (!line.empty() && isSpace(line.front())) line.remove_prefix(1);
-  std::size_t end = 0;
-  while (end < line.size() && !isSpace(line[end])) ++end;
-  const std::string_view token = line.substr(0, end);
-  line.remove_prefix(end);
-  return token;
-}
-
-bool parseDouble(std::string_view token, double& out) {
-  const char* first = token.data();
-  const char* last = token.data() + token.size();
-  if (first != last && *first == '+') ++first;
-  const auto [ptr, ec] = std::from_chars(first, last, out);
-  return first != last && ec == std::errc() && ptr == last && std::isfinite(out);
-}
-
-template <typename Int>
-bool parseInt(std::string_view token, Int& out) {
-  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
-  return !token.empty() && ec == std::errc() && ptr == token.data() + token.size();
-}
 
 std::string at(const std::filesystem::path& path, std::size_t line) {
   return path.string() + ":" + std::to_string(line) + ": ";
@@ -109,7 +52,7 @@ Status resolveParents(const std::filesystem::path& path, const std::vector<std::
 }  // namespace
 
 Result<Skeleton> readTgf(const std::filesystem::path& path) {
-  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readText(path));
+  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
   std::vector<Vec3> joints;
   std::vector<std::pair<int, int>> edges;  // 0-based joints
   std::vector<std::size_t> edge_lines;
@@ -163,7 +106,7 @@ Result<Skeleton> readTgf(const std::filesystem::path& path) {
 }
 
 Result<DenseMatrix> readDmat(const std::filesystem::path& path) {
-  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readText(path));
+  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
   LineReader reader(text);
   std::string_view line;
   DenseMatrix m;
@@ -235,7 +178,7 @@ Result<Influences> readWeightsDmat(const std::filesystem::path& path, std::size_
 }
 
 Result<std::vector<RigidTransform>> readTmat(const std::filesystem::path& path, std::size_t bone_count) {
-  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readText(path));
+  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
   if (bone_count == 0) return invalidArgument(path.string() + ": asked for 0 bones");
   std::vector<Eigen::Vector3d> rows;  // one per numeric line
   std::vector<std::size_t> row_lines;
@@ -283,7 +226,7 @@ Result<std::vector<RigidTransform>> readTmat(const std::filesystem::path& path, 
 }
 
 Result<std::vector<glm::dquat>> readPoseJson(const std::filesystem::path& path, std::size_t bone_count) {
-  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readText(path));
+  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);

@@ -1,67 +1,28 @@
 // SPDX-License-Identifier: MIT
 #include "obj_reader.hpp"
 
-#include <charconv>
-#include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string_view>
+
+#include "text_tokens.hpp"
 
 namespace odeskin {
 namespace {
 
-std::string_view trimmed(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
-
-// Next whitespace-separated token of `line` (advanced past it); empty at the end.
-std::string_view nextToken(std::string_view& line) {
-  line = trimmed(line);
-  std::size_t end = 0;
-  while (end < line.size() && line[end] != ' ' && line[end] != '\t') ++end;
-  std::string_view token = line.substr(0, end);
-  line.remove_prefix(end);
-  return token;
-}
-
-bool parseDouble(std::string_view token, double& out) {
-  const char* first = token.data();
-  const char* last = token.data() + token.size();
-  if (first != last && *first == '+') ++first;
-  auto [ptr, ec] = std::from_chars(first, last, out);
-  return ec == std::errc() && ptr == last && std::isfinite(out);
-}
-
-bool parseIndex(std::string_view token, long long& out) {
-  const std::size_t slash = token.find('/');
-  if (slash != std::string_view::npos) token = token.substr(0, slash);  // a/t, a//n, a/t/n: keep a
-  auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
-  return ec == std::errc() && ptr == token.data() + token.size();
-}
+// a, a/t, a//n, a/t/n: the vertex index a.
+bool parseIndex(std::string_view token, long long& out) { return parseInt(token.substr(0, token.find('/')), out); }
 
 }  // namespace
 
 Result<ObjMesh> readObj(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return ioError(path.string() + ": cannot open for reading");
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  if (file.bad()) return ioError(path.string() + ": read failed");
-  const std::string text = buffer.str();
+  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
 
   ObjMesh mesh;
   std::vector<long long> raw;  // face corners as written (1-based or negative), resolved below
   std::vector<std::size_t> face_lines;
-  std::size_t line_number = 0;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    std::string_view line(text.data() + pos, end - pos);
-    pos = end + 1;
-    ++line_number;
+  LineReader reader(text);
+  std::string_view line;
+  while (reader.next(line)) {
+    const std::size_t line_number = reader.number();
     const std::size_t hash = line.find('#');
     if (hash != std::string_view::npos) line = line.substr(0, hash);
     const std::string_view keyword = nextToken(line);
