@@ -8,6 +8,8 @@
 #include <span>
 #include <string>
 
+#include "interval_bisection.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -223,22 +225,14 @@ Result<SkeletonKeys> placeSkeletonKeys(const DeformAsset& asset, const DeformPla
   std::vector<SegmentKeys> segments(asset.segments.size());
   for (std::uint32_t s = 0; s < segments.size(); ++s) {
     SegmentKeys& seg = segments[s];
-    std::function<void(double, const Key&, double, const Key&)> refine = [&](double a, const Key& ka, double b,
-                                                                             const Key& kb) {
-      if (b - a >= 2.0 * o.min_key_gap && intervalError(s, a, ka, b, kb, kRefineChecks) > o.position_tolerance) {
-        const double mid = 0.5 * (a + b);
-        const Key km = sampler.key(s, mid);
-        refine(a, ka, mid, km);
-        refine(mid, km, b, kb);
-        return;
-      }
-      seg.taus.push_back(b);
-      seg.keys.push_back(kb);
+    auto key_at = [&](double tau) { return sampler.key(s, tau); };
+    auto too_coarse = [&](double a, const Key& ka, double b, const Key& kb) {
+      return intervalError(s, a, ka, b, kb, kRefineChecks) > o.position_tolerance;
     };
     seg.taus.push_back(0.0);
-    seg.keys.push_back(sampler.key(s, 0.0));
+    seg.keys.push_back(key_at(0.0));
     const Key start = seg.keys.back();
-    refine(0.0, start, 1.0, sampler.key(s, 1.0));
+    bisectInterval(0.0, start, 1.0, key_at(1.0), o.min_key_gap, key_at, too_coarse, seg.taus, seg.keys);
     for (std::size_t k = 1; k < seg.taus.size(); ++k) {
       out.max_position_error = std::max(
           out.max_position_error, intervalError(s, seg.taus[k - 1], seg.keys[k - 1], seg.taus[k], seg.keys[k], kMeasureChecks));

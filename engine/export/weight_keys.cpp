@@ -3,8 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <string>
+
+#include "interval_bisection.hpp"
 
 namespace odeskin {
 namespace {
@@ -142,23 +143,14 @@ Result<SegmentKeys> placeSegment(const ModeTargetSet& set, std::uint32_t segment
     return worst;
   };
 
-  std::function<void(double, const std::vector<PartKey>&, double, const std::vector<PartKey>&)> refine =
-      [&](double a, const std::vector<PartKey>& ka, double b, const std::vector<PartKey>& kb) {
-        if (b - a >= 2.0 * o.min_key_gap && intervalError(a, ka, b, kb, kRefineChecks, false) > 1.0) {
-          const double mid = 0.5 * (a + b);
-          const std::vector<PartKey> km = keyAt(mid);
-          refine(a, ka, mid, km);
-          refine(mid, km, b, kb);
-          return;
-        }
-        seg.taus.push_back(b);
-        seg.keys.push_back(kb);
-      };
+  auto too_coarse = [&](double a, const std::vector<PartKey>& ka, double b, const std::vector<PartKey>& kb) {
+    return intervalError(a, ka, b, kb, kRefineChecks, false) > 1.0;
+  };
   seg.taus.push_back(0.0);
   seg.keys.push_back(keyAt(0.0));
   for (std::size_t k = 1; k < start.size(); ++k) {
     const std::vector<PartKey> ka = seg.keys.back();
-    refine(start[k - 1], ka, start[k], keyAt(start[k]));
+    bisectInterval(start[k - 1], ka, start[k], keyAt(start[k]), o.min_key_gap, keyAt, too_coarse, seg.taus, seg.keys);
   }
   for (std::size_t k = 1; k < seg.taus.size(); ++k) {
     intervalError(seg.taus[k - 1], seg.keys[k - 1], seg.taus[k], seg.keys[k], kMeasureChecks, true);
