@@ -6,8 +6,6 @@
 #include <functional>
 #include <sstream>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include "engine/io/gltf_reader.hpp"
@@ -16,6 +14,7 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/offline/procedural_arm.hpp"
 #include "host/gpu_test_support.hpp"
+#include "samples/command_test_support.hpp"
 #include "samples/odeskin/asset_info.hpp"
 #include "samples/odeskin/fit_options.hpp"
 #include "samples/odeskin/material_options.hpp"
@@ -30,13 +29,10 @@ namespace fs = std::filesystem;
 constexpr double kKeyTolerance = 1e-4;     // of the box: --t k reproduces example pose k
 constexpr double kBackendTolerance = 1e-5; // of the box: cpu and vulkan outputs agree
 
-fs::path scratch(const std::string& name) {
-  // Per process: ctest runs each test of this file as its own process, in parallel.
-  const fs::path dir = fs::temp_directory_path() / ("odeskin_cli_test_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using testing::Captured;
+using testing::CommandCase;
+
+fs::path scratch(const std::string& name) { return testing::scratchDir("odeskin_cli_test_", name); }
 
 double maxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   EXPECT_EQ(a.size(), b.size());
@@ -50,13 +46,6 @@ std::vector<Vec3> readPositions(const fs::path& path) {
   EXPECT_TRUE(mesh.ok()) << mesh.status().toString();
   return mesh.ok() ? mesh->positions : std::vector<Vec3>{};
 }
-
-// Runs a command with captured streams.
-struct Captured {
-  std::ostringstream out;
-  std::ostringstream err;
-  Console console{out, err, false, false};
-};
 
 // The procedural arm (skin material, default key tolerance), saved once for every test.
 class Cli : public ::testing::Test {
@@ -204,11 +193,7 @@ TEST_F(Cli, PlayUsesTheSegmentLengthAndTheRenderLayout) {
 
 TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   const fs::path dir = scratch("usage");
-  struct Case {
-    PlayOptions options;
-    std::string message;
-  };
-  std::vector<Case> cases;
+  std::vector<CommandCase<PlayOptions>> cases;
   cases.push_back({atTime(1.5, dir / "x.obj"), "--t 1.5 is outside [0, 1]"});
   cases.push_back({atTime(-0.1, dir / "x.obj"), "outside [0, 1]"});
   cases.push_back({atTime(std::nan(""), dir / "x.obj"), "--t must be a number"});
@@ -235,12 +220,7 @@ TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   cases.push_back({fps, "needs a frame number"});
   fps.output = (dir / "x%d_%d.obj").string();
   cases.push_back({fps, "more than one % conversion"});
-  for (const Case& c : cases) {
-    Captured io;
-    EXPECT_EQ(play(c.options, io), kExitUsage) << c.message;
-    EXPECT_EQ(io.err.str().rfind("odeskin: error: play: ", 0), 0u) << io.err.str();
-    EXPECT_NE(io.err.str().find(c.message), std::string::npos) << io.err.str();
-  }
+  testing::expectRejected(cases, [](const PlayOptions& o, Captured& io) { return play(o, io); }, kExitUsage, "play");
   EXPECT_TRUE(fs::is_empty(dir)) << "a rejected command wrote something";
 }
 

@@ -8,9 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <sstream>
-
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -25,6 +22,7 @@
 #include "engine/visual/vertex_error.hpp"
 #include "host/device.hpp"
 #include "host/gpu_test_support.hpp"
+#include "samples/command_test_support.hpp"
 #include "samples/odeskin/play_command.hpp"
 #include "samples/odeskin/render_command.hpp"
 #include "visual/render_colour.hpp"
@@ -39,12 +37,10 @@ using visual::Rgba8;
 const fs::path kData = ODESKIN_DATA_DIR;
 const fs::path kCylinder = kData / "cylinder";
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("odeskin_render_test_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using testing::Captured;
+using testing::CommandCase;
+
+fs::path scratch(const std::string& name) { return testing::scratchDir("odeskin_render_test_", name); }
 
 Image readPng(const fs::path& path) {
   int w = 0, h = 0, channels = 0;
@@ -68,12 +64,6 @@ Image crop(const Image& image, std::uint32_t x0, std::uint32_t width) {
   }
   return out;
 }
-
-struct Captured {
-  std::ostringstream out;
-  std::ostringstream err;
-  Console console{out, err, false, false};
-};
 
 class RenderCommand : public ::testing::Test {
  protected:
@@ -205,11 +195,7 @@ TEST_F(RenderCommand, HeatMapMatchesTheCpuErrorsAndDrawsAColourBar) {
 
 TEST_F(RenderCommand, BadInputFailsWithOneLineAndExitCode1) {
   const fs::path dir = scratch("bad_input");
-  struct Case {
-    RenderOptions options;
-    std::string message;
-  };
-  std::vector<Case> cases;
+  std::vector<CommandCase<RenderOptions>> cases;
   RenderOptions mismatch = options({kCylinder / "cylinder.obj"}, dir / "x.png");
   mismatch.heat = kData / "horse-gallop" / "horse-01.obj";
   cases.push_back({mismatch, "--heat: " + (kCylinder / "cylinder.obj").string() + ": 420 vertices but the reference has 8431"});
@@ -217,25 +203,15 @@ TEST_F(RenderCommand, BadInputFailsWithOneLineAndExitCode1) {
   const fs::path corrupt = dir / "corrupt.odsk";
   std::ofstream(corrupt) << "not an asset";
   cases.push_back({options({corrupt}, dir / "x.png"), "corrupt.odsk: not an odeskin asset"});
-  for (const Case& c : cases) {
-    Captured io;
-    EXPECT_EQ(render(c.options, io), kExitFailure) << c.message;
-    const std::string err = io.err.str();
-    EXPECT_EQ(err.rfind("odeskin: error: render: ", 0), 0u) << err;
-    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
-    EXPECT_NE(err.find(c.message), std::string::npos) << err;
-  }
+  testing::expectRejected(cases, [](const RenderOptions& o, Captured& io) { return render(o, io); }, kExitFailure,
+                          "render");
   EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
 TEST_F(RenderCommand, BadOptionsAreUsageErrors) {
   const fs::path dir = scratch("usage");
   const fs::path obj = kCylinder / "cylinder.obj";
-  struct Case {
-    RenderOptions options;
-    std::string message;
-  };
-  std::vector<Case> cases;
+  std::vector<CommandCase<RenderOptions>> cases;
   for (const std::string size : {"12x", "0x0", "abc", "800x10", "99999x100"}) {
     RenderOptions o = options({obj}, dir / "x.png");
     o.size = size;
@@ -263,12 +239,8 @@ TEST_F(RenderCommand, BadOptionsAreUsageErrors) {
   heat_max.heat = obj;
   heat_max.heat_max = -1.0;
   cases.push_back({heat_max, "--heat-max must be positive"});
-  for (const Case& c : cases) {
-    Captured io;
-    EXPECT_EQ(render(c.options, io), kExitUsage) << c.message;
-    EXPECT_EQ(io.err.str().rfind("odeskin: error: render: ", 0), 0u) << io.err.str();
-    EXPECT_NE(io.err.str().find(c.message), std::string::npos) << io.err.str();
-  }
+  testing::expectRejected(cases, [](const RenderOptions& o, Captured& io) { return render(o, io); }, kExitUsage,
+                          "render");
   EXPECT_TRUE(fs::is_empty(dir)) << "a rejected command wrote something";
 }
 
