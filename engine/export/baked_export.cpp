@@ -22,38 +22,26 @@ Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlaye
   // The end is a frame too, unless the grid already stops within float32 reach of it.
   if (static_cast<float>(end_seconds) > static_cast<float>(seconds.back())) seconds.push_back(end_seconds);
 
-  const std::vector<std::uint32_t>& render = asset.render.topology_of_render;
-  const std::size_t out_vertices = asset.render.empty() ? asset.vertexCount() : render.size();
+  const std::size_t out_vertices = asset.render.empty() ? asset.vertexCount() : asset.render.topology_of_render.size();
   const double bytes = static_cast<double>(seconds.size()) * static_cast<double>(out_vertices) * 12.0;
   if (bytes >= 2147483648.0) {
     return invalidArgument("export: baking " + std::to_string(seconds.size()) + " frames of " +
                            std::to_string(out_vertices) + " vertices needs 2 GiB or more; lower --fps");
   }
-  std::vector<ModeBasisValue> basis(player.basisSize());
-  std::vector<BoneTransform> bones(asset.bone_count);
   std::vector<Vec3> positions(asset.vertexCount());
   std::vector<std::vector<Vec3>> frames;
   frames.reserve(seconds.size());
   for (std::size_t f = 0; f < seconds.size(); ++f) {
     const auto [segment, tau] = player.locate(seconds[f] / asset.segment_seconds);
-    player.basisAt(tau, basis);
-    player.bonesAt(asset, segment, tau, bones);
-    ODESKIN_TRY(referenceJob(asset, segment, basis, bones, positions).run());
-    if (asset.render.empty()) {
-      frames.push_back(positions);
-    } else {
-      std::vector<Vec3> out;
-      out.reserve(render.size());
-      for (std::uint32_t t : render) out.push_back(positions[t]);
-      frames.push_back(std::move(out));
-    }
+    ODESKIN_TRY(player.play(asset, segment, tau, positions));
+    frames.push_back(outputPositions(asset, positions));
     if (progress) progress("bake", static_cast<double>(f + 1) / static_cast<double>(seconds.size()));
   }
   BakedGlbOptions options;
   options.linear = true;
   options.generator = generator;
   options.animation = "odeskin";
-  ODESKIN_TRY(writeBakedGlb(path, asset.render.empty() ? asset.faces : asset.render.faces, frames, seconds, options));
+  ODESKIN_TRY(writeBakedGlb(path, outputFaces(asset), frames, seconds, options));
   return BakedExport{frames.size(), out_vertices};
 }
 

@@ -17,6 +17,16 @@ Status fieldSize(const std::string& field, std::size_t got, std::size_t expected
 
 }  // namespace
 
+std::vector<Vec3> outputPositions(const DeformAsset& asset, std::span<const Vec3> topology_positions) {
+  if (asset.render.empty()) return {topology_positions.begin(), topology_positions.end()};
+  std::vector<Vec3> out;
+  out.reserve(asset.render.topology_of_render.size());
+  for (std::uint32_t t : asset.render.topology_of_render) out.push_back(topology_positions[t]);
+  return out;
+}
+
+const FaceList& outputFaces(const DeformAsset& asset) { return asset.render.empty() ? asset.faces : asset.render.faces; }
+
 Status validateDeformAsset(const DeformAsset& a) {
   if (a.modes < 1 || a.modes > 64) return outOfRange("deform asset: modes N = " + std::to_string(a.modes));
   const std::size_t v_count = a.vertexCount();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,12 @@ struct DeformAsset {
   std::size_t vertexCount() const { return rest_positions.size(); }
   std::size_t curveCount() const { return curve_materials.size(); }
 };
+
+// Positions in the asset's output layout: the render vertices (topology positions gathered through
+// topology_of_render) when the asset has a render layout, else the topology positions themselves.
+std::vector<Vec3> outputPositions(const DeformAsset& asset, std::span<const Vec3> topology_positions);
+// The faces of that layout.
+const FaceList& outputFaces(const DeformAsset& asset);
 
 // Checks every size and index of `asset` (kInvalidArgument naming the field and element).
 Status validateDeformAsset(const DeformAsset& asset);

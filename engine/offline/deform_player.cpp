@@ -63,6 +63,14 @@ void DeformPlayer::bonesAt(const DeformAsset& asset, std::uint32_t segment, doub
   }
 }
 
+Status DeformPlayer::play(const DeformAsset& asset, std::uint32_t segment, double tau, std::span<Vec3> out) const {
+  std::vector<ModeBasisValue> basis(basisSize());
+  std::vector<BoneTransform> bones(asset.bone_count);
+  basisAt(tau, basis);
+  bonesAt(asset, segment, tau, bones);
+  return referenceJob(asset, segment, basis, bones, out).run();
+}
+
 FourierDeformJob referenceJob(const DeformAsset& asset, std::uint32_t segment, std::span<const ModeBasisValue> basis,
                               std::span<const BoneTransform> bones, std::span<Vec3> out_positions) {
   const DeformSegment& seg = asset.segments[segment];

@@ -33,6 +33,10 @@ class DeformPlayer {
   void basisAt(double tau, std::span<ModeBasisValue> out) const;
   // Bone transforms of `segment` at tau (asset.bone_count entries), C1 across keys (RigidKeyPath).
   void bonesAt(const DeformAsset& asset, std::uint32_t segment, double tau, std::span<BoneTransform> out) const;
+  // One frame of `asset` (the asset this player was made for) on the reference kernel: its V
+  // vertices at (segment, tau) into `out`. Loops that play many frames may keep their own buffers
+  // and call basisAt, bonesAt and referenceJob instead.
+  Status play(const DeformAsset& asset, std::uint32_t segment, double tau, std::span<Vec3> out) const;
 
   const ModeTimeBasis& basis(std::uint32_t material, int n) const { return bases_[material * (modes_ + 1) + n]; }
 

@@ -301,8 +301,6 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
 
   // Play every key back with the reference kernel: the error users will see, not an estimate.
   rep.key_error.assign(key_count, 0.0);
-  std::vector<ModeBasisValue> basis(player.basisSize());
-  std::vector<BoneTransform> bones(asset.bone_count);
   std::vector<Vec3> played(v_count);
   for (std::size_t k = 0; k < key_count; ++k) {
     const double box = longestBoxSide(in.poses[k]);
@@ -310,9 +308,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
       if ((side == 0 && k + 1 == key_count) || (side == 1 && k == 0)) continue;
       const auto segment = static_cast<std::uint32_t>(side == 0 ? k : k - 1);
       const double tau = side == 0 ? 0.0 : 1.0;
-      player.basisAt(tau, basis);
-      player.bonesAt(asset, segment, tau, bones);
-      ODESKIN_TRY(referenceJob(asset, segment, basis, bones, played).run());
+      ODESKIN_TRY(player.play(asset, segment, tau, played));
       double worst = 0.0;
       for (std::size_t i = 0; i < v_count; ++i) worst = std::max(worst, glm::length(played[i] - in.poses[k][i]));
       rep.key_error[k] = std::max(rep.key_error[k], box > 0.0 ? worst / box : worst);

@@ -59,14 +59,4 @@ Status AssetPlayback::checkValidation() const {
                        " message(s); first: " + gpu_->instance.debugLog().messages().front());
 }
 
-std::vector<Vec3> outputPositions(const DeformAsset& asset, const std::vector<Vec3>& topology_positions) {
-  if (asset.render.empty()) return topology_positions;
-  std::vector<Vec3> out;
-  out.reserve(asset.render.topology_of_render.size());
-  for (std::uint32_t t : asset.render.topology_of_render) out.push_back(topology_positions[t]);
-  return out;
-}
-
-const FaceList& outputFaces(const DeformAsset& asset) { return asset.render.empty() ? asset.faces : asset.render.faces; }
-
 }  // namespace odeskin

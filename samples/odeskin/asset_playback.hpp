@@ -63,9 +63,4 @@ class AssetPlayback {
   std::vector<gpu::Float4> gpu_out_;
 };
 
-// Positions in the asset's output layout: the render vertices (topology positions gathered through
-// topology_of_render) when the asset has a render layout, else the topology positions themselves.
-std::vector<Vec3> outputPositions(const DeformAsset& asset, const std::vector<Vec3>& topology_positions);
-const FaceList& outputFaces(const DeformAsset& asset);
-
 }  // namespace odeskin

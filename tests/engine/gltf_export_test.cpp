@@ -294,17 +294,10 @@ class GltfPlayback {
 std::vector<Vec3> playerPositions(const DeformAsset& asset, double t) {
   Result<DeformPlayer> player = DeformPlayer::create(asset);
   EXPECT_TRUE(player.ok());
-  std::vector<ModeBasisValue> basis(player->basisSize());
-  std::vector<BoneTransform> bones(asset.bone_count);
   std::vector<Vec3> out(asset.vertexCount());
   const auto [segment, tau] = player->locate(t);
-  player->basisAt(tau, basis);
-  player->bonesAt(asset, segment, tau, bones);
-  EXPECT_TRUE(referenceJob(asset, segment, basis, bones, out).run().ok());
-  if (asset.render.empty()) return out;
-  std::vector<Vec3> render;
-  for (std::uint32_t v : asset.render.topology_of_render) render.push_back(out[v]);
-  return render;
+  EXPECT_TRUE(player->play(asset, segment, tau, out).ok());
+  return outputPositions(asset, out);
 }
 
 // The procedural arm bent to 100 degrees and back to 40 (two segments, so the second carries a rate),

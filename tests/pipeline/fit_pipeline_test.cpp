@@ -16,12 +16,8 @@ using testing::catPoses;
 using testing::horseFrames;
 
 std::vector<Vec3> play(const DeformAsset& asset, const DeformPlayer& player, std::uint32_t segment, double tau) {
-  std::vector<ModeBasisValue> basis(player.basisSize());
-  std::vector<BoneTransform> bones(asset.bone_count);
   std::vector<Vec3> out(asset.vertexCount());
-  player.basisAt(tau, basis);
-  player.bonesAt(asset, segment, tau, bones);
-  EXPECT_TRUE(referenceJob(asset, segment, basis, bones, out).run().ok());
+  EXPECT_TRUE(player.play(asset, segment, tau, out).ok());
   return out;
 }
 
