@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "asset_info.hpp"
+#include "bench_command.hpp"
 #include "demo.hpp"
 #include "engine/offline/fourier_fit.hpp"
 #include "evaluate_command.hpp"
@@ -258,6 +259,9 @@ int main(int argc, char** argv) {
   odeskin::EvaluateCommandOptions evaluate_options;
   CLI::App* evaluate_cmd = addEvaluateCommand(app, evaluate_options);
 
+  odeskin::BenchCommandOptions bench_options;
+  CLI::App* bench_cmd = odeskin::addBenchCommand(app, bench_options);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -303,6 +307,7 @@ int main(int argc, char** argv) {
     if (export_cmd->get_option("--fps")->count() > 0) export_options.fps = export_fps;
     return odeskin::runExportCommand(export_options, console);
   }
+  if (bench_cmd->parsed()) return odeskin::runBenchCommand(bench_options, console, device);
   if (evaluate_cmd->parsed()) return odeskin::runEvaluateCommand(evaluate_options, console, device);
   return 2;
 }

@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: MIT
+#include "deform_cases.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <span>
+
+#include <glm/geometric.hpp>
+
+#include "bench_subject.hpp"
+#include "engine/kernels/fourier_deform_fast_job.hpp"
+#include "engine/kernels/lbs_job.hpp"
+#include "engine/offline/deform_player.hpp"
+#include "frame_timer.hpp"
+#include "host/gpu_deformer.hpp"
+#include "host/gpu_lbs.hpp"
+
+namespace odeskin::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+double longestBoxSide(std::span<const Vec3> points) {
+  Vec3 lo(INFINITY), hi(-INFINITY);
+  for (const Vec3& p : points) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const Vec3 d = hi - lo;
+  return std::max({d.x, d.y, d.z, 1e-300});
+}
+
+// Worst |actual - expected| / box; NaN counts as infinitely wrong.
+double worstError(std::span<const Vec3> expected, std::span<const gpu::Float4> actual, double box) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const double e = glm::length(Vec3(actual[i].x, actual[i].y, actual[i].z) - expected[i]);
+    worst = std::isnan(e) ? INFINITY : std::max(worst, e);
+  }
+  return worst / box;
+}
+
+// One kernel on one subject: the reference output and a place to put records.
+class CaseRunner {
+ public:
+  CaseRunner(const BenchSubject& subject, const std::string& kernel, int terms, const DeformCaseOptions& options,
+             std::vector<BenchRecord>& out)
+      : s_(subject), kernel_(kernel), terms_(terms), options_(options), out_(out) {}
+
+  bool deforms() const { return kernel_ == "odeskin"; }
+
+  Status run() {
+    ODESKIN_TRY(computeExpected());
+    if (options_.cpu_ref) ODESKIN_TRY(runCpuRef());
+    if (options_.cpu_fast) {
+      ODESKIN_TRY(runCpuFast(1));
+      if (options_.all_threads > 1) ODESKIN_TRY(runCpuFast(options_.all_threads));
+    }
+    if (options_.vulkan) ODESKIN_TRY(runVulkan());
+    return okStatus();
+  }
+
+ private:
+  Status computeExpected() {
+    expected_.resize(s_.vertexCount());
+    ODESKIN_TRY(reference(expected_));
+    box_ = longestBoxSide(expected_);
+    return okStatus();
+  }
+
+  Status reference(std::span<Vec3> out) const {
+    if (deforms()) return referenceJob(s_.asset, s_.frame.segment, s_.frame.basis, s_.frame.bones, out).run();
+    return LbsJob{s_.asset.rest_positions, s_.asset.influences, s_.frame.bones, out, s_.asset.skinning}.run();
+  }
+
+  BenchRecord record(const char* backend, unsigned threads) const {
+    BenchRecord r;
+    r.kernel = kernel_;
+    r.backend = backend;
+    r.threads = threads;
+    r.vertices = s_.vertexCount();
+    r.terms = deforms() ? terms_ : 0;
+    return r;
+  }
+
+  Status finish(BenchRecord r, const FrameTiming& timing) {
+    r.seconds_per_frame = timing.seconds;
+    r.gpu_seconds_per_frame = timing.gpu_seconds;
+    r.frames = timing.frames;
+    if (options_.progress) {
+      char line[256];
+      std::snprintf(line, sizeof line, "%-7s %-8s %2u thr V=%-8zu N=%-2d %12.1f us/frame %9.2f Mvert/s  err %.1e",
+                    r.kernel.c_str(), r.backend.c_str(), r.threads, r.vertices, r.terms, r.seconds_per_frame * 1e6,
+                    r.verticesPerSecond() * 1e-6, r.max_error);
+      options_.progress(line);
+    }
+    out_.push_back(std::move(r));
+    return okStatus();
+  }
+
+  Status check(BenchRecord& r, std::span<const gpu::Float4> actual) const {
+    r.max_error = worstError(expected_, actual, box_);
+    if (!(r.max_error <= kVerifyTolerance)) {
+      return internalError("bench: " + r.kernel + " on " + r.backend + " (" + std::to_string(r.threads) +
+                           " threads, " + std::to_string(r.vertices) + " vertices) differs from cpu_ref by " +
+                           std::to_string(r.max_error) + " of the box (limit 1e-4)");
+    }
+    return okStatus();
+  }
+
+  Status runCpuRef() {
+    std::vector<Vec3> out(s_.vertexCount());
+    ODESKIN_ASSIGN_OR_RETURN(const FrameTiming t, timeFrames([&](double&) { return reference(out); },
+                                                             options_.min_seconds));
+    return finish(record("cpu_ref", 1), t);
+  }
+
+  Status runCpuFast(unsigned threads) {
+    BenchRecord r = record("cpu_fast", threads);
+    std::vector<gpu::Float4> out(s_.vertexCount());
+    const Clock::time_point prepare = Clock::now();
+    const FourierDeformFastJob deform{&s_.packed, s_.frame.segment, s_.frame.gpu_bones, s_.frame.gpu_basis, out, threads};
+    const LbsFastJob skin{&s_.packed, s_.frame.gpu_bones, out, threads};
+    r.upload_seconds = secondsSince(prepare);
+    auto frame = [&](double&) { return deforms() ? deform.run() : skin.run(); };
+    double unused = 0.0;
+    ODESKIN_TRY(frame(unused));
+    ODESKIN_TRY(check(r, out));
+    ODESKIN_ASSIGN_OR_RETURN(const FrameTiming t, timeFrames(frame, options_.min_seconds));
+    return finish(std::move(r), t);
+  }
+
+  Status runVulkan() {
+    if (options_.device == nullptr) return invalidArgument("bench: vulkan cases need a Vulkan device");
+    BenchRecord r = record("vulkan", 1);
+    std::vector<gpu::Float4> out(s_.vertexCount());
+    std::optional<GpuDeformer> deformer;
+    std::optional<GpuLbs> lbs;
+    const Clock::time_point upload = Clock::now();
+    if (deforms()) {
+      ODESKIN_ASSIGN_OR_RETURN(deformer, GpuDeformer::create(*options_.device, s_.packed));
+    } else {
+      ODESKIN_ASSIGN_OR_RETURN(lbs, GpuLbs::create(*options_.device, s_.packed));
+    }
+    r.upload_seconds = secondsSince(upload);
+    const GpuDeformFrame deform_frame{s_.frame.segment, s_.frame.gpu_bones, s_.frame.gpu_basis};
+    const GpuLbsFrame lbs_frame{s_.frame.gpu_bones};
+    auto frame = [&](double& gpu_seconds) {
+      const Status status = deformer ? deformer->run(deform_frame) : lbs->run(lbs_frame);
+      gpu_seconds = deformer ? deformer->lastGpuSeconds() : lbs->lastGpuSeconds();
+      return status;
+    };
+    double unused = 0.0;
+    ODESKIN_TRY(frame(unused));
+    ODESKIN_TRY(deformer ? deformer->readPositions(out) : lbs->readPositions(out));
+    ODESKIN_TRY(check(r, out));
+    ODESKIN_ASSIGN_OR_RETURN(const FrameTiming t, timeFrames(frame, options_.min_seconds));
+    return finish(std::move(r), t);
+  }
+
+  const BenchSubject& s_;
+  std::string kernel_;
+  int terms_ = 0;
+  const DeformCaseOptions& options_;
+  std::vector<BenchRecord>& out_;
+  std::vector<Vec3> expected_;
+  double box_ = 1.0;
+};
+
+}  // namespace
+
+Status runDeformCases(const std::map<int, DeformAsset>& sources, const DeformCaseOptions& options,
+                      std::vector<BenchRecord>& out) {
+  if (options.vulkan && options.device == nullptr) return invalidArgument("bench: vulkan cases need a Vulkan device");
+  for (int n : options.terms) {
+    if (!sources.count(n)) return invalidArgument("bench: no fitted asset with N = " + std::to_string(n));
+  }
+  for (std::size_t size : options.sizes) {
+    for (int n : options.terms) {
+      ODESKIN_ASSIGN_OR_RETURN(const BenchSubject subject,
+                               makeSubject(sources.at(n), size, SkinningMode::kLinear, options.time));
+      ODESKIN_TRY(CaseRunner(subject, "odeskin", n, options, out).run());
+      if (n == options.terms.back()) ODESKIN_TRY(CaseRunner(subject, "lbs", 0, options, out).run());
+    }
+    // Skinning does not depend on N: DQS runs once per size, on the last N's asset.
+    ODESKIN_ASSIGN_OR_RETURN(const BenchSubject dqs,
+                             makeSubject(sources.at(options.terms.back()), size, SkinningMode::kDualQuaternion,
+                                         options.time));
+    ODESKIN_TRY(CaseRunner(dqs, "dqs", 0, options, out).run());
+  }
+  return okStatus();
+}
+
+}  // namespace odeskin::bench

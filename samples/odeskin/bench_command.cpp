@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: MIT
+#include "bench_command.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+
+#include "bench/harness/bench_plot.hpp"
+#include "bench/harness/bench_report.hpp"
+#include "bench/harness/deform_cases.hpp"
+#include "bench/harness/fit_sources.hpp"
+#include "host/device.hpp"
+
+namespace odeskin {
+namespace {
+
+using bench::BenchRecord;
+using bench::BenchReport;
+
+// The Runner of the thesis (Table 6.1) has 32,185 vertices: the size the targets are stated at.
+constexpr std::size_t kRunnerVertices = 32'185;
+
+struct Backends {
+  bool cpu_ref = false, cpu_fast = false, vulkan = false, vulkan_required = false;
+};
+
+std::optional<Backends> parseBackends(const std::string& text) {
+  Backends b;
+  if (text == "auto") {
+    b.cpu_ref = b.cpu_fast = b.vulkan = true;
+    return b;
+  }
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    if (item == "cpu_ref") b.cpu_ref = true;
+    else if (item == "cpu_fast") b.cpu_fast = true;
+    else if (item == "vulkan") b.vulkan = b.vulkan_required = true;
+    else return std::nullopt;
+  }
+  if (!b.cpu_ref && !b.cpu_fast && !b.vulkan) return std::nullopt;
+  return b;
+}
+
+const BenchRecord* find(const BenchReport& r, const std::string& kernel, const std::string& backend, unsigned threads,
+                        std::size_t vertices, int terms) {
+  for (const BenchRecord& e : r.records) {
+    if (e.kernel == kernel && e.backend == backend && e.threads == threads && e.vertices == vertices &&
+        e.terms == terms) {
+      return &e;
+    }
+  }
+  return nullptr;
+}
+
+void printRecords(const BenchReport& report, std::ostream& out) {
+  out << "case     backend  threads  vertices  N   us/frame    Mvert/s   gpu us  upload ms  vs lbs  max err\n";
+  for (const BenchRecord& r : report.records) {
+    char line[256];
+    const double ratio = r.kernel == "odeskin" ? bench::odeskinOverLbs(report, r) : 0.0;
+    char ratio_text[16] = "";
+    if (ratio > 0.0) std::snprintf(ratio_text, sizeof ratio_text, "%.2f", ratio);
+    char gpu_text[24] = "";
+    if (r.backend == "vulkan") std::snprintf(gpu_text, sizeof gpu_text, "%.1f", r.gpu_seconds_per_frame * 1e6);
+    std::snprintf(line, sizeof line, "%-8s %-8s %7u %9zu %2d %10.1f %10.2f %8s %10.2f %7s  %.1e\n", r.kernel.c_str(),
+                  r.backend.c_str(), r.threads, r.vertices, r.terms, r.seconds_per_frame * 1e6,
+                  r.verticesPerSecond() * 1e-6, gpu_text, r.upload_seconds * 1e3, ratio_text, r.max_error);
+    out << line;
+  }
+}
+
+void printFits(const BenchReport& report, std::ostream& out) {
+  if (report.fit_stages.empty()) return;
+  out << "\nfitting stages (thesis Table 6.3 columns, ms; N = 9):\n"
+         "dataset                                         vertices poses rig      rig  curves  transf  fourier  solve  "
+         "w/o rig\n";
+  for (const bench::FitStageRecord& f : report.fit_stages) {
+    char line[320];
+    std::snprintf(line, sizeof line, "%-46s %9zu %5zu %-5s %7.1f %7.1f %7.1f %8.1f %6.1f %8.1f\n", f.dataset.c_str(),
+                  f.vertices, f.poses, f.rig.c_str(), f.rig_seconds * 1e3, f.curve_identification * 1e3,
+                  f.geometric_transform * 1e3, f.fourier_and_deformation * 1e3, f.analytic_solve * 1e3,
+                  f.withoutRig() * 1e3);
+    out << line;
+  }
+}
+
+// The issue's targets, each read from this run's records (ratios within one run, not across runs).
+void printTargets(const BenchReport& report, std::ostream& out) {
+  out << "\ntargets (issue 6, from this run):\n";
+  auto verdict = [](bool met) { return met ? "met" : "missed"; };
+  for (const char* backend : {"cpu_fast", "vulkan"}) {
+    for (const BenchRecord& r : report.records) {
+      if (r.kernel != "odeskin" || r.terms != 9 || r.backend != backend || r.threads != 1) continue;
+      const double ratio = bench::odeskinOverLbs(report, r);
+      if (ratio <= 0.0) continue;
+      char line[200];
+      std::snprintf(line, sizeof line, "  odeskin N=9 / lbs, %s 1 thread, %zu vertices: %.2f (target <= 1.5: %s)\n",
+                    backend, r.vertices, ratio, verdict(ratio <= 1.5));
+      out << line;
+    }
+  }
+  if (const BenchRecord* r = find(report, "odeskin", "cpu_fast", 1, kRunnerVertices, 9)) {
+    char line[200];
+    std::snprintf(line, sizeof line, "  cpu_fast 1 thread, N=9, %zu vertices: %.1f Mvert/s (target >= 100: %s)\n",
+                  kRunnerVertices, r->verticesPerSecond() * 1e-6, verdict(r->verticesPerSecond() >= 100e6));
+    out << line;
+  }
+  for (const BenchRecord& v : report.records) {
+    if (v.kernel != "odeskin" || v.backend != "vulkan" || v.vertices < 100'000) continue;
+    const BenchRecord* c = find(report, "odeskin", "cpu_fast", 1, v.vertices, v.terms);
+    if (c == nullptr || c->seconds_per_frame <= 0.0) continue;
+    const double ratio = v.verticesPerSecond() / c->verticesPerSecond();
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "  vulkan / cpu_fast 1 thread throughput, N=%d, %zu vertices: %.2f (target >= 0.5: %s)\n", v.terms,
+                  v.vertices, ratio, verdict(ratio >= 0.5));
+    out << line;
+  }
+}
+
+}  // namespace
+
+CLI::App* addBenchCommand(CLI::App& app, BenchCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("bench", "Time odeskin against LBS and DQS per backend and vertex count");
+  cmd->footer(
+      "Tiles a fitted real mesh (cat-poses from --data) to each vertex count, checks every backend against the\n"
+      "double reference, then times frames (median). Also times the fitting stages (thesis Table 6.3).\n"
+      "Examples: odeskin bench --quick --json quick.json\n"
+      "          odeskin bench --json full.json --csv full.csv --plot full.png\n"
+      "          odeskin bench --sizes 100000,1000000 --terms 9 --backends cpu_fast,vulkan --json v.json");
+  cmd->add_flag("--quick", o.quick, "Under a minute: 32,185 vertices (the thesis's Runner), N = 9");
+  cmd->add_option("--json", o.json, "Write the records here (JSON)")->required();
+  cmd->add_option("--csv", o.csv, "Also write the records as CSV");
+  cmd->add_option("--plot", o.plot, "Also draw vertices/s against vertices (PNG)");
+  cmd->add_option("--data", o.data, "The shared data folder with cat-poses and horse-gallop");
+  cmd->add_option("--sizes", o.sizes, "Vertex counts (default 1e3,1e4,32185,1e5,1e6,4e6)")->delimiter(',');
+  cmd->add_option("--terms", o.terms, "Fourier terms N (default 3,5,9,17)")->delimiter(',');
+  cmd->add_option("--backends", o.backends, "auto, or a list of cpu_ref,cpu_fast,vulkan");
+  cmd->add_option("--threads", o.threads, "cpu_fast's all-threads count (default: the hardware's)");
+  cmd->add_option("--min-time", o.min_time, "Seconds of timed frames per case (default 0.1 quick, 0.3 full)");
+  cmd->add_flag("--no-fit", [&o](std::int64_t) { o.fit = false; }, "Skip the fitting-stage table");
+  cmd->add_flag("--validation", o.validation, "Enable the Khronos validation layer on the Vulkan cases");
+  return cmd;
+}
+
+int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::string& device) {
+  const std::optional<Backends> backends = parseBackends(o.backends);
+  if (!backends) {
+    return reportUsage(console, "bench: --backends must be auto or a list of cpu_ref, cpu_fast, vulkan, got '" +
+                                    o.backends + "'");
+  }
+  if (o.json.empty()) return reportUsage(console, "bench: --json OUT.json is required");
+  if (o.min_time < 0.0 || !std::isfinite(o.min_time)) return reportUsage(console, "bench: --min-time must be >= 0");
+  for (std::size_t v : o.sizes) {
+    if (v == 0 || v > 16'000'000) return reportUsage(console, "bench: --sizes must be in [1, 16000000]");
+  }
+  for (int n : o.terms) {
+    if (n < 1 || n > 64) return reportUsage(console, "bench: --terms must be in [1, 64]");
+  }
+  // One "bench: " prefix on every failure, whether the harness already named itself or a reader spoke.
+  auto fail = [&](const Status& status) {
+    const std::string& m = status.message();
+    return reportError(console, m.rfind("bench: ", 0) == 0 ? m : "bench: " + m, kExitFailure);
+  };
+  // Minutes of timing must not end in an unwritable path: check the folders before any work.
+  for (const std::filesystem::path& path : {o.json, o.csv, o.plot}) {
+    const std::filesystem::path parent = path.parent_path();
+    if (path.empty() || parent.empty()) continue;
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);
+    if (!std::filesystem::is_directory(parent)) return fail(ioError(path.string() + ": cannot create directory " + parent.string()));
+  }
+  auto progress = [&](const std::string& line) {
+    if (!console.quiet) console.err << line << "\n";
+  };
+
+  BenchReport report;
+  report.quick = o.quick;
+  report.cpu = bench::cpuModelName();
+  report.hardware_threads = std::thread::hardware_concurrency();
+  report.build = bench::buildDescription();
+
+  std::optional<vk::Gpu> gpu;
+  bool use_vulkan = backends->vulkan;
+  if (use_vulkan) {
+    Result<vk::Gpu> opened = vk::Gpu::open(device, o.validation);
+    if (opened.ok()) {
+      gpu.emplace(std::move(opened).value());
+      report.device = gpu->device.name();
+    } else if (backends->vulkan_required) {
+      return fail(Status(opened.status().code(), "vulkan: " + opened.status().message()));
+    } else {
+      use_vulkan = false;
+      report.device = "none (" + opened.status().message() + ")";
+      progress("bench: no Vulkan device, CPU backends only: " + opened.status().message());
+    }
+  } else {
+    report.device = "none (not requested)";
+  }
+
+  bench::DeformCaseOptions cases;
+  cases.sizes = !o.sizes.empty() ? o.sizes
+                : o.quick ? std::vector<std::size_t>{kRunnerVertices}
+                          : std::vector<std::size_t>{1'000, 10'000, kRunnerVertices, 100'000, 1'000'000, 4'000'000};
+  cases.terms = !o.terms.empty() ? o.terms : o.quick ? std::vector<int>{9} : std::vector<int>{3, 5, 9, 17};
+  cases.cpu_ref = backends->cpu_ref;
+  cases.cpu_fast = backends->cpu_fast;
+  cases.vulkan = use_vulkan;
+  cases.all_threads = o.threads != 0 ? o.threads : report.hardware_threads;
+  cases.min_seconds = o.min_time > 0.0 ? o.min_time : (o.quick ? 0.1 : 0.3);
+  cases.device = gpu ? &gpu->device : nullptr;
+  cases.progress = progress;
+
+  progress("bench: fitting the mesh to tile (N = " + std::to_string(cases.terms.front()) + (cases.terms.size() > 1 ? "..." : "") + ")");
+  Result<bench::FitSources> sources = bench::fitSources(o.data, cases.terms);
+  if (!sources.ok()) return fail(sources.status());
+  report.mesh = sources->mesh;
+  report.fit_stages = sources->fits;
+  Status status = bench::runDeformCases(sources->assets, cases, report.records);
+  if (!status.ok()) return fail(status);
+  sources->assets.clear();  // the largest cases are done: free the fitted meshes before the fits
+
+  if (o.fit && std::filesystem::exists(o.data / "cat-poses")) {
+    bench::FitStageOptions fit_options;
+    fit_options.quick = o.quick;
+    fit_options.progress = progress;
+    Result<std::vector<bench::FitStageRecord>> stages = bench::timeFitStages(o.data, fit_options);
+    if (!stages.ok()) return fail(stages.status());
+    report.fit_stages.insert(report.fit_stages.end(), stages->begin(), stages->end());
+  }
+
+  if (Status s = bench::writeJson(o.json, report); !s.ok()) return fail(s);
+  if (!o.csv.empty()) {
+    if (Status s = bench::writeCsv(o.csv, report); !s.ok()) return fail(s);
+  }
+  if (!o.plot.empty()) {
+    if (Status s = bench::writePlot(o.plot, report); !s.ok()) return fail(s);
+  }
+  if (!console.quiet) {
+    console.out << "device: " << report.device << "\nmachine: " << report.cpu << ", " << report.hardware_threads
+                << " hardware threads\nbuild: " << report.build << "\nmesh: " << report.mesh << "\n\n";
+    printRecords(report, console.out);
+    printFits(report, console.out);
+    printTargets(report, console.out);
+  }
+  console.out << "wrote " << o.json.string() << "\n";
+  return kExitOk;
+}
+
+}  // namespace odeskin

@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: MIT
+// The benchmark harness's parts: tiling keeps every vertex's deformation, subdivision keeps the poses
+// one mesh, the timer returns medians and failures, the reports keep the issue's JSON layout, and
+// the cases verify every backend (Vulkan under the validation layer) before timing it.
+#include <cmath>
+#include <fstream>
+#include <map>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bench/harness/bench_plot.hpp"
+#include "bench/harness/bench_report.hpp"
+#include "bench/harness/deform_cases.hpp"
+#include "bench/harness/frame_timer.hpp"
+#include "bench/harness/subdivided_examples.hpp"
+#include "bench/harness/tiled_asset.hpp"
+#include "engine/offline/deform_player.hpp"
+#include "engine/offline/procedural_arm.hpp"
+#include "engine/offline/residual_fit.hpp"
+#include "host/gpu_test_support.hpp"
+
+namespace odeskin::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The procedural arm (two poses, one segment), small enough to fit in milliseconds.
+DeformAsset armAsset(int modes) {
+  ArmOptions arm_options;
+  arm_options.rings = 9;
+  Result<ProceduralArm> arm = makeProceduralArm(arm_options);
+  EXPECT_TRUE(arm.ok()) << arm.status().toString();
+  FitOptions options;
+  options.modes = modes;
+  options.materials = {skinMaterial()};
+  Result<DeformAsset> asset = fitDeformAsset(arm->fit_input, options);
+  EXPECT_TRUE(asset.ok()) << asset.status().toString();
+  return std::move(asset).value();
+}
+
+std::vector<Vec3> play(const DeformAsset& asset, double t) {
+  Result<DeformPlayer> player = DeformPlayer::create(asset);
+  EXPECT_TRUE(player.ok());
+  const auto [segment, tau] = player->locate(t);
+  std::vector<Vec3> out(asset.vertexCount());
+  EXPECT_TRUE(player->play(asset, segment, tau, out).ok());
+  return out;
+}
+
+TEST(TileDeformAsset, EveryTiledVertexDeformsExactlyAsItsSource) {
+  const DeformAsset source = armAsset(5);
+  const std::size_t v = source.vertexCount();
+  for (std::size_t count : {std::size_t{7}, v, 3 * v + 5}) {
+    Result<DeformAsset> tiled = tileDeformAsset(source, count);
+    ASSERT_TRUE(tiled.ok()) << tiled.status().toString();
+    ASSERT_EQ(tiled->vertexCount(), count);
+    EXPECT_TRUE(validateDeformAsset(*tiled).ok());
+    const std::vector<Vec3> expected = play(source, 0.37);
+    const std::vector<Vec3> actual = play(*tiled, 0.37);
+    for (std::size_t i = 0; i < count; ++i) ASSERT_EQ(actual[i], expected[i % v]) << "vertex " << i;
+  }
+}
+
+TEST(TileDeformAsset, RejectsEmptyInputs) {
+  EXPECT_EQ(tileDeformAsset(DeformAsset{}, 10).status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(tileDeformAsset(armAsset(3), 0).status().code(), StatusCode::kInvalidArgument);
+}
+
+TEST(SubdivideMidpoint, SplitsEveryTriangleInFourInEveryPose) {
+  ExampleSet ex;
+  ex.rest_positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  ex.faces.indices = {0, 1, 2, 2, 1, 3};
+  ex.faces.face_offsets = {0, 3, 6};
+  ex.poses = {ex.rest_positions, {{0, 0, 1}, {2, 0, 1}, {0, 2, 1}, {2, 2, 1}}};
+  Rig rig;
+  rig.skeleton.heads = rig.skeleton.tails = {{0, 0, 0}, {1, 1, 0}};
+  rig.skeleton.parents = {-1, 0};
+  rig.skeleton.names = {"a", "b"};
+  rig.influences.offsets = {0, 1, 2, 3, 4};
+  rig.influences.bones = {0, 0, 1, 1};
+  rig.influences.weights = {1, 1, 1, 1};
+  ex.rig = rig;
+  Result<ExampleSet> out = subdivideMidpoint(ex);
+  ASSERT_TRUE(out.ok()) << out.status().toString();
+  EXPECT_EQ(out->rest_positions.size(), 4u + 5u);  // five edges
+  EXPECT_EQ(out->faces.faceCount(), 8u);
+  ASSERT_EQ(out->poses.size(), 2u);
+  // Vertex 4 is the first new edge's midpoint (edge 0-1) in every pose.
+  EXPECT_EQ(out->rest_positions[4], Vec3(0.5, 0, 0));
+  EXPECT_EQ(out->poses[1][4], Vec3(1, 0, 1));
+  const Influences& w = out->rig->influences;
+  ASSERT_EQ(w.vertexCount(), 9u);
+  EXPECT_TRUE(validateInfluences(w, 9, 2).ok());
+  // Edge 1-2 joins a bone-0 vertex and a bone-1 vertex: half each.
+  for (std::size_t i = 4; i < 9; ++i) {
+    double sum = 0.0;
+    for (std::uint32_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) sum += w.weights[k];
+    EXPECT_NEAR(sum, 1.0, 1e-15);
+  }
+}
+
+TEST(SubdivideMidpoint, RejectsPolygons) {
+  ExampleSet ex;
+  ex.rest_positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  ex.faces.indices = {0, 1, 2, 3};
+  ex.faces.face_offsets = {0, 4};
+  const Result<ExampleSet> out = subdivideMidpoint(ex);
+  EXPECT_EQ(out.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(out.status().message().find("face 0 is not a triangle"), std::string::npos);
+}
+
+TEST(TimeFrames, ReturnsTheMedianAndStopsOnFailure) {
+  int calls = 0;
+  Result<FrameTiming> t = timeFrames([&](double& gpu) {
+    ++calls;
+    gpu = 2.0;
+    return okStatus();
+  }, 0.0, 5);
+  ASSERT_TRUE(t.ok());
+  EXPECT_EQ(t->frames, 5);
+  EXPECT_EQ(calls, 6);  // one warm-up frame
+  EXPECT_EQ(t->gpu_seconds, 2.0);
+  calls = 0;
+  Result<FrameTiming> failed = timeFrames([&](double&) { return ++calls == 3 ? internalError("frame 3") : okStatus(); },
+                                          1.0);
+  EXPECT_EQ(failed.status().message(), "frame 3");
+}
+
+BenchReport sampleReport() {
+  BenchReport r;
+  r.device = "test device";
+  r.records.push_back({"odeskin", "cpu_fast", 1, 1000, 9, 3e-3, 0.0, 0.0, 10, 1e-7});
+  r.records.push_back({"lbs", "cpu_fast", 1, 1000, 0, 1e-3, 0.0, 0.0, 10, 1e-7});
+  r.records.push_back({"odeskin", "vulkan", 1, 1000, 9, 4e-3, 3e-3, 0.1, 10, 1e-7});
+  return r;
+}
+
+TEST(BenchReport, JsonKeepsTheIssueLayout) {
+  const nlohmann::json j = nlohmann::json::parse(toJson(sampleReport()));
+  EXPECT_EQ(j["device"], "test device");
+  ASSERT_EQ(j["records"].size(), 3u);
+  for (const auto& r : j["records"]) {
+    for (const char* key : {"case", "backend", "threads", "vertices", "terms", "seconds_per_frame", "vertices_per_second"}) {
+      EXPECT_TRUE(r.contains(key)) << key;
+    }
+  }
+  EXPECT_DOUBLE_EQ(j["records"][0]["vertices_per_second"].get<double>(), 1000 / 3e-3);
+  EXPECT_DOUBLE_EQ(j["records"][0]["odeskin_over_lbs"].get<double>(), 3.0);
+  EXPECT_FALSE(j["records"][2].contains("odeskin_over_lbs"));  // no vulkan lbs record
+  EXPECT_DOUBLE_EQ(j["records"][2]["gpu_seconds_per_frame"].get<double>(), 3e-3);
+  const std::string csv = toCsv(sampleReport());
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  EXPECT_EQ(csv.rfind("case,backend,threads,vertices,terms,seconds_per_frame,vertices_per_second", 0), 0u);
+}
+
+TEST(BenchPlot, WritesAPngAndRefusesAnEmptyReport) {
+  const fs::path dir = fs::temp_directory_path() / ("odeskin_bench_plot_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  ASSERT_TRUE(writePlot(dir / "plot.png", sampleReport()).ok());
+  std::ifstream in(dir / "plot.png", std::ios::binary);
+  char signature[8] = {};
+  in.read(signature, 8);
+  EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+  EXPECT_EQ(writePlot(dir / "empty.png", BenchReport{}).code(), StatusCode::kInvalidArgument);
+  EXPECT_FALSE(fs::exists(dir / "empty.png"));
+  fs::remove_all(dir);
+}
+
+class DeformCases : public testing::GpuTest {};
+
+TEST_F(DeformCases, VerifiesAndTimesEveryBackendAndKernel) {
+  std::map<int, DeformAsset> sources;
+  sources[3] = armAsset(3);
+  sources[5] = armAsset(5);
+  DeformCaseOptions options;
+  options.sizes = {500, 2500};
+  options.terms = {3, 5};
+  options.all_threads = 2;
+  options.min_seconds = 0.0;
+  options.time = 0.6;
+  options.vulkan = device_.has_value();
+  options.device = device_ ? &device() : nullptr;
+  std::vector<BenchRecord> records;
+  const Status status = runDeformCases(sources, options, records);
+  ASSERT_TRUE(status.ok()) << status.toString();
+  // Per size: odeskin for each N, then lbs and dqs, each on cpu_ref, cpu_fast 1 and 2 threads (+ vulkan).
+  const std::size_t backends = options.vulkan ? 4 : 3;
+  EXPECT_EQ(records.size(), 2 * (2 + 2) * backends);
+  for (const BenchRecord& r : records) {
+    EXPECT_GT(r.seconds_per_frame, 0.0) << r.kernel << " " << r.backend;
+    EXPECT_LE(r.max_error, kVerifyTolerance) << r.kernel << " " << r.backend;
+    EXPECT_EQ(r.terms == 0, r.kernel != "odeskin");
+    EXPECT_GE(r.frames, 3);
+    if (r.backend == "vulkan") {
+      EXPECT_GT(r.gpu_seconds_per_frame, 0.0);
+    }
+  }
+}
+
+TEST(DeformCasesOptions, RejectsMissingSourcesAndDevices) {
+  std::map<int, DeformAsset> sources;
+  sources[3] = armAsset(3);
+  std::vector<BenchRecord> records;
+  DeformCaseOptions options;
+  options.sizes = {100};
+  options.terms = {9};
+  options.vulkan = false;
+  EXPECT_EQ(runDeformCases(sources, options, records).code(), StatusCode::kInvalidArgument);
+  options.terms = {3};
+  options.vulkan = true;
+  EXPECT_EQ(runDeformCases(sources, options, records).code(), StatusCode::kInvalidArgument);
+  EXPECT_TRUE(records.empty());
+}
+
+}  // namespace
+}  // namespace odeskin::bench
