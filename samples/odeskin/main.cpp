@@ -9,6 +9,7 @@
 
 #include "asset_info.hpp"
 #include "bench_command.hpp"
+#include "blend_command.hpp"
 #include "demo.hpp"
 #include "engine/offline/fourier_fit.hpp"
 #include "evaluate_command.hpp"
@@ -138,6 +139,31 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
   return cmd;
 }
 
+CLI::App* addBlendCommand(CLI::App& app, odeskin::BlendCommandOptions& o, double& alpha, double& beta, double& gamma,
+                          int& spline) {
+  CLI::App* cmd = app.add_subcommand("blend", "Write a fourth-order ODE blending surface of the thesis (ch. 3) as OBJ");
+  cmd->footer(
+      "Blends the two trimlines of thesis example 3.15, 3.16, 3.17 or 3.18 (MATH.md 2.13; 3.14 is garbled, C14)\n"
+      "with the solution of alpha G'''' + beta G'' + gamma G = 0 that meets both curves and their tangents.\n"
+      "Default parameters are the thesis's: 3.15 (1, 2, 1), 3.16 (1, 3, 1), 3.17 (1, 1, 1), 3.18 (1, 0.5, 1)\n"
+      "of Fig. 3.5(a). The OBJ is a U x V grid: vertex i*V + j is S(u_i, v_j), u_i = i/(U-1), v_j = 2 pi j/V,\n"
+      "with quads joining the grid and wrapping in v. alpha = 0 and resonant parameters (e.g. gamma = 0,\n"
+      "beta = 4 pi^2 alpha) are rejected with exit status 1.\n"
+      "Examples: odeskin blend --example 3.17 -o hyperboloid.obj\n"
+      "          odeskin blend --example 3.18 --alpha 3.7 --beta 2 --gamma 18 --res 80,240 -o fig35c.obj\n"
+      "          odeskin blend --example 3.18 --hermite -o hermite.obj\n"
+      "          odeskin blend --example 3.18 --spline 4 -o spline4.obj");
+  cmd->add_option("--example", o.example, "Thesis example: 3.15, 3.16, 3.17 or 3.18")->required();
+  cmd->add_option("--alpha", alpha, "Shape parameter alpha (default: the example's)");
+  cmd->add_option("--beta", beta, "Shape parameter beta (default: the example's)");
+  cmd->add_option("--gamma", gamma, "Shape parameter gamma (default: the example's)");
+  cmd->add_option("--res", o.res, "Grid samples U,V across and around the blend, U >= 2, V >= 3 (default 64,128)");
+  cmd->add_flag("--hermite", o.hermite, "The cubic Hermite blend of Eq. 3.19 instead of the ODE");
+  cmd->add_option("--spline", spline, "The clamped cubic-spline approximation (Sec. 3.7) with N pieces, 1 to 1000");
+  cmd->add_option("-o,--output", o.output, "The .obj file to write")->required();
+  return cmd;
+}
+
 struct RenderCliValues {
   double t = 0.0;
   double heat_max = 0.0;
@@ -262,6 +288,11 @@ int main(int argc, char** argv) {
   odeskin::BenchCommandOptions bench_options;
   CLI::App* bench_cmd = odeskin::addBenchCommand(app, bench_options);
 
+  odeskin::BlendCommandOptions blend_options;
+  double blend_alpha = 0.0, blend_beta = 0.0, blend_gamma = 0.0;
+  int blend_spline = 0;
+  CLI::App* blend_cmd = addBlendCommand(app, blend_options, blend_alpha, blend_beta, blend_gamma, blend_spline);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -309,5 +340,12 @@ int main(int argc, char** argv) {
   }
   if (bench_cmd->parsed()) return odeskin::runBenchCommand(bench_options, console, device);
   if (evaluate_cmd->parsed()) return odeskin::runEvaluateCommand(evaluate_options, console, device);
+  if (blend_cmd->parsed()) {
+    if (blend_cmd->get_option("--alpha")->count() > 0) blend_options.alpha = blend_alpha;
+    if (blend_cmd->get_option("--beta")->count() > 0) blend_options.beta = blend_beta;
+    if (blend_cmd->get_option("--gamma")->count() > 0) blend_options.gamma = blend_gamma;
+    if (blend_cmd->get_option("--spline")->count() > 0) blend_options.spline_pieces = blend_spline;
+    return odeskin::runBlendCommand(blend_options, console);
+  }
   return 2;
 }
