@@ -1,0 +1,391 @@
+// SPDX-License-Identifier: MIT
+// The block loops of CpuDeformKernel (thesis Eq 6.30 corrected, MATH.md 5.6; PIPELINE.md 3), written
+// once with GCC/Clang vector extensions and compiled once per instruction set:
+// cpu_deform_kernel_simd.cpp includes this file inside a namespace and a target region, with
+// ODESKIN_SIMD_LANES = 16 (AVX-512), 8 (AVX2 + FMA) or 4 (SSE2, NEON, any target). No include
+// guard on purpose, and no #include: the including file provides <cstring>, <cstdint> and
+// simd_deform_layout.hpp.
+//
+// Per block of kBlockLanes vertices sharing the curve pair (a, b), in float:
+//   A_cm = gamma_n(m) d_cm + psi_n(m) rdot_cm           (folded once per curve, not per vertex)
+//   S_c  = A_c0 + v A_c,2N+1 + sum_n cos(2 pi n v) A_c,2n-1 + sin(2 pi n v) A_c,2n
+//   D    = S_a + w (S_b - S_a),   r = D + r^s + gamma_rem eps
+//   bind: out = skin(X + r);  posed: out = skin(X) + r
+// The harmonics come from the lane's precomputed cos/sin(2 pi v) by the Chebyshev recurrence
+//   cos((n+1) t) = 2 cos t cos(n t) - cos((n-1) t),  and the same for sin,
+// one FMA per harmonic and function where the angle-addition recurrence of
+// fourier_deform_fast_job.cpp and the shader takes two (a quarter of the series' arithmetic at two
+// curves). Its rounding error grows like n^2 ulps instead of n; at N = 17 that is ~2e-5 of the
+// harmonic's own coefficient, which is far below the float tolerance because fitted
+// coefficients decay with n (the tests and the benchmark's verification measure it). Where the
+// registers allow (AVX-512's 32, or one curve), cosine and sine terms go to separate accumulators
+// so the FMA chains of one coordinate run in parallel; two curves in 16 registers chain them.
+
+static_assert(kBlockLanes % ODESKIN_SIMD_LANES == 0);
+inline constexpr std::uint32_t kLanes = ODESKIN_SIMD_LANES;
+inline constexpr std::uint32_t kSubBlocks = kBlockLanes / kLanes;
+typedef float V __attribute__((vector_size(ODESKIN_SIMD_LANES * sizeof(float))));
+typedef std::int32_t VI __attribute__((vector_size(ODESKIN_SIMD_LANES * sizeof(std::int32_t))));
+
+struct P3 {
+  V x, y, z;
+};
+
+[[gnu::always_inline]] inline V load(const float* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// s - 0 == s for every float (unlike 0 + s for s = -0), so the compiler folds this to a broadcast,
+// or to an embedded-broadcast memory operand of an FMA on AVX-512.
+[[gnu::always_inline]] inline V splat(float s) { return s - V{}; }
+
+// Folds curve `curve`'s coefficients of frame `f` with its material's time basis: out[3m + k] =
+// gamma_n(m) d_cm,k + psi_n(m) rdot_cm,k, the order of fourier_deform_fast_job's products. Harmonics
+// above the curve's last non-zero one are written as zero, so a two-curve block can run both
+// series to the larger of the two counts.
+inline void foldCurve(const Layout& layout, const Frame& f, std::uint32_t curve, float* out) {
+  const std::uint32_t modes = layout.modes;
+  const std::uint32_t m_count = layout.coefficientsPerCurve();
+  const std::size_t base = (static_cast<std::size_t>(f.segment) * layout.curve_count + curve) * m_count * 3;
+  const float* d = layout.coefficients.data() + base;
+  const float* r = layout.has_rates ? layout.rates.data() + base : nullptr;
+  const gpu::ModeBasis* basis = f.basis + static_cast<std::size_t>(layout.curve_materials[curve]) * (modes + 1);
+  const std::uint32_t used = layout.curve_modes[static_cast<std::size_t>(f.segment) * layout.curve_count + curve];
+  for (std::uint32_t m = 0; m < m_count; ++m) {
+    const std::uint32_t n = m == m_count - 1 ? 0 : (m + 1) / 2;
+    const gpu::ModeBasis b = basis[n];
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t e = 3 * m + k;
+      if (n > used) {
+        out[e] = 0.0f;
+      } else {
+        out[e] = r ? b.gamma * d[e] + b.psi * r[e] : b.gamma * d[e];
+      }
+    }
+  }
+}
+
+// The folded coefficients of the last two curves a worker used. Blocks come sorted by pair, so
+// runs like (a, a), (a, a+1), (a+1, a+1) fold each curve once per worker and frame.
+struct FoldCache {
+  std::uint32_t curve[2] = {kPaddingLane, kPaddingLane};
+  std::uint32_t last = 0;
+  alignas(64) float coefficients[2][kMaxCurveFloats];
+
+  // The slot holding `curve`, folding it into the slot other than `keep` (-1: the least recent).
+  std::uint32_t slot(const Layout& layout, const Frame& f, std::uint32_t c, int keep) {
+    for (std::uint32_t s = 0; s < 2; ++s) {
+      if (curve[s] == c) return last = s;
+    }
+    const std::uint32_t s = keep >= 0 ? 1u - static_cast<std::uint32_t>(keep) : 1u - last;
+    foldCurve(layout, f, c, coefficients[s]);
+    curve[s] = c;
+    return last = s;
+  }
+};
+
+// `trend`: either curve has a non-zero open-curve trend (closed curves have none).
+template <bool kTwoCurves>
+[[gnu::always_inline]] inline P3 series(const float* lanes, const float* a, const float* b, std::uint32_t modes_used,
+                                        std::uint32_t m_count, bool trend) {
+  const V c1 = load(lanes + kCos * kBlockLanes);
+  const V s1 = load(lanes + kSin * kBlockLanes);
+  V ax = splat(a[0]), ay = splat(a[1]), az = splat(a[2]);
+  V ax_sin{}, ay_sin{}, az_sin{};
+  V bx{}, by{}, bz{}, bx_sin{}, by_sin{}, bz_sin{};
+  if constexpr (kTwoCurves) {
+    bx = splat(b[0]);
+    by = splat(b[1]);
+    bz = splat(b[2]);
+  }
+  if (trend) {
+    const V v = load(lanes + kV * kBlockLanes);
+    const float* a_trend = a + 3 * (m_count - 1);
+    ax = v * splat(a_trend[0]) + ax;
+    ay = v * splat(a_trend[1]) + ay;
+    az = v * splat(a_trend[2]) + az;
+    if constexpr (kTwoCurves) {
+      const float* b_trend = b + 3 * (m_count - 1);
+      bx = v * splat(b_trend[0]) + bx;
+      by = v * splat(b_trend[1]) + by;
+      bz = v * splat(b_trend[2]) + bz;
+    }
+  }
+  const V two_c1 = c1 + c1;
+  V c_prev = splat(1.0f);
+  V s_prev{};
+  V cn = c1;
+  V sn = s1;
+  constexpr bool kSplit = !kTwoCurves || kLanes == 16;
+  for (std::uint32_t n = 1; n <= modes_used; ++n) {
+    const float* an = a + 3 * (2 * n - 1);  // cos xyz, then sin xyz
+    if constexpr (kSplit) {
+      ax = cn * splat(an[0]) + ax;
+      ay = cn * splat(an[1]) + ay;
+      az = cn * splat(an[2]) + az;
+      ax_sin = sn * splat(an[3]) + ax_sin;
+      ay_sin = sn * splat(an[4]) + ay_sin;
+      az_sin = sn * splat(an[5]) + az_sin;
+    } else {
+      ax = sn * splat(an[3]) + (cn * splat(an[0]) + ax);
+      ay = sn * splat(an[4]) + (cn * splat(an[1]) + ay);
+      az = sn * splat(an[5]) + (cn * splat(an[2]) + az);
+    }
+    if constexpr (kTwoCurves) {
+      const float* bn = b + 3 * (2 * n - 1);
+      if constexpr (kSplit) {
+        bx = cn * splat(bn[0]) + bx;
+        by = cn * splat(bn[1]) + by;
+        bz = cn * splat(bn[2]) + bz;
+        bx_sin = sn * splat(bn[3]) + bx_sin;
+        by_sin = sn * splat(bn[4]) + by_sin;
+        bz_sin = sn * splat(bn[5]) + bz_sin;
+      } else {
+        bx = sn * splat(bn[3]) + (cn * splat(bn[0]) + bx);
+        by = sn * splat(bn[4]) + (cn * splat(bn[1]) + by);
+        bz = sn * splat(bn[5]) + (cn * splat(bn[2]) + bz);
+      }
+    }
+    const V c_next = two_c1 * cn - c_prev;
+    const V s_next = two_c1 * sn - s_prev;
+    c_prev = cn;
+    s_prev = sn;
+    cn = c_next;
+    sn = s_next;
+  }
+  P3 s{ax + ax_sin, ay + ay_sin, az + az_sin};
+  if constexpr (kTwoCurves) {
+    const V w = load(lanes + kW * kBlockLanes);
+    s.x = w * ((bx + bx_sin) - s.x) + s.x;
+    s.y = w * ((by + by_sin) - s.y) + s.y;
+    s.z = w * ((bz + bz_sin) - s.z) + s.z;
+  }
+  return s;
+}
+
+// Linear blend skinning of the sub-block's points: sum over the block's union bones of w_u (M_u p).
+[[gnu::always_inline]] inline P3 skinLinear(const Layout& layout, const Frame& f, const Block& block,
+                                            std::uint32_t sub, const P3& p) {
+  P3 o{V{}, V{}, V{}};
+  for (std::uint32_t u = 0; u < block.union_count; ++u) {
+    const std::uint32_t e = block.union_begin + u;
+    const gpu::BoneMatrix& m = f.bones[layout.union_bones[e]];
+    const V w = load(layout.union_weights.data() + static_cast<std::size_t>(e) * kBlockLanes + sub * kLanes);
+    o.x = w * (splat(m.row0.w) + p.x * splat(m.row0.x) + p.y * splat(m.row0.y) + p.z * splat(m.row0.z)) + o.x;
+    o.y = w * (splat(m.row1.w) + p.x * splat(m.row1.x) + p.y * splat(m.row1.y) + p.z * splat(m.row1.z)) + o.y;
+    o.z = w * (splat(m.row2.w) + p.x * splat(m.row2.x) + p.y * splat(m.row2.y) + p.z * splat(m.row2.z)) + o.z;
+  }
+  return o;
+}
+
+// Kavan et al. 2008, Algorithm 1, as skinPointDq in fourier_deform_fast_job.cpp: bones on the
+// pivot's side of the real parts, blend, and x -> R x + t of the blend divided by |real|. R and t
+// are quadratic in the blend, so dividing by |real|^2 once replaces the square root. A blend with
+// |real| <= ODESKIN_DQS_MIN_BLEND_NORM (or NaN) takes the LBS result instead.
+[[gnu::always_inline]] inline P3 skinDualQuaternion(const Layout& layout, const Frame& f, const Block& block,
+                                                    std::size_t lane0, std::uint32_t sub, const P3& p) {
+  VI pivot;
+  std::memcpy(&pivot, layout.pivots.data() + lane0, sizeof pivot);
+  V px{}, py{}, pz{}, pw{};
+  for (std::uint32_t u = 0; u < block.union_count; ++u) {
+    const gpu::Float4& q = f.dual_quats[layout.union_bones[block.union_begin + u]].real;
+    const VI is_pivot = pivot == (static_cast<std::int32_t>(u) - VI{});
+    px = is_pivot ? splat(q.x) : px;
+    py = is_pivot ? splat(q.y) : py;
+    pz = is_pivot ? splat(q.z) : pz;
+    pw = is_pivot ? splat(q.w) : pw;
+  }
+  V rx{}, ry{}, rz{}, rw{}, dx{}, dy{}, dz{}, dw{};
+  for (std::uint32_t u = 0; u < block.union_count; ++u) {
+    const std::uint32_t e = block.union_begin + u;
+    const gpu::DualQuat& q = f.dual_quats[layout.union_bones[e]];
+    V w = load(layout.union_weights.data() + static_cast<std::size_t>(e) * kBlockLanes + sub * kLanes);
+    const V dot = splat(q.real.x) * px + splat(q.real.y) * py + splat(q.real.z) * pz + splat(q.real.w) * pw;
+    w = dot < 0.0f - V{} ? -w : w;
+    rx = w * splat(q.real.x) + rx;
+    ry = w * splat(q.real.y) + ry;
+    rz = w * splat(q.real.z) + rz;
+    rw = w * splat(q.real.w) + rw;
+    dx = w * splat(q.dual.x) + dx;
+    dy = w * splat(q.dual.y) + dy;
+    dz = w * splat(q.dual.z) + dz;
+    dw = w * splat(q.dual.w) + dw;
+  }
+  const V norm2 = rx * rx + ry * ry + rz * rz + rw * rw;
+  constexpr float kMinNorm = static_cast<float>(ODESKIN_DQS_MIN_BLEND_NORM);
+  const VI ok = norm2 > splat(kMinNorm * kMinNorm);
+  const V s = splat(2.0f) / norm2;
+  const V xx = rx * rx, yy = ry * ry, zz = rz * rz;
+  const V xy = rx * ry, xz = rx * rz, yz = ry * rz;
+  const V wx = rw * rx, wy = rw * ry, wz = rw * rz;
+  // t = 2 (r_w e_v - e_w r_v + r_v x e_v) of the normalised blend.
+  const V tx = s * (rw * dx - dw * rx + (ry * dz - rz * dy));
+  const V ty = s * (rw * dy - dw * ry + (rz * dx - rx * dz));
+  const V tz = s * (rw * dz - dw * rz + (rx * dy - ry * dx));
+  P3 o;
+  o.x = (splat(1.0f) - s * (yy + zz)) * p.x + s * (xy - wz) * p.y + s * (xz + wy) * p.z + tx;
+  o.y = s * (xy + wz) * p.x + (splat(1.0f) - s * (xx + zz)) * p.y + s * (yz - wx) * p.z + ty;
+  o.z = s * (xz - wy) * p.x + s * (yz + wx) * p.y + (splat(1.0f) - s * (xx + yy)) * p.z + tz;
+  bool all_ok = true;
+  for (std::uint32_t l = 0; l < kLanes; ++l) all_ok = all_ok && ok[l] != 0;
+  if (!all_ok) {
+    const P3 lbs = skinLinear(layout, f, block, sub, p);
+    o.x = ok ? o.x : lbs.x;
+    o.y = ok ? o.y : lbs.y;
+    o.z = ok ? o.z : lbs.z;
+  }
+  return o;
+}
+
+template <bool kDualQuaternion>
+[[gnu::always_inline]] inline P3 skin(const Layout& layout, const Frame& f, const Block& block, std::size_t lane0,
+                                      std::uint32_t sub, const P3& p) {
+  if constexpr (kDualQuaternion) {
+    return skinDualQuaternion(layout, f, block, lane0, sub, p);
+  } else {
+    return skinLinear(layout, f, block, sub, p);
+  }
+}
+
+// 4x4 transposes within each 128-bit group of lanes (SSE's unpcklps / unpckhps and movlhps /
+// movhlps, per group): unpack interleaves two vectors' pairs, half joins their low or high halves.
+constexpr int unpackIndex(int i, int high) { return (i % 2 ? static_cast<int>(kLanes) : 0) + 4 * (i / 4) + (i % 4) / 2 + 2 * high; }
+constexpr int halfIndex(int i, int high) { return ((i % 4) / 2 ? static_cast<int>(kLanes) : 0) + 4 * (i / 4) + i % 2 + 2 * high; }
+
+template <int kHigh, int... I>
+[[gnu::always_inline]] inline V unpack(V a, V b, std::integer_sequence<int, I...>) {
+  return __builtin_shufflevector(a, b, unpackIndex(I, kHigh)...);
+}
+template <int kHigh, int... I>
+[[gnu::always_inline]] inline V half(V a, V b, std::integer_sequence<int, I...>) {
+  return __builtin_shufflevector(a, b, halfIndex(I, kHigh)...);
+}
+
+// Writes the sub-block's `valid` lanes to their mesh vertices as (x, y, z, 1): transposed in
+// registers to four vectors of (x, y, z, 1) quadruples (lane 4k + j is quadruple k of vector j),
+// then one 16-byte copy per vertex.
+[[gnu::always_inline]] inline void store(const Layout& layout, const Frame& f, std::size_t lane0,
+                                         std::uint32_t valid, const P3& p) {
+  constexpr auto kIdx = std::make_integer_sequence<int, static_cast<int>(kLanes)>{};
+  const V one = splat(1.0f);
+  const V xy_low = unpack<0>(p.x, p.y, kIdx), xy_high = unpack<1>(p.x, p.y, kIdx);
+  const V z1_low = unpack<0>(p.z, one, kIdx), z1_high = unpack<1>(p.z, one, kIdx);
+  alignas(64) float quads[4][kLanes];
+  const V q0 = half<0>(xy_low, z1_low, kIdx), q1 = half<1>(xy_low, z1_low, kIdx);
+  const V q2 = half<0>(xy_high, z1_high, kIdx), q3 = half<1>(xy_high, z1_high, kIdx);
+  std::memcpy(quads[0], &q0, sizeof q0);
+  std::memcpy(quads[1], &q1, sizeof q1);
+  std::memcpy(quads[2], &q2, sizeof q2);
+  std::memcpy(quads[3], &q3, sizeof q3);
+  const std::uint32_t* perm = layout.perm.data() + lane0;
+  for (std::uint32_t l = 0; l < valid; ++l) {
+    std::memcpy(f.out_positions + perm[l], &quads[l % 4][4 * (l / 4)], sizeof(gpu::Float4));
+  }
+}
+
+[[gnu::always_inline]] inline std::uint32_t validLanes(const Block& block, std::uint32_t sub) {
+  const std::uint32_t first = sub * kLanes;
+  return block.lanes <= first ? 0u : (block.lanes - first < kLanes ? block.lanes - first : kLanes);
+}
+
+template <bool kTwoCurves, bool kDualQuaternion, bool kBindSpace>
+[[gnu::always_inline]] inline void deformBlock(const Layout& layout, const Frame& f, std::size_t b, const float* a,
+                                               const float* c, std::uint32_t modes_used, bool trend,
+                                               float remainder_weight) {
+  const Block& block = layout.blocks[b];
+  const std::size_t segment_block = static_cast<std::size_t>(f.segment) * layout.blockCount() + b;
+  const bool has_remainder = layout.has_remainder[segment_block] != 0;
+  const std::uint32_t m_count = layout.coefficientsPerCurve();
+  for (std::uint32_t sub = 0; sub < kSubBlocks; ++sub) {
+    const std::uint32_t valid = validLanes(block, sub);
+    if (valid == 0) break;
+    const std::size_t lane0 = b * kBlockLanes + sub * kLanes;
+    const float* lanes = layout.lane_rows.data() + b * kLaneRows * kBlockLanes + sub * kLanes;
+    const float* seg = layout.segment_rows.data() + segment_block * kSegmentRows * kBlockLanes + sub * kLanes;
+    P3 r = series<kTwoCurves>(lanes, a, c, modes_used, m_count, trend);
+    r.x += load(seg + kBaseX * kBlockLanes);
+    r.y += load(seg + kBaseY * kBlockLanes);
+    r.z += load(seg + kBaseZ * kBlockLanes);
+    if (has_remainder) {
+      const V g = splat(remainder_weight);
+      r.x = g * load(seg + kRemX * kBlockLanes) + r.x;
+      r.y = g * load(seg + kRemY * kBlockLanes) + r.y;
+      r.z = g * load(seg + kRemZ * kBlockLanes) + r.z;
+    }
+    const P3 rest{load(lanes + kRestX * kBlockLanes), load(lanes + kRestY * kBlockLanes),
+                  load(lanes + kRestZ * kBlockLanes)};
+    P3 out;
+    if constexpr (kBindSpace) {
+      out = skin<kDualQuaternion>(layout, f, block, lane0, sub, P3{rest.x + r.x, rest.y + r.y, rest.z + r.z});
+    } else {
+      out = skin<kDualQuaternion>(layout, f, block, lane0, sub, rest);
+      out.x += r.x;
+      out.y += r.y;
+      out.z += r.z;
+    }
+    store(layout, f, lane0, valid, out);
+  }
+}
+
+template <bool kDualQuaternion, bool kBindSpace>
+void deformRangeOf(const Frame& f, std::size_t begin, std::size_t end) {
+  const Layout& layout = *f.layout;
+  const float remainder_weight = f.basis[static_cast<std::size_t>(layout.material_count) * (layout.modes + 1)].gamma;
+  const std::uint32_t* curve_modes = layout.curve_modes.data() + static_cast<std::size_t>(f.segment) * layout.curve_count;
+  const std::uint8_t* curve_trends = layout.curve_trends.data() + static_cast<std::size_t>(f.segment) * layout.curve_count;
+  FoldCache cache;
+  for (std::size_t b = begin; b < end; ++b) {
+    const Block& block = layout.blocks[b];
+    const std::uint32_t slot_a = cache.slot(layout, f, block.curve_a, -1);
+    const float* a = cache.coefficients[slot_a];
+    if (block.curve_b == block.curve_a) {
+      deformBlock<false, kDualQuaternion, kBindSpace>(layout, f, b, a, a, curve_modes[block.curve_a],
+                                                      curve_trends[block.curve_a] != 0, remainder_weight);
+    } else {
+      const float* c = cache.coefficients[cache.slot(layout, f, block.curve_b, static_cast<int>(slot_a))];
+      const std::uint32_t used = curve_modes[block.curve_a] > curve_modes[block.curve_b] ? curve_modes[block.curve_a]
+                                                                                        : curve_modes[block.curve_b];
+      const bool trend = curve_trends[block.curve_a] != 0 || curve_trends[block.curve_b] != 0;
+      deformBlock<true, kDualQuaternion, kBindSpace>(layout, f, b, a, c, used, trend, remainder_weight);
+    }
+  }
+}
+
+void deformRange(const Frame& f, std::size_t begin, std::size_t end) {
+  const bool dq = f.layout->skinning == SkinningMode::kDualQuaternion;
+  const bool bind = f.layout->residual_space == ResidualSpace::kBind;
+  if (dq) {
+    bind ? deformRangeOf<true, true>(f, begin, end) : deformRangeOf<true, false>(f, begin, end);
+  } else {
+    bind ? deformRangeOf<false, true>(f, begin, end) : deformRangeOf<false, false>(f, begin, end);
+  }
+}
+
+template <bool kDualQuaternion>
+void skinRangeOf(const Frame& f, std::size_t begin, std::size_t end) {
+  const Layout& layout = *f.layout;
+  for (std::size_t b = begin; b < end; ++b) {
+    const Block& block = layout.blocks[b];
+    for (std::uint32_t sub = 0; sub < kSubBlocks; ++sub) {
+      const std::uint32_t valid = validLanes(block, sub);
+      if (valid == 0) break;
+      const std::size_t lane0 = b * kBlockLanes + sub * kLanes;
+      const float* lanes = layout.lane_rows.data() + b * kLaneRows * kBlockLanes + sub * kLanes;
+      const P3 rest{load(lanes + kRestX * kBlockLanes), load(lanes + kRestY * kBlockLanes),
+                    load(lanes + kRestZ * kBlockLanes)};
+      store(layout, f, lane0, valid, skin<kDualQuaternion>(layout, f, block, lane0, sub, rest));
+    }
+  }
+}
+
+void skinRange(const Frame& f, std::size_t begin, std::size_t end) {
+  if (f.layout->skinning == SkinningMode::kDualQuaternion) {
+    skinRangeOf<true>(f, begin, end);
+  } else {
+    skinRangeOf<false>(f, begin, end);
+  }
+}
+
+BlockFunctions blockFunctions() { return BlockFunctions{&deformRange, &skinRange}; }
