@@ -109,6 +109,7 @@ std::unique_ptr<BenchAsset> buildAsset(std::uint32_t nominal_vertices, int modes
   b->gpu_bones.resize(b->bones.size());
   toGpuBasis(b->basis, b->gpu_basis);
   toGpuBones(b->bones, b->gpu_bones);
+  b->kernel.emplace(orFail(CpuDeformKernel::create(b->packed), "CpuDeformKernel::create"));
   if (const vk::Device* device = benchDevice()) {
     b->gpu_deformer.emplace(orFail(GpuDeformer::create(*device, b->packed), "GpuDeformer::create"));
     b->gpu_lbs.emplace(orFail(GpuLbs::create(*device, b->packed), "GpuLbs::create"));
@@ -128,6 +129,11 @@ void verifyAsset(BenchAsset& b) {
     orFail(FourierDeformFastJob{&b.packed, b.segment, b.gpu_bones, b.gpu_basis, actual, threads}.run(), "fast job");
     b.fast_error = std::max(b.fast_error, verify(expected, actual, box, "cpu_fast", v, b.modes));
   }
+  for (unsigned threads : {1u, 0u}) {
+    std::fill(actual.begin(), actual.end(), gpu::Float4{});
+    orFail(b.kernel->deform(b.segment, b.gpu_bones, b.gpu_basis, actual, threads), "CpuDeformKernel::deform");
+    b.kernel_error = std::max(b.kernel_error, verify(expected, actual, box, "cpu_kernel", v, b.modes));
+  }
   if (b.gpu_deformer) {
     std::fill(actual.begin(), actual.end(), gpu::Float4{});
     orFail(b.gpu_deformer->run(GpuDeformFrame{b.segment, b.gpu_bones, b.gpu_basis}), "GpuDeformer::run");
@@ -139,6 +145,11 @@ void verifyAsset(BenchAsset& b) {
     std::fill(actual.begin(), actual.end(), gpu::Float4{});
     orFail(LbsFastJob{&b.packed, b.gpu_bones, actual, threads}.run(), "LBS fast job");
     b.lbs_fast_error = std::max(b.lbs_fast_error, verify(expected, actual, box, "lbs cpu_fast", v, b.modes));
+  }
+  for (unsigned threads : {1u, 0u}) {
+    std::fill(actual.begin(), actual.end(), gpu::Float4{});
+    orFail(b.kernel->skin(b.gpu_bones, actual, threads), "CpuDeformKernel::skin");
+    b.lbs_kernel_error = std::max(b.lbs_kernel_error, verify(expected, actual, box, "lbs cpu_kernel", v, b.modes));
   }
   if (b.gpu_lbs) {
     std::fill(actual.begin(), actual.end(), gpu::Float4{});
@@ -181,7 +192,9 @@ BenchAsset& benchAsset(std::uint32_t vertex_count, int modes) {
   verifyAsset(*cached);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   verifiedList().push_back(VerifiedSize{cached->vertex_count, modes, cached->fast_error, cached->gpu_error,
-                                        cached->lbs_fast_error, cached->lbs_gpu_error, seconds});
+                                        cached->lbs_fast_error, cached->lbs_gpu_error, cached->kernel_error,
+                                        cached->lbs_kernel_error, cached->kernel->stats(), cached->kernel->arch(),
+                                        seconds});
   return *cached;
 }
 

@@ -263,23 +263,38 @@ template <int kHigh, int... I>
   return __builtin_shufflevector(a, b, halfIndex(I, kHigh)...);
 }
 
+typedef float V4 __attribute__((vector_size(4 * sizeof(float))));
+
+template <int kQuad>
+[[gnu::always_inline]] inline void storeQuad(V q, gpu::Float4* out) {
+  const V4 quad = __builtin_shufflevector(q, q, 4 * kQuad, 4 * kQuad + 1, 4 * kQuad + 2, 4 * kQuad + 3);
+  std::memcpy(out, &quad, sizeof quad);
+}
+
+// Lane l = 4k + j of a sub-block is quadruple k of vector j; one 16-byte store per vertex.
+template <int... L>
+[[gnu::always_inline]] inline void storeQuads(const V (&q)[4], gpu::Float4* out, const std::uint32_t* perm,
+                                              std::integer_sequence<int, L...>) {
+  (storeQuad<L / 4>(q[L % 4], out + perm[L]), ...);
+}
+
 // Writes the sub-block's `valid` lanes to their mesh vertices as (x, y, z, 1): transposed in
-// registers to four vectors of (x, y, z, 1) quadruples (lane 4k + j is quadruple k of vector j),
-// then one 16-byte copy per vertex.
+// registers to four vectors of (x, y, z, 1) quadruples, then one 16-byte store per vertex.
 [[gnu::always_inline]] inline void store(const Layout& layout, const Frame& f, std::size_t lane0,
                                          std::uint32_t valid, const P3& p) {
   constexpr auto kIdx = std::make_integer_sequence<int, static_cast<int>(kLanes)>{};
   const V one = splat(1.0f);
   const V xy_low = unpack<0>(p.x, p.y, kIdx), xy_high = unpack<1>(p.x, p.y, kIdx);
   const V z1_low = unpack<0>(p.z, one, kIdx), z1_high = unpack<1>(p.z, one, kIdx);
-  alignas(64) float quads[4][kLanes];
-  const V q0 = half<0>(xy_low, z1_low, kIdx), q1 = half<1>(xy_low, z1_low, kIdx);
-  const V q2 = half<0>(xy_high, z1_high, kIdx), q3 = half<1>(xy_high, z1_high, kIdx);
-  std::memcpy(quads[0], &q0, sizeof q0);
-  std::memcpy(quads[1], &q1, sizeof q1);
-  std::memcpy(quads[2], &q2, sizeof q2);
-  std::memcpy(quads[3], &q3, sizeof q3);
+  const V q[4] = {half<0>(xy_low, z1_low, kIdx), half<1>(xy_low, z1_low, kIdx), half<0>(xy_high, z1_high, kIdx),
+                  half<1>(xy_high, z1_high, kIdx)};
   const std::uint32_t* perm = layout.perm.data() + lane0;
+  if (valid == kLanes) {
+    storeQuads(q, f.out_positions, perm, kIdx);
+    return;
+  }
+  alignas(64) float quads[4][kLanes];
+  std::memcpy(quads, q, sizeof quads);
   for (std::uint32_t l = 0; l < valid; ++l) {
     std::memcpy(f.out_positions + perm[l], &quads[l % 4][4 * (l / 4)], sizeof(gpu::Float4));
   }
