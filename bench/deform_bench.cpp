@@ -270,7 +270,7 @@ void printSummary(const SummaryReporter& reporter) {
                 s.vertex_count, s.modes, s.fast_error, s.kernel_error, s.gpu_error, s.lbs_fast_error,
                 s.lbs_kernel_error, s.lbs_gpu_error, s.build_seconds);
   }
-  std::printf("\ncpu_kernel blocks (16 lanes; padding lanes cost as much as real ones):\n");
+  std::printf("\ncpu_kernel blocks of 16 lanes (padding: lanes computed and not written, as a share of V):\n");
   for (const VerifiedSize& s : verifiedSizes()) {
     const CpuDeformKernel::Stats& k = s.kernel_stats;
     std::printf("  V = %7u N = %2d: %s, %zu blocks, %.1f%% padding, %.1f%% two-curve blocks, %.2f bones per block, "

@@ -382,8 +382,15 @@ CpuDeformKernel::Stats CpuDeformKernel::stats() const {
   const Layout& l = *layout_;
   Stats s;
   s.blocks = l.blockCount();
-  s.lanes = s.blocks * kBlockLanes;
-  for (const Block& b : l.blocks) s.two_curve_blocks += b.curve_a != b.curve_b ? 1 : 0;
+  // The vector widths simd_deform_blocks.hpp runs a block's lanes at on this instruction set.
+  const std::size_t width = arch_ == CpuKernelArch::kAvx512 ? 16 : (arch_ == CpuKernelArch::kAvx2 ? 8 : 4);
+  const std::size_t tail = arch_ == CpuKernelArch::kAvx512 ? 8 : width;
+  for (const Block& b : l.blocks) {
+    s.two_curve_blocks += b.curve_a != b.curve_b ? 1 : 0;
+    const std::size_t full = b.lanes / width * width;
+    const std::size_t left = b.lanes - full;
+    s.lanes += full + (left == 0 ? 0 : (left <= tail ? tail : width));
+  }
   s.mean_union_bones = s.blocks ? static_cast<double>(l.union_bones.size()) / static_cast<double>(s.blocks) : 0.0;
   s.bytes = sizeof(Layout) + l.blocks.size() * sizeof(Block) +
             (l.lane_rows.size() + l.segment_rows.size() + l.union_weights.size() + l.coefficients.size() +

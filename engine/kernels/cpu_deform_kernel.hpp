@@ -95,7 +95,7 @@ class CpuDeformKernel {
   // How well the data fits the blocks, for reports: padded lanes cost as much as real ones.
   struct Stats {
     std::size_t blocks = 0;
-    std::size_t lanes = 0;             // blocks x 16, padding included
+    std::size_t lanes = 0;             // lanes computed, padding included (depends on the instruction set)
     std::size_t two_curve_blocks = 0;  // blocks whose pair has two distinct curves
     double mean_union_bones = 0.0;     // bones per block (skinning costs 12 FMAs per lane each)
     std::size_t bytes = 0;             // memory held by the kernel
