@@ -20,6 +20,13 @@ namespace odeskin::bench {
 
 // Ring size of every benchmark arm; V = rings * kRingVertices.
 inline constexpr std::uint32_t kRingVertices = 64;
+// The nominal size that stands for shared/data/cat-poses (10 poses, 7,207 vertices) fitted by the
+// whole pipeline (automatic rig, 32 bones), when setCatDirectory named its folder: a real mesh,
+// whose curve pairs do not fill whole 16-vertex blocks and whose blocks span several bones.
+inline constexpr std::uint32_t kCatVertices = 7207;
+void setCatDirectory(std::string dir);
+bool hasCatDirectory();
+
 // Worst |backend - cpu_ref| allowed, as a fraction of the bounding box's longest side.
 inline constexpr double kVerifyTolerance = 1e-4;
 

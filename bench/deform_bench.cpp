@@ -3,7 +3,8 @@
 // plain LBS (Eq 6.1) on the same procedural arm, per backend, V and N. Every (V, N) is verified on
 // every backend before it is timed. The timed work is the deformation only: the time basis and
 // bone matrices of the frame are prepared once outside the loop (they cost O(B + N), not O(V)).
-//   odeskin_deform_bench [--quick] [Google Benchmark flags]
+//   odeskin_deform_bench [--quick] [--cat=DIR] [Google Benchmark flags]
+// --cat=DIR (shared/data/cat-poses) adds the cat, fitted by the whole pipeline, as a first size.
 // --quick (or ODESKIN_BENCH_QUICK=1) runs only V = 1e4, 32,185 and 1e5 with N = 9. Without a
 // --benchmark_min_time flag each case runs for at least 0.2 s, which keeps a full run on 2 cores
 // under lavapipe to a few minutes.
@@ -162,7 +163,8 @@ void runCase(benchmark::State& state, const Case& c) {
 
 void registerCase(const Case& c) {
   const std::string name = std::string(c.kernel == Kernel::kDeform ? "deform" : "lbs") + "/" +
-                           backendName(c.backend) + "/V:" + std::to_string(c.nominal_vertices) +
+                           backendName(c.backend) + "/V:" +
+                           (c.nominal_vertices == kCatVertices ? std::string("cat") : std::to_string(c.nominal_vertices)) +
                            (c.kernel == Kernel::kDeform ? "/N:" + std::to_string(c.modes) : "");
   cases()[name] = c;
   caseOrder().push_back(name);
@@ -178,7 +180,9 @@ void registerCases(bool quick) {
   const std::vector<std::uint32_t> sizes = quick ? std::vector<std::uint32_t>{10'000, 32'185, 100'000}
                                                  : std::vector<std::uint32_t>{1'000, 10'000, 32'185, 100'000, 1'000'000};
   const std::vector<int> modes = quick ? std::vector<int>{9} : std::vector<int>{3, 5, 9, 17};
-  for (std::uint32_t v : sizes) {
+  std::vector<std::uint32_t> all_sizes = sizes;
+  if (hasCatDirectory()) all_sizes.insert(all_sizes.begin(), kCatVertices);
+  for (std::uint32_t v : all_sizes) {
     for (int n : modes)
       for (Backend backend : kBackends) registerCase(Case{Kernel::kDeform, backend, v, n});
     for (Backend backend : kBackends) registerCase(Case{Kernel::kLbs, backend, v, modes.back()});
@@ -294,6 +298,10 @@ int main(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) {
     if (std::strcmp(argv[i], "--quick") == 0) {
       quick = true;
+      continue;
+    }
+    if (std::strncmp(argv[i], "--cat=", 6) == 0) {
+      setCatDirectory(argv[i] + 6);
       continue;
     }
     if (std::strncmp(argv[i], "--benchmark_min_time", 20) == 0) has_min_time = true;
