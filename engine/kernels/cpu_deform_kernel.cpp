@@ -198,7 +198,7 @@ void fillBones(const PackedDeformData& d, const std::vector<SortKey>& keys, std:
   std::sort(bones.begin(), bones.end());
   bones.erase(std::unique(bones.begin(), bones.end()), bones.end());
   block.union_begin = static_cast<std::uint32_t>(out.union_bones.size());
-  block.union_count = static_cast<std::uint16_t>(bones.size());
+  block.union_count = static_cast<std::uint32_t>(bones.size());
   out.union_bones.insert(out.union_bones.end(), bones.begin(), bones.end());
   out.union_weights.resize(out.union_bones.size() * kBlockLanes, 0.0f);
   auto unionIndex = [&](std::uint32_t bone) {
@@ -267,7 +267,7 @@ std::unique_ptr<Layout> buildLayout(const PackedDeformData& d) {
       Block block;
       block.curve_a = keys[g].curve_a;
       block.curve_b = keys[g].curve_b;
-      block.lanes = static_cast<std::uint16_t>(std::min<std::size_t>(kBlockLanes, end - first));
+      block.lanes = static_cast<std::uint32_t>(std::min<std::size_t>(kBlockLanes, end - first));
       out->blocks.push_back(block);
       firsts.push_back(first);
     }

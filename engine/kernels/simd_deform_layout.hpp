@@ -56,8 +56,8 @@ struct Block {
   std::uint32_t curve_a = 0;
   std::uint32_t curve_b = 0;       // == curve_a: one curve, w ignored
   std::uint32_t union_begin = 0;   // first entry in Layout::union_bones / union_weights rows
-  std::uint16_t union_count = 0;
-  std::uint16_t lanes = 0;         // valid lanes, 1..kBlockLanes; the rest are padding
+  std::uint32_t union_count = 0;
+  std::uint32_t lanes = 0;         // valid lanes, 1..kBlockLanes; the rest are padding
 };
 
 struct Layout {
