@@ -6,13 +6,17 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <span>
+#include <string>
 
+#include "engine/io/obj_reader.hpp"
 #include "engine/kernels/fourier_deform_fast_job.hpp"
 #include "engine/kernels/lbs_job.hpp"
 #include "engine/offline/deform_player.hpp"
 #include "engine/offline/procedural_arm.hpp"
 #include "engine/offline/residual_fit.hpp"
+#include "engine/pipeline/fit_pipeline.hpp"
 
 namespace odeskin::bench {
 namespace {
@@ -83,8 +87,27 @@ double verify(std::span<const Vec3> expected, std::span<const gpu::Float4> actua
   return relative;
 }
 
-// Fit, pack and set up the middle frame of the animation (t = 0.5 of the first segment).
-std::unique_ptr<BenchAsset> buildAsset(std::uint32_t nominal_vertices, int modes) {
+std::string& catDirectory() {
+  static std::string dir;
+  return dir;
+}
+
+// cat-00 (rest) to cat-09 through the whole fitting pipeline (automatic rig), skin material.
+DeformAsset fitCat(int modes) {
+  std::vector<std::filesystem::path> poses;
+  for (int k = 0; k < 10; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "cat-%02d.obj", k);
+    poses.push_back(std::filesystem::path(catDirectory()) / name);
+  }
+  const ExampleSet examples = orFail(readObjSequence(poses), "readObjSequence (cat-poses)");
+  PipelineOptions options;
+  options.modes = modes;
+  options.material = skinMaterial();
+  return orFail(runFitPipeline(examples, options), "runFitPipeline (cat-poses)").asset;
+}
+
+DeformAsset fitArm(std::uint32_t nominal_vertices, int modes) {
   ArmOptions arm_options;
   arm_options.ring_vertices = kRingVertices;
   arm_options.rings = std::max<std::uint32_t>(3, static_cast<std::uint32_t>(std::lround(
@@ -93,9 +116,14 @@ std::unique_ptr<BenchAsset> buildAsset(std::uint32_t nominal_vertices, int modes
   FitOptions fit;
   fit.modes = modes;
   fit.materials = {skinMaterial()};
+  return orFail(fitDeformAsset(arm.fit_input, fit), "fitDeformAsset");
+}
+
+// Fit, pack and set up the middle frame of the animation (t = 0.5 of the first segment).
+std::unique_ptr<BenchAsset> buildAsset(std::uint32_t nominal_vertices, int modes) {
   auto b = std::make_unique<BenchAsset>();
   b->modes = modes;
-  b->asset = orFail(fitDeformAsset(arm.fit_input, fit), "fitDeformAsset");
+  b->asset = nominal_vertices == kCatVertices ? fitCat(modes) : fitArm(nominal_vertices, modes);
   b->vertex_count = static_cast<std::uint32_t>(b->asset.vertexCount());
   b->packed = orFail(packDeformAsset(b->asset), "packDeformAsset");
   const DeformPlayer player = orFail(DeformPlayer::create(b->asset), "DeformPlayer::create");
@@ -109,6 +137,7 @@ std::unique_ptr<BenchAsset> buildAsset(std::uint32_t nominal_vertices, int modes
   b->gpu_bones.resize(b->bones.size());
   toGpuBasis(b->basis, b->gpu_basis);
   toGpuBones(b->bones, b->gpu_bones);
+  b->kernel.emplace(orFail(CpuDeformKernel::create(b->packed), "CpuDeformKernel::create"));
   if (const vk::Device* device = benchDevice()) {
     b->gpu_deformer.emplace(orFail(GpuDeformer::create(*device, b->packed), "GpuDeformer::create"));
     b->gpu_lbs.emplace(orFail(GpuLbs::create(*device, b->packed), "GpuLbs::create"));
@@ -128,6 +157,11 @@ void verifyAsset(BenchAsset& b) {
     orFail(FourierDeformFastJob{&b.packed, b.segment, b.gpu_bones, b.gpu_basis, actual, threads}.run(), "fast job");
     b.fast_error = std::max(b.fast_error, verify(expected, actual, box, "cpu_fast", v, b.modes));
   }
+  for (unsigned threads : {1u, 0u}) {
+    std::fill(actual.begin(), actual.end(), gpu::Float4{});
+    orFail(b.kernel->deform(b.segment, b.gpu_bones, b.gpu_basis, actual, threads), "CpuDeformKernel::deform");
+    b.kernel_error = std::max(b.kernel_error, verify(expected, actual, box, "cpu_kernel", v, b.modes));
+  }
   if (b.gpu_deformer) {
     std::fill(actual.begin(), actual.end(), gpu::Float4{});
     orFail(b.gpu_deformer->run(GpuDeformFrame{b.segment, b.gpu_bones, b.gpu_basis}), "GpuDeformer::run");
@@ -139,6 +173,11 @@ void verifyAsset(BenchAsset& b) {
     std::fill(actual.begin(), actual.end(), gpu::Float4{});
     orFail(LbsFastJob{&b.packed, b.gpu_bones, actual, threads}.run(), "LBS fast job");
     b.lbs_fast_error = std::max(b.lbs_fast_error, verify(expected, actual, box, "lbs cpu_fast", v, b.modes));
+  }
+  for (unsigned threads : {1u, 0u}) {
+    std::fill(actual.begin(), actual.end(), gpu::Float4{});
+    orFail(b.kernel->skin(b.gpu_bones, actual, threads), "CpuDeformKernel::skin");
+    b.lbs_kernel_error = std::max(b.lbs_kernel_error, verify(expected, actual, box, "lbs cpu_kernel", v, b.modes));
   }
   if (b.gpu_lbs) {
     std::fill(actual.begin(), actual.end(), gpu::Float4{});
@@ -181,11 +220,16 @@ BenchAsset& benchAsset(std::uint32_t vertex_count, int modes) {
   verifyAsset(*cached);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   verifiedList().push_back(VerifiedSize{cached->vertex_count, modes, cached->fast_error, cached->gpu_error,
-                                        cached->lbs_fast_error, cached->lbs_gpu_error, seconds});
+                                        cached->lbs_fast_error, cached->lbs_gpu_error, cached->kernel_error,
+                                        cached->lbs_kernel_error, cached->kernel->stats(), cached->kernel->arch(),
+                                        seconds});
   return *cached;
 }
 
 const std::vector<VerifiedSize>& verifiedSizes() { return verifiedList(); }
+
+void setCatDirectory(std::string dir) { catDirectory() = std::move(dir); }
+bool hasCatDirectory() { return !catDirectory().empty(); }
 
 void releaseAll() {
   cachedAsset().reset();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/kernels/cpu_deform_kernel.hpp"
 #include "engine/kernels/fourier_deform_job.hpp"
 #include "engine/kernels/packed_deform.hpp"
 #include "engine/offline/deform_asset.hpp"
@@ -19,6 +20,13 @@ namespace odeskin::bench {
 
 // Ring size of every benchmark arm; V = rings * kRingVertices.
 inline constexpr std::uint32_t kRingVertices = 64;
+// The nominal size that stands for shared/data/cat-poses (10 poses, 7,207 vertices) fitted by the
+// whole pipeline (automatic rig, 32 bones), when setCatDirectory named its folder: a real mesh,
+// whose curve pairs do not fill whole 16-vertex blocks and whose blocks span several bones.
+inline constexpr std::uint32_t kCatVertices = 7207;
+void setCatDirectory(std::string dir);
+bool hasCatDirectory();
+
 // Worst |backend - cpu_ref| allowed, as a fraction of the bounding box's longest side.
 inline constexpr double kVerifyTolerance = 1e-4;
 
@@ -33,6 +41,7 @@ struct BenchAsset {
   std::vector<BoneTransform> bones;
   std::vector<gpu::ModeBasis> gpu_basis;
   std::vector<gpu::BoneMatrix> gpu_bones;
+  std::optional<CpuDeformKernel> kernel;     // prepared from `packed` before timing
   std::optional<GpuDeformer> gpu_deformer;  // empty without a Vulkan device
   std::optional<GpuLbs> gpu_lbs;
   // Worst error found by verification, / longest box side (reported in the summary).
@@ -40,6 +49,8 @@ struct BenchAsset {
   double gpu_error = 0.0;
   double lbs_fast_error = 0.0;
   double lbs_gpu_error = 0.0;
+  double kernel_error = 0.0;
+  double lbs_kernel_error = 0.0;
 };
 
 // The Vulkan device shared by every GPU case, opened once; nullptr when there is none
@@ -58,6 +69,9 @@ struct VerifiedSize {
   std::uint32_t vertex_count = 0;
   int modes = 0;
   double fast_error = 0.0, gpu_error = 0.0, lbs_fast_error = 0.0, lbs_gpu_error = 0.0;
+  double kernel_error = 0.0, lbs_kernel_error = 0.0;
+  CpuDeformKernel::Stats kernel_stats;
+  CpuKernelArch kernel_arch = CpuKernelArch::kGeneric;
   double build_seconds = 0.0;
 };
 const std::vector<VerifiedSize>& verifiedSizes();
