@@ -9,7 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "bench_subject.hpp"
-#include "engine/kernels/fourier_deform_fast_job.hpp"
+#include "engine/kernels/cpu_deform_kernel.hpp"
 #include "engine/kernels/lbs_job.hpp"
 #include "engine/offline/deform_player.hpp"
 #include "frame_timer.hpp"
@@ -122,10 +122,13 @@ class CaseRunner {
     BenchRecord r = record("cpu_fast", threads);
     std::vector<gpu::Float4> out(s_.vertexCount());
     const Clock::time_point prepare = Clock::now();
-    const FourierDeformFastJob deform{&s_.packed, s_.frame.segment, s_.frame.gpu_bones, s_.frame.gpu_basis, out, threads};
-    const LbsFastJob skin{&s_.packed, s_.frame.gpu_bones, out, threads};
+    ODESKIN_ASSIGN_OR_RETURN(const CpuDeformKernel kernel, CpuDeformKernel::create(s_.packed));
     r.upload_seconds = secondsSince(prepare);
-    auto frame = [&](double&) { return deforms() ? deform.run() : skin.run(); };
+    const BenchFrame& f = s_.frame;
+    auto frame = [&](double&) {
+      return deforms() ? kernel.deform(f.segment, f.gpu_bones, f.gpu_basis, out, threads)
+                       : kernel.skin(f.gpu_bones, out, threads);
+    };
     double unused = 0.0;
     ODESKIN_TRY(frame(unused));
     ODESKIN_TRY(check(r, out));

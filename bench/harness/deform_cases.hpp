@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The per-frame cases of `odeskin bench`: odeskin deformation (skinning included), plain LBS and
-// DQS on the same tiled mesh, per backend (cpu_ref: the double reference; cpu_fast: the float
-// SIMD/threaded path with 1 and all threads; vulkan: one dispatch per frame). Every backend's frame
-// is checked against cpu_ref before it is timed; upload is timed apart from the frames.
+// DQS on the same tiled mesh, per backend (cpu_ref: the double reference; cpu_fast: CpuDeformKernel,
+// the float SIMD path, with 1 and all threads; vulkan: one dispatch per frame). Every backend's frame
+// is checked against cpu_ref before it is timed; upload (GPU) or preparation (CpuDeformKernel::create)
+// is timed apart from the frames.
 #pragma once
 
 #include <cstddef>
