@@ -3,7 +3,9 @@
 // docs/pipeline.md (issue 3, point 7): the Fourier representation error for N = 3, 5, 9 (the
 // thesis's Table 6.2 analogue), asset bytes against the key tolerance, and the time per stage
 // (the thesis's Table 6.3 analogue).
-//   odeskin_pipeline_report [DATA_DIR] [--quick]
+// Datasets: cylinder, horse-gallop (2 and 7 keys), cat-poses, cheburashka and face-poses (--quick:
+// the first two only; --only TEXT: those whose name contains TEXT).
+//   odeskin_pipeline_report [DATA_DIR] [--quick] [--only TEXT]
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -35,7 +37,7 @@ std::vector<fs::path> numbered(const fs::path& dir, const char* pattern, std::in
   return paths;
 }
 
-Result<std::vector<Dataset>> loadDatasets(const fs::path& data, bool quick) {
+Result<std::vector<Dataset>> loadDatasets(const fs::path& data, bool quick, const std::string& only) {
   std::vector<Dataset> sets;
   const fs::path cyl = data / "cylinder";
   std::vector<fs::path> cyl_poses, cyl_tmats;
@@ -57,6 +59,27 @@ Result<std::vector<Dataset>> loadDatasets(const fs::path& data, bool quick) {
     const auto cat = numbered(data / "cat-poses", "cat-%02d.obj", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
     ODESKIN_ASSIGN_OR_RETURN(ExampleSet cat10, readObjSequence(cat));
     sets.push_back({"cat-poses 00-09 (auto rig)", std::move(cat10)});
+    // Every cheburashka pose (poses-1, poses-2, poses-3) with its libigl rig and transforms.
+    const fs::path che = data / "cheburashka";
+    std::vector<fs::path> che_poses, che_tmats;
+    auto addPose = [&](const fs::path& stem) {
+      che_poses.push_back(stem.string() + ".obj");
+      che_tmats.push_back(stem.string() + ".Tmat");
+    };
+    addPose(che / "poses-1" / "cheburashka-1");
+    for (const fs::path& p : numbered(che / "poses-2", "cheburashka-%02d", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11})) addPose(p);
+    for (const fs::path& p : numbered(che / "poses-3", "cheburashka-%d", {1, 2, 3, 4})) addPose(p);
+    const fs::path che_weights = che / "cheburashka.DMAT";
+    ODESKIN_ASSIGN_OR_RETURN(ExampleSet cheburashka, readLibiglExamples(che / "cheburashka.obj", che_poses,
+                                                                        che / "cheburashka.tgf", &che_weights, che_tmats));
+    sets.push_back({"cheburashka (given rig, 16 poses)", std::move(cheburashka)});
+    const auto face = numbered(data / "face-poses", "face-%02d.obj", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
+    ODESKIN_ASSIGN_OR_RETURN(ExampleSet face10, readObjSequence(face));
+    sets.push_back({"face-poses 00-09 (auto rig)", std::move(face10)});
+  }
+  if (!only.empty()) {
+    std::erase_if(sets, [&](const Dataset& set) { return set.name.find(only) == std::string::npos; });
+    if (sets.empty()) return invalidArgument("--only " + only + " names no dataset");
   }
   return sets;
 }
@@ -79,15 +102,18 @@ std::size_t assetBytes(const DeformAsset& asset) {
 int main(int argc, char** argv) {
   fs::path data = fs::path(ODESKIN_DATA_DIR);
   bool quick = false;
+  std::string only;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--quick") {
       quick = true;
+    } else if (arg == "--only" && a + 1 < argc) {
+      only = argv[++a];
     } else {
       data = arg;
     }
   }
-  Result<std::vector<Dataset>> sets = loadDatasets(data, quick);
+  Result<std::vector<Dataset>> sets = loadDatasets(data, quick, only);
   if (!sets.ok()) {
     std::fprintf(stderr, "odeskin_pipeline_report: error: %s\n", sets.status().toString().c_str());
     return 1;

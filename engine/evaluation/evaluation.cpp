@@ -79,15 +79,13 @@ Result<std::vector<InBetween>> inBetweenFrames(std::size_t frame_count, std::spa
   return out;
 }
 
-Result<EvaluationResult> runEvaluation(const ExampleSet& frames, std::span<const std::uint32_t> keys,
-                                       std::span<const BaselineMethod> methods, PoseSource source,
-                                       std::span<const double> times, const EvaluationOptions& options) {
-  ODESKIN_ASSIGN_OR_RETURN(std::vector<InBetween> inbetweens, inBetweenFrames(frames.poses.size(), keys, times));
-  if (methods.empty()) return invalidArgument("evaluate: no methods");
-  for (std::size_t m = 0; m < methods.size(); ++m) {
-    if (std::find(methods.begin(), methods.begin() + static_cast<std::ptrdiff_t>(m), methods[m]) !=
-        methods.begin() + static_cast<std::ptrdiff_t>(m)) {
-      return invalidArgument("evaluate: method " + std::string(baselineMethodName(methods[m])) + " is listed twice");
+Result<KeyFit> fitEvaluationKeys(const ExampleSet& frames, std::span<const std::uint32_t> keys,
+                                 const EvaluationOptions& options) {
+  if (keys.size() < 2) return invalidArgument("evaluate: " + std::to_string(keys.size()) + " key(s); at least 2 are needed");
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    if (keys[k] >= frames.poses.size() || (k > 0 && keys[k] <= keys[k - 1])) {
+      return invalidArgument("evaluate: keys must be strictly increasing frame indices below " +
+                             std::to_string(frames.poses.size()));
     }
   }
   const std::size_t vertex_count = frames.poses.front().size();
@@ -101,7 +99,8 @@ Result<EvaluationResult> runEvaluation(const ExampleSet& frames, std::span<const
   // The keys alone are what every method may learn from. Without a rig in the input the bind mesh
   // is the first key, as `odeskin fit` of those files would choose; a given rig keeps its own bind
   // mesh and the keys' transforms.
-  ExampleSet key_set;
+  KeyFit out;
+  ExampleSet& key_set = out.key_set;
   key_set.rest_positions = frames.rig ? frames.rest_positions : frames.poses[keys.front()];
   key_set.faces = frames.faces;
   key_set.render = frames.render;
@@ -114,7 +113,8 @@ Result<EvaluationResult> runEvaluation(const ExampleSet& frames, std::span<const
   }
   if (key_set.rig && key_set.rig->key_poses.size() != keys.size()) key_set.rig->key_poses.clear();
   const auto fit_start = std::chrono::steady_clock::now();
-  ODESKIN_ASSIGN_OR_RETURN(PipelineResult fit, runFitPipeline(key_set, options.pipeline));
+  ODESKIN_ASSIGN_OR_RETURN(out.fit, runFitPipeline(key_set, options.pipeline));
+  PipelineResult& fit = out.fit;
   if (options.skeleton_fit == SkeletonFit::kPerBoneRigid) {
     // Keep the fitted rig's bones and weights; refit the keys' transforms rigidly and fit again, so
     // that the residual is measured against the same kind of skeleton the in-betweens get.
@@ -134,9 +134,28 @@ Result<EvaluationResult> runEvaluation(const ExampleSet& frames, std::span<const
     ODESKIN_ASSIGN_OR_RETURN(fit, runFitPipeline(key_set, rigid));
     fit.rig_summary = first_rig + "; transforms refitted per bone rigidly";
   }
+  out.seconds = secondsSince(fit_start);
+  return out;
+}
+
+Result<EvaluationResult> runEvaluation(const ExampleSet& frames, std::span<const std::uint32_t> keys,
+                                       std::span<const BaselineMethod> methods, PoseSource source,
+                                       std::span<const double> times, const EvaluationOptions& options) {
+  ODESKIN_ASSIGN_OR_RETURN(std::vector<InBetween> inbetweens, inBetweenFrames(frames.poses.size(), keys, times));
+  if (methods.empty()) return invalidArgument("evaluate: no methods");
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    if (std::find(methods.begin(), methods.begin() + static_cast<std::ptrdiff_t>(m), methods[m]) !=
+        methods.begin() + static_cast<std::ptrdiff_t>(m)) {
+      return invalidArgument("evaluate: method " + std::string(baselineMethodName(methods[m])) + " is listed twice");
+    }
+  }
+  ODESKIN_ASSIGN_OR_RETURN(KeyFit keys_fit, fitEvaluationKeys(frames, keys, options));
+  const ExampleSet& key_set = keys_fit.key_set;
+  const PipelineResult& fit = keys_fit.fit;
+  const std::size_t vertex_count = frames.poses.front().size();
 
   EvaluationResult result;
-  result.fit_seconds = secondsSince(fit_start);
+  result.fit_seconds = keys_fit.seconds;
   result.pose_source = source;
   result.methods.assign(methods.begin(), methods.end());
   result.keys.assign(keys.begin(), keys.end());

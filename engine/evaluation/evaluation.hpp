@@ -92,6 +92,21 @@ struct InBetween {
 Result<std::vector<InBetween>> inBetweenFrames(std::size_t frame_count, std::span<const std::uint32_t> keys,
                                                std::span<const double> times);
 
+// What every method of an evaluation is built from: the key frames alone as an ExampleSet (without
+// a rig in the input the bind mesh is the first key; a given rig keeps its bind mesh and the keys'
+// transforms) and the asset fitted on them with options.pipeline, its key transforms refitted per
+// bone rigidly when options.skeleton_fit says so. Exposed so that other comparisons (static vs
+// dynamic, reversibility, variants of a method) start from exactly the asset runEvaluation scores.
+struct KeyFit {
+  ExampleSet key_set;
+  PipelineResult fit;
+  double seconds = 0.0;  // wall time of the fit(s)
+};
+// Errors: kInvalidArgument for keys out of range or not increasing, frames of different sizes
+// (naming the file), and those of runFitPipeline and fitRigidBoneTransforms.
+Result<KeyFit> fitEvaluationKeys(const ExampleSet& frames, std::span<const std::uint32_t> keys,
+                                 const EvaluationOptions& options = {});
+
 // `frames`: F ground-truth frames of one mesh (poses, F x V, with pose_labels naming their files;
 // faces as read). Fits the keys (bind = the first key; options.pipeline), builds each method
 // (makeBaseline) and scores it at every in-between frame under `source`. Errors: those of
