@@ -55,6 +55,14 @@ Result<TessellationGrid> tessellationGrid(const Network& network, TessellationRe
   return grid;
 }
 
+std::vector<BoundarySample> sampleBoundary(const Network& network, std::uint32_t b, const TessellationGrid& grid) {
+  std::vector<BoundarySample> samples(grid.gridColumns());
+  for (std::uint32_t j = 0; j < samples.size(); ++j) {
+    samples[j] = network.boundarySample(b, grid.globalV(j), 0, grid.columnOwner(j).second + 1 == grid.v_samples);
+  }
+  return samples;
+}
+
 FaceList gridFaces(const TessellationGrid& grid) {
   const std::uint32_t rows = grid.gridRows();
   const std::uint32_t columns = grid.gridColumns();

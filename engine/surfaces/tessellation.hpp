@@ -67,6 +67,10 @@ struct SurfaceMesh {
   FaceList faces;               // quads (gi, gj), (gi + 1, gj), (gi + 1, gj + 1), (gi, gj + 1): S_u x S_v outward
 };
 
+// S, S_u, S_uu of boundary b at every grid column (the last column of an open network reads the
+// curves' pieces inside the last patch: NetworkCurve's left limits).
+std::vector<BoundarySample> sampleBoundary(const Network& network, std::uint32_t b, const TessellationGrid& grid);
+
 // The quads of a grid (wrapping where closed).
 FaceList gridFaces(const TessellationGrid& grid);
 

@@ -17,15 +17,6 @@ std::vector<double> cardinalTable(const Ode6Cardinal& g, const TessellationGrid&
   return table;
 }
 
-std::vector<BoundarySample> boundarySamples(const Network& network, std::uint32_t b, const TessellationGrid& grid) {
-  std::vector<BoundarySample> samples(grid.gridColumns());
-  for (std::uint32_t j = 0; j < samples.size(); ++j) {
-    // Only the last column of an open network samples a patch's v = 1 edge.
-    samples[j] = network.boundarySample(b, grid.globalV(j), 0, grid.columnOwner(j).second + 1 == grid.v_samples);
-  }
-  return samples;
-}
-
 bool sameShape(const Ode6Shape& a, const Ode6Shape& b) {
   return a.rho == b.rho && a.eta == b.eta && a.lambda == b.lambda;
 }
@@ -114,7 +105,7 @@ std::uint32_t NetworkTessellation::update() {
   }
   if (dirty.empty()) return 0;
   for (std::uint32_t b = 0; b < dirty_boundaries_.size(); ++b) {
-    if (dirty_boundaries_[b]) samples_[b] = boundarySamples(network_, b, grid_);
+    if (dirty_boundaries_[b]) samples_[b] = sampleBoundary(network_, b, grid_);
   }
   // Tables: clean patches keep theirs (same cardinal functions, bitwise); the others are computed.
   std::vector<std::vector<double>> tables(network_.cardinalCount());
