@@ -17,6 +17,7 @@
 #include "play_command.hpp"
 #include "progress.hpp"
 #include "render_command.hpp"
+#include "surface_command.hpp"
 
 namespace {
 
@@ -134,6 +135,27 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
   cmd->add_option("--png", o.png_dir,
                   "Also DIR/frame_NNNN.png per in-between frame: a panel per method coloured by its error\n"
                   "against the truth (fraction of the truth's box diagonal, as render --heat), and DIR/obj/");
+  return cmd;
+}
+
+CLI::App* addSurfaceCommand(CLI::App& app, odeskin::SurfaceCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("surface", "Tessellate a network of C2 surface patches (thesis ch. 4) into one .glb");
+  cmd->footer(
+      "NETWORK.json: curves, boundaries with their u-derivatives (coefficients, control curves or given\n"
+      "curves) and a shape (rho, eta, lambda) per patch; schema in docs/surfaces.md. Patches sharing a\n"
+      "boundary are C2 across it; patches side by side in v must have equal eta/rho and lambda/rho\n"
+      "(MATH.md 3.8), otherwise the network is refused unless it says \"continuity\": \"warn\".\n"
+      "The mesh is one welded grid: --res U,V samples per patch, shared along every seam.\n"
+      "Examples: odeskin surface samples/surfaces/networks/vase.json -o vase.glb\n"
+      "          odeskin surface torus.json -o torus.glb --res 65,65 --obj\n"
+      "          odeskin surface sheet.json -o sheet.glb --backend vulkan --validation");
+  cmd->add_option("network", o.network, "The network (.json)")->required();
+  cmd->add_option("-o,--output", o.output, "The .glb file to write")->required();
+  cmd->add_option("--res", o.resolution, "U,V: samples per patch along u and v, both edges included (default 33,33)");
+  cmd->add_flag("--obj", o.obj, "Also write the welded quads as OUT.obj (same stem as the .glb)");
+  cmd->add_option("--backend", o.backend, "cpu (double-precision reference) or vulkan (compute shader, float)")
+      ->check(CLI::IsMember({"cpu", "vulkan"}));
+  cmd->add_flag("--validation", o.validation, "vulkan: enable the Khronos validation layer; fail on any message");
   return cmd;
 }
 
@@ -258,6 +280,9 @@ int main(int argc, char** argv) {
   odeskin::EvaluateCommandOptions evaluate_options;
   CLI::App* evaluate_cmd = addEvaluateCommand(app, evaluate_options);
 
+  odeskin::SurfaceCommandOptions surface_options;
+  CLI::App* surface_cmd = addSurfaceCommand(app, surface_options);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -304,5 +329,9 @@ int main(int argc, char** argv) {
     return odeskin::runExportCommand(export_options, console);
   }
   if (evaluate_cmd->parsed()) return odeskin::runEvaluateCommand(evaluate_options, console, device);
+  if (surface_cmd->parsed()) {
+    surface_options.device = device;
+    return odeskin::runSurfaceCommand(surface_options, console);
+  }
   return 2;
 }
