@@ -4,22 +4,56 @@
 #include <algorithm>
 
 #include "shaders/ode6_tessellate.spv.h"
+#include "vk_status.hpp"
 
 namespace odeskin {
 namespace {
 
-// Dispatches `items` invocations of `pass` in pieces of at most ODESKIN_TESSELLATE_MAX_GROUPS groups.
-void recordPass(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, gpu::TessellatePushConstants push,
-                std::uint32_t pass, std::uint32_t items) {
-  push.pass = pass;
+// Dispatches `items` invocations of `pipeline` in pieces of at most ODESKIN_TESSELLATE_MAX_GROUPS
+// groups, with the descriptor set and layout of `base`.
+void recordPass(VkCommandBuffer cmd, const vk::ComputePipeline& base, VkPipeline pipeline,
+                gpu::TessellatePushConstants push, std::uint32_t items) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+  const VkDescriptorSet set = base.set(0);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, base.layout(), 0, 1, &set, 0, nullptr);
   push.item_count = items;
   const std::uint32_t per_dispatch = ODESKIN_TESSELLATE_MAX_GROUPS * ODESKIN_TESSELLATE_WORKGROUP_SIZE;
   // items <= kMaxTessellationVertices (2^26), so first + per_dispatch never overflows.
   for (std::uint32_t first = 0; first < items; first += per_dispatch) {
     push.first_item = first;
+    vkCmdPushConstants(cmd, base.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     const std::uint32_t count = std::min(per_dispatch, items - first);
-    pipeline.recordDispatch(cmd, 0, &push, (count + ODESKIN_TESSELLATE_WORKGROUP_SIZE - 1) / ODESKIN_TESSELLATE_WORKGROUP_SIZE);
+    vkCmdDispatch(cmd, (count + ODESKIN_TESSELLATE_WORKGROUP_SIZE - 1) / ODESKIN_TESSELLATE_WORKGROUP_SIZE, 1, 1);
   }
+}
+
+// The vertex pass: the same SPIR-V with kPass = ODESKIN_TESSELLATE_PASS_POSITIONS, on `layout`.
+Result<vk::UniquePipeline> vertexPipeline(const vk::Device& device, VkPipelineLayout layout) {
+  VkShaderModuleCreateInfo module_info{};
+  module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+  module_info.codeSize = sizeof kOde6TessellateSpirv;
+  module_info.pCode = kOde6TessellateSpirv;
+  VkShaderModule module_handle = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateShaderModule(device.handle(), &module_info, nullptr, &module_handle));
+  const vk::UniqueShaderModule shader_module(device.handle(), module_handle);
+  const std::uint32_t pass = ODESKIN_TESSELLATE_PASS_POSITIONS;
+  const VkSpecializationMapEntry entry{ODESKIN_TESSELLATE_PASS_CONSTANT_ID, 0, sizeof pass};
+  VkSpecializationInfo specialization{};
+  specialization.mapEntryCount = 1;
+  specialization.pMapEntries = &entry;
+  specialization.dataSize = sizeof pass;
+  specialization.pData = &pass;
+  VkComputePipelineCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+  info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module_handle;
+  info.stage.pName = "main";
+  info.stage.pSpecializationInfo = &specialization;
+  info.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateComputePipelines(device.handle(), device.pipelineCache(), 1, &info, nullptr, &pipeline));
+  return vk::UniquePipeline(device.handle(), pipeline);
 }
 
 }  // namespace
@@ -60,6 +94,7 @@ Result<SurfaceTessellator> SurfaceTessellator::create(const vk::Device& device, 
   t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_BOUNDARY_SAMPLES, t.boundary_samples_.handle());
   t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_TABLE, t.table_.handle());
   t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_OUT_POSITIONS, t.positions_.handle());
+  ODESKIN_ASSIGN_OR_RETURN(t.vertex_pipeline_, vertexPipeline(device, t.pipeline_.layout()));
   return t;
 }
 
@@ -68,7 +103,7 @@ Status SurfaceTessellator::run() {
   const auto vertices = static_cast<std::uint32_t>(data_.grid.vertexCount());
   ODESKIN_TRY(device_->submitAndWait([&](VkCommandBuffer cmd) {
     timestamps_.recordBegin(cmd, 0);
-    recordPass(cmd, pipeline_, data_.push, ODESKIN_TESSELLATE_PASS_CARDINALS, table_items);
+    recordPass(cmd, pipeline_, pipeline_.pipeline(), data_.push, table_items);
     // The vertex pass reads the table the first pass wrote.
     VkMemoryBarrier barrier{};
     barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
@@ -76,7 +111,7 @@ Status SurfaceTessellator::run() {
     barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier,
                          0, nullptr, 0, nullptr);
-    recordPass(cmd, pipeline_, data_.push, ODESKIN_TESSELLATE_PASS_POSITIONS, vertices);
+    recordPass(cmd, pipeline_, vertex_pipeline_.get(), data_.push, vertices);
     // Results are read back by transfers (staged downloads) or mapped memory.
     barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,

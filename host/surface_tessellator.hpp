@@ -16,6 +16,7 @@
 #include "engine/core/result.hpp"
 #include "engine/surfaces/tessellation_gpu.hpp"
 #include "timestamp_queries.hpp"
+#include "vk_handle.hpp"
 
 namespace odeskin {
 
@@ -49,7 +50,8 @@ class SurfaceTessellator {
   vk::Buffer table_;
   vk::Buffer positions_;
   vk::TimestampQueries timestamps_;
-  vk::ComputePipeline pipeline_;
+  vk::ComputePipeline pipeline_;        // the cardinal pass; owns the layout and descriptor set
+  vk::UniquePipeline vertex_pipeline_;  // the vertex pass: same layout, kPass specialized
   double last_gpu_seconds_ = 0.0;
 };
 

@@ -3,8 +3,8 @@
 //   S(u, v) = g1(u) c1(v) + g2(u) c2(v) + g3(u) c3(v) + g4(u) c4(v) + g5(u) c5(v) + g6(u) c6(v).
 // Mirrors the CPU reference tessellation (engine/surfaces/tessellation.hpp, tessellation_cache.cpp)
 // and its cardinal functions (engine/surfaces/ode6_cardinal.cpp) in float:
-//  pass ODESKIN_TESSELLATE_PASS_CARDINALS evaluates g_1..g_6 at every u sample of every cardinal set
-//    from the well-conditioned even/odd block bases of MATH.md 3.3-3.4 (power series, deflated and
+//  pass ODESKIN_TESSELLATE_PASS_CARDINALS (specialization constant kPass) evaluates g_1..g_6 at every
+//    u sample of every cardinal set from the well-conditioned even/odd block bases of MATH.md 3.3-3.4 (power series, deflated and
 //    overflow-free scaled hyperbolic/trigonometric functions, MATH.md 1.4), never from the thesis's
 //    closed forms (Eqs 4.20-4.22), which cancel catastrophically in float (MATH.md 1.6);
 //  pass ODESKIN_TESSELLATE_PASS_POSITIONS forms every vertex of the welded grid from its owning
@@ -16,6 +16,7 @@
 #include "../engine/surfaces/tessellation_layout.h"
 
 layout(local_size_x = ODESKIN_TESSELLATE_WORKGROUP_SIZE) in;
+layout(constant_id = ODESKIN_TESSELLATE_PASS_CONSTANT_ID) const uint kPass = ODESKIN_TESSELLATE_PASS_CARDINALS;
 
 layout(std430, set = 0, binding = ODESKIN_TESSELLATE_BINDING_CARDINALS) readonly buffer Cardinals { Ode6GpuCardinal cardinals[]; };
 layout(std430, set = 0, binding = ODESKIN_TESSELLATE_BINDING_PATCH_CARDINALS) readonly buffer PatchCardinals { uint patch_cardinals[]; };
@@ -184,7 +185,7 @@ void cardinalValues(uint set, uint i, uint n, out float g[6]) {
 void main() {
   uint item = pc.first_item + gl_GlobalInvocationID.x;
   if (item >= pc.item_count) return;
-  if (pc.pass == ODESKIN_TESSELLATE_PASS_CARDINALS) {
+  if (kPass == ODESKIN_TESSELLATE_PASS_CARDINALS) {
     float g[6];
     cardinalValues(item / pc.u_samples, item % pc.u_samples, pc.u_samples, g);
     for (uint k = 0u; k < 6u; ++k) cardinal_table[6u * item + k] = g[k];

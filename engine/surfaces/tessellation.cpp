@@ -84,7 +84,7 @@ FaceList gridFaces(const TessellationGrid& grid) {
 
 Result<SurfaceMesh> tessellateNetwork(const Network& network, TessellationResolution resolution) {
   ODESKIN_ASSIGN_OR_RETURN(NetworkTessellation t, NetworkTessellation::create(network, resolution));
-  return t.mesh();
+  return std::move(t).mesh();
 }
 
 std::vector<Vec3> vertexNormals(const SurfaceMesh& mesh) {

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "../core/result.hpp"
@@ -24,7 +25,8 @@ class NetworkTessellation {
   static Result<NetworkTessellation> create(Network network, TessellationResolution resolution);
 
   const Network& network() const { return network_; }
-  const SurfaceMesh& mesh() const { return mesh_; }
+  const SurfaceMesh& mesh() const& { return mesh_; }
+  SurfaceMesh mesh() && { return std::move(mesh_); }
 
   // Edits, as Network's (nothing changes on error); they mark patches dirty without recomputing.
   Status setRowShape(std::uint32_t row, const Ode6Shape& shape);

@@ -26,7 +26,7 @@ struct TessellationGpuData {
   std::vector<gpu::Ode6GpuCardinal> cardinals;  // network.cardinalCount()
   std::vector<std::uint32_t> patch_cardinals;   // rows x columns
   std::vector<gpu::Float4> boundary_samples;    // boundaries x 3 x grid columns
-  gpu::TessellatePushConstants push{};          // pass, first_item and item_count left 0
+  gpu::TessellatePushConstants push{};          // first_item and item_count left 0
 
   std::size_t tableFloats() const { return cardinals.size() * grid.u_samples * 6; }
 };

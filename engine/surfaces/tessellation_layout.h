@@ -25,7 +25,11 @@ using uint = std::uint32_t;
 #define ODESKIN_ODE6_REAL 1u
 #define ODESKIN_ODE6_PQ 2u
 
-// The two passes of one tessellation, in one command buffer with a barrier between them.
+// The two passes of one tessellation, in one command buffer with a barrier between them. The pass
+// is a specialization constant (constant_id ODESKIN_TESSELLATE_PASS_CONSTANT_ID), not a push
+// constant: two pipelines, each compiled without the other pass's code (on lavapipe the vertex
+// pass ran 1.6x slower with the cardinal code merely present behind a uniform branch).
+#define ODESKIN_TESSELLATE_PASS_CONSTANT_ID 0
 #define ODESKIN_TESSELLATE_PASS_CARDINALS 0u  // one invocation per (cardinal set, u sample): g_1..g_6
 #define ODESKIN_TESSELLATE_PASS_POSITIONS 1u  // one invocation per vertex of the welded grid
 
@@ -56,7 +60,6 @@ struct Ode6GpuCardinal {
 
 // 48 bytes (<= 128, every device's minimum).
 struct TessellatePushConstants {
-  uint pass;            // ODESKIN_TESSELLATE_PASS_*
   uint first_item;      // index of this dispatch's first invocation's item (vertex or table entry)
   uint item_count;      // items of this pass in total
   uint rows;            // patch rows
@@ -68,6 +71,7 @@ struct TessellatePushConstants {
   uint reserved0;
   uint reserved1;
   uint reserved2;
+  uint reserved3;
 };
 
 #ifdef __cplusplus
