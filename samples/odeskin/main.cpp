@@ -148,11 +148,13 @@ CLI::App* addSurfaceCommand(CLI::App& app, odeskin::SurfaceCommandOptions& o) {
       "The mesh is one welded grid: --res U,V samples per patch, shared along every seam.\n"
       "Examples: odeskin surface samples/surfaces/networks/vase.json -o vase.glb\n"
       "          odeskin surface torus.json -o torus.glb --res 65,65 --obj\n"
+      "          odeskin surface patch.json -o thin.glb --shape 0.0001,3,0.0001\n"
       "          odeskin surface sheet.json -o sheet.glb --backend vulkan --validation");
   cmd->add_option("network", o.network, "The network (.json)")->required();
   cmd->add_option("-o,--output", o.output, "The .glb file to write")->required();
   cmd->add_option("--res", o.resolution, "U,V: samples per patch along u and v, both edges included (default 33,33)");
   cmd->add_flag("--obj", o.obj, "Also write the welded quads as OUT.obj (same stem as the .glb)");
+  cmd->add_option("--shape", o.shape, "RHO,ETA,LAMBDA for every patch instead of the file's shapes");
   cmd->add_option("--backend", o.backend, "cpu (double-precision reference) or vulkan (compute shader, float)")
       ->check(CLI::IsMember({"cpu", "vulkan"}));
   cmd->add_flag("--validation", o.validation, "vulkan: enable the Khronos validation layer; fail on any message");

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <set>
 
@@ -44,7 +45,28 @@ bool parseResolution(const std::string& text, TessellationResolution& r) {
   return true;
 }
 
-std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution& r) {
+// "RHO,ETA,LAMBDA" with three finite numbers.
+bool parseShape(const std::string& text, Ode6Shape& shape) {
+  double values[3] = {0.0, 0.0, 0.0};
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t end = i < 2 ? text.find(',', start) : text.size();
+    if (end == std::string::npos || end == start) return false;
+    const std::string field = text.substr(start, end - start);
+    std::size_t used = 0;
+    try {
+      values[i] = std::stod(field, &used);
+    } catch (const std::exception&) {
+      return false;
+    }
+    if (used != field.size() || !std::isfinite(values[i])) return false;
+    start = end + 1;
+  }
+  shape = {values[0], values[1], values[2]};
+  return true;
+}
+
+std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution& r, Ode6Shape& shape) {
   if (o.output.empty()) return "surface: -o OUT.glb is required";
   if (lower(o.output.extension().string()) != ".glb") {
     return "surface: " + o.output.string() + ": write .glb (one self-contained glTF binary; add --obj for an OBJ too)";
@@ -53,6 +75,9 @@ std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution&
     return "surface: --res '" + o.resolution + "': expected U,V samples per patch, integers in [2, 100000]";
   }
   if (o.backend != "cpu" && o.backend != "vulkan") return "surface: --backend must be cpu or vulkan, got '" + o.backend + "'";
+  if (!o.shape.empty() && !parseShape(o.shape, shape)) {
+    return "surface: --shape '" + o.shape + "': expected RHO,ETA,LAMBDA, three finite numbers";
+  }
   return {};
 }
 
@@ -112,10 +137,16 @@ void printSummary(std::ostream& out, const SurfaceCommandOptions& o, const Netwo
 
 int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceReport* report_out) {
   TessellationResolution resolution;
-  if (const std::string problem = usageProblem(o, resolution); !problem.empty()) return reportUsage(console, problem);
+  Ode6Shape shape;
+  if (const std::string problem = usageProblem(o, resolution, shape); !problem.empty()) return reportUsage(console, problem);
+  Result<NetworkDescription> description = readNetworkDescription(o.network);
+  if (!description.ok()) return reportError(console, "surface: " + description.status().message(), kExitFailure);
+  if (!o.shape.empty()) std::fill(description->shapes.begin(), description->shapes.end(), shape);
   std::vector<std::string> warnings;
-  Result<Network> network = loadNetwork(o.network, &warnings);
-  if (!network.ok()) return reportError(console, "surface: " + network.status().message(), kExitFailure);
+  Result<Network> network = Network::build(std::move(description).value(), &warnings);
+  if (!network.ok()) {
+    return reportError(console, "surface: " + o.network.string() + ": " + network.status().message(), kExitFailure);
+  }
   if (!console.quiet) {
     for (const std::string& w : warnings) console.err << "warning: " << o.network.string() << ": " << w << "\n";
   }

@@ -140,7 +140,7 @@ TEST_F(SurfaceTessellatorTest, NetworksMatchTheCpuReference) {
     }
   }
   const std::filesystem::path samples = std::filesystem::path(ODESKIN_SOURCE_DIR) / "samples/surfaces/networks";
-  for (const char* name : {"vase.json", "sheet.json", "torus.json", "fig4_1b_warn.json"}) {
+  for (const char* name : {"vase.json", "sheet.json", "torus.json", "patch.json", "fig4_1b_warn.json"}) {
     Result<Network> n = loadNetwork(samples / name);
     ASSERT_TRUE(n.ok()) << n.status().toString();
     overall = std::max(overall, positionParity(*n, {41, 37}));

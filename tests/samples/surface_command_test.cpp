@@ -110,6 +110,23 @@ TEST(SurfaceCommand, WritesAValidGlbAndObj) {
   fs::remove_all(dir);
 }
 
+TEST(SurfaceCommand, ShapeOverridesEveryPatch) {
+  const fs::path dir = scratch("shape");
+  SurfaceCommandOptions o;
+  o.network = kNetworks / "fig4_1b.json";  // refused as written: (1, 3, 1) next to (0.1, 3, 0.1)
+  o.output = dir / "fig.glb";
+  o.shape = "0.1,0.3,0.1";
+  Captured io;
+  ASSERT_EQ(run(o, io), 0) << io.err.str();
+  EXPECT_NE(io.out.str().find("regimes: B (1 set of cardinal functions)"), std::string::npos) << io.out.str();
+  o.shape = "1,80.78355056537535,1";
+  Captured resonant;
+  EXPECT_EQ(run(o, resonant), kExitFailure);
+  EXPECT_NE(resonant.err.str().find("fig4_1b.json: patch (row 0, column 0): ode6: resonant"), std::string::npos)
+      << resonant.err.str();
+  fs::remove_all(dir);
+}
+
 TEST(SurfaceCommand, VulkanBackendWritesTheSameMesh) {
   if (!vk::Gpu::open("auto", false).ok()) {
     if (testing::gpuRequired()) FAIL() << "ODESKIN_REQUIRE_GPU=1 but no Vulkan device";
@@ -185,6 +202,11 @@ TEST(SurfaceCommand, BadOptionsAreUsageErrors) {
     o.resolution = res;
     return o;
   };
+  auto shaped = [&](const std::string& shape) {
+    SurfaceCommandOptions o = options("x.glb", "9,9");
+    o.shape = shape;
+    return o;
+  };
   SurfaceCommandOptions backend = options("x.glb", "9,9");
   backend.backend = "metal";
   const std::vector<CommandCase<SurfaceCommandOptions>> cases = {
@@ -194,6 +216,10 @@ TEST(SurfaceCommand, BadOptionsAreUsageErrors) {
       {options("x.glb", "9,x"), "--res '9,x'"},
       {options("x.glb", "-3,9"), "--res '-3,9'"},
       {backend, "--backend must be cpu or vulkan"},
+      {shaped("1,3"), "--shape '1,3': expected RHO,ETA,LAMBDA"},
+      {shaped("1,3,x"), "--shape '1,3,x'"},
+      {shaped("1,3,1,2"), "--shape '1,3,1,2'"},
+      {shaped("1,nan,1"), "--shape '1,nan,1'"},
   };
   testing::expectRejected(cases, run, kExitUsage, "surface");
   EXPECT_TRUE(fs::is_empty(dir));

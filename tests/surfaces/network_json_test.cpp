@@ -17,7 +17,7 @@ namespace {
 const std::filesystem::path kNetworks = std::filesystem::path(ODESKIN_SOURCE_DIR) / "samples/surfaces/networks";
 
 TEST(NetworkJson, ShippedSamplesLoad) {
-  for (const char* name : {"vase.json", "sheet.json", "torus.json", "fig4_1b_warn.json"}) {
+  for (const char* name : {"vase.json", "sheet.json", "torus.json", "patch.json", "fig4_1b_warn.json"}) {
     std::vector<std::string> warnings;
     Result<Network> n = loadNetwork(kNetworks / name, &warnings);
     ASSERT_TRUE(n.ok()) << n.status().toString();

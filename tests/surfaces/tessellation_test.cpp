@@ -197,6 +197,29 @@ TEST(TessellationCache, EditsReevaluateOnlyTheAffectedPatches) {
   }
 }
 
+TEST(TessellationCache, HundredPatchNetworkAfterOneChange) {
+  // The bench's case (issue 7, point 4): 10 x 10 patches, one change, only the affected ones
+  // re-evaluated, and the mesh is the one a rebuild gives.
+  SweptSurface s;
+  s.closed_v = false;
+  s.rows = 10;
+  s.columns = 10;
+  s.points = 41;
+  Result<Network> n = Network::build(sweptNetwork(s, {{1, 3, 1}}));
+  ASSERT_TRUE(n.ok()) << n.status().toString();
+  Result<NetworkTessellation> t = NetworkTessellation::create(std::move(n).value(), {17, 17});
+  ASSERT_TRUE(t.ok());
+  ASSERT_TRUE(t->setRowShape(4, {1, 3.5, 1}).ok());
+  EXPECT_EQ(t->dirtyPatchCount(), 10u);
+  EXPECT_EQ(t->update(), 10u);
+  expectSameMesh(t->mesh(), *tessellateNetwork(t->network(), {17, 17}));
+  NetworkBoundary b = t->network().description().boundaries[4];
+  b.w_first += 0.1;
+  ASSERT_TRUE(t->setBoundary(4, b).ok());
+  EXPECT_EQ(t->update(), 20u);
+  expectSameMesh(t->mesh(), *tessellateNetwork(t->network(), {17, 17}));
+}
+
 TEST(TessellationCache, WarnedPairingKeepsEachPatchsOwnFunctions) {
   NetworkDescription d = sweptNetwork(layouts()[0], {{1, 3, 1}});
   d.continuity = ContinuityPolicy::kWarn;
