@@ -43,7 +43,9 @@ class PathTracker : public nlohmann::json_sax<json> {
     // "[json.exception.parse_error.101] parse error at line 1, column 9: ..." -> from "line" on.
     if (const std::size_t at = what.find("line "); at != std::string::npos) what = what.substr(at);
     else if (const std::size_t close = what.find("] "); close != std::string::npos) what = what.substr(close + 2);
-    error_ = fail(path(), "invalid JSON (" + what + "); last read '" + last_token + "'" +
+    // nlohmann's message usually quotes the last token already.
+    if (what.find("last read") == std::string::npos) what += "; last read '" + last_token + "'";
+    error_ = fail(path(), "invalid JSON (" + what + ")" +
                               (last_token.find_first_of("NI") != std::string::npos
                                    ? " - JSON has no NaN or Infinity, give a finite number"
                                    : ""));
