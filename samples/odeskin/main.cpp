@@ -19,6 +19,7 @@
 #include "play_command.hpp"
 #include "progress.hpp"
 #include "render_command.hpp"
+#include "surface_command.hpp"
 
 namespace {
 
@@ -164,6 +165,29 @@ CLI::App* addBlendCommand(CLI::App& app, odeskin::BlendCommandOptions& o, double
   return cmd;
 }
 
+CLI::App* addSurfaceCommand(CLI::App& app, odeskin::SurfaceCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("surface", "Tessellate a network of C2 surface patches (thesis ch. 4) into one .glb");
+  cmd->footer(
+      "NETWORK.json: curves, boundaries with their u-derivatives (coefficients, control curves or given\n"
+      "curves) and a shape (rho, eta, lambda) per patch; schema in docs/surfaces.md. Patches sharing a\n"
+      "boundary are C2 across it; patches side by side in v must have equal eta/rho and lambda/rho\n"
+      "(MATH.md 3.8), otherwise the network is refused unless it says \"continuity\": \"warn\".\n"
+      "The mesh is one welded grid: --res U,V samples per patch, shared along every seam.\n"
+      "Examples: odeskin surface samples/surfaces/networks/vase.json -o vase.glb\n"
+      "          odeskin surface torus.json -o torus.glb --res 65,65 --obj\n"
+      "          odeskin surface patch.json -o thin.glb --shape 0.0001,3,0.0001\n"
+      "          odeskin surface sheet.json -o sheet.glb --backend vulkan --validation");
+  cmd->add_option("network", o.network, "The network (.json)")->required();
+  cmd->add_option("-o,--output", o.output, "The .glb file to write")->required();
+  cmd->add_option("--res", o.resolution, "U,V: samples per patch along u and v, both edges included (default 33,33)");
+  cmd->add_flag("--obj", o.obj, "Also write the welded quads as OUT.obj (same stem as the .glb)");
+  cmd->add_option("--shape", o.shape, "RHO,ETA,LAMBDA for every patch instead of the file's shapes");
+  cmd->add_option("--backend", o.backend, "cpu (double-precision reference) or vulkan (compute shader, float)")
+      ->check(CLI::IsMember({"cpu", "vulkan"}));
+  cmd->add_flag("--validation", o.validation, "vulkan: enable the Khronos validation layer; fail on any message");
+  return cmd;
+}
+
 struct RenderCliValues {
   double t = 0.0;
   double heat_max = 0.0;
@@ -293,6 +317,9 @@ int main(int argc, char** argv) {
   int blend_spline = 0;
   CLI::App* blend_cmd = addBlendCommand(app, blend_options, blend_alpha, blend_beta, blend_gamma, blend_spline);
 
+  odeskin::SurfaceCommandOptions surface_options;
+  CLI::App* surface_cmd = addSurfaceCommand(app, surface_options);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -346,6 +373,10 @@ int main(int argc, char** argv) {
     if (blend_cmd->get_option("--gamma")->count() > 0) blend_options.gamma = blend_gamma;
     if (blend_cmd->get_option("--spline")->count() > 0) blend_options.spline_pieces = blend_spline;
     return odeskin::runBlendCommand(blend_options, console);
+  }
+  if (surface_cmd->parsed()) {
+    surface_options.device = device;
+    return odeskin::runSurfaceCommand(surface_options, console);
   }
   return 2;
 }

@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: MIT
+#include "surface_command.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "engine/io/obj_io.hpp"
+#include "engine/surfaces/network_json.hpp"
+#include "engine/surfaces/tessellation_glb.hpp"
+#include "host/surface_tessellator.hpp"
+#include "number_text.hpp"
+
+namespace odeskin {
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// "U,V" with integers >= 2.
+bool parseResolution(const std::string& text, TessellationResolution& r) {
+  unsigned long u = 0, v = 0;
+  std::size_t used = 0;
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) return false;
+  try {
+    u = std::stoul(text.substr(0, comma), &used);
+    if (used != comma) return false;
+    v = std::stoul(text.substr(comma + 1), &used);
+    if (used != text.size() - comma - 1) return false;
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (u < 2 || v < 2 || u > 100000 || v > 100000 || !std::isdigit(static_cast<unsigned char>(text[0])) ||
+      !std::isdigit(static_cast<unsigned char>(text[comma + 1]))) {
+    return false;
+  }
+  r.u_samples = static_cast<std::uint32_t>(u);
+  r.v_samples = static_cast<std::uint32_t>(v);
+  return true;
+}
+
+// "RHO,ETA,LAMBDA" with three finite numbers.
+bool parseShape(const std::string& text, Ode6Shape& shape) {
+  double values[3] = {0.0, 0.0, 0.0};
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t end = i < 2 ? text.find(',', start) : text.size();
+    if (end == std::string::npos || end == start) return false;
+    const std::string field = text.substr(start, end - start);
+    std::size_t used = 0;
+    try {
+      values[i] = std::stod(field, &used);
+    } catch (const std::exception&) {
+      return false;
+    }
+    if (used != field.size() || !std::isfinite(values[i])) return false;
+    start = end + 1;
+  }
+  shape = {values[0], values[1], values[2]};
+  return true;
+}
+
+std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution& r, Ode6Shape& shape) {
+  if (o.output.empty()) return "surface: -o OUT.glb is required";
+  if (lower(o.output.extension().string()) != ".glb") {
+    return "surface: " + o.output.string() + ": write .glb (one self-contained glTF binary; add --obj for an OBJ too)";
+  }
+  if (!parseResolution(o.resolution, r)) {
+    return "surface: --res '" + o.resolution + "': expected U,V samples per patch, integers in [2, 100000]";
+  }
+  if (o.backend != "cpu" && o.backend != "vulkan") return "surface: --backend must be cpu or vulkan, got '" + o.backend + "'";
+  if (!o.shape.empty() && !parseShape(o.shape, shape)) {
+    return "surface: --shape '" + o.shape + "': expected RHO,ETA,LAMBDA, three finite numbers";
+  }
+  return {};
+}
+
+// The welded mesh on the GPU: same grid and faces, float positions widened.
+Result<SurfaceMesh> tessellateOnGpu(const SurfaceCommandOptions& o, const Network& network, TessellationResolution r,
+                                    double& seconds) {
+  vk::DebugLog log;
+  vk::InstanceOptions instance_options;
+  instance_options.validation = o.validation;
+  instance_options.debug_log = &log;
+  SurfaceMesh mesh;
+  {
+    ODESKIN_ASSIGN_OR_RETURN(vk::Instance instance, vk::Instance::create(instance_options));
+    ODESKIN_ASSIGN_OR_RETURN(vk::Device device, vk::Device::create(instance, o.device));
+    ODESKIN_ASSIGN_OR_RETURN(SurfaceTessellator gpu, SurfaceTessellator::create(device, network, r));
+    const auto start = std::chrono::steady_clock::now();
+    ODESKIN_TRY(gpu.run());
+    std::vector<gpu::Float4> out(gpu.grid().vertexCount());
+    ODESKIN_TRY(gpu.readPositions(out));
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    mesh.grid = gpu.grid();
+    mesh.faces = gridFaces(mesh.grid);
+    mesh.positions.reserve(out.size());
+    for (const gpu::Float4& p : out) mesh.positions.emplace_back(p.x, p.y, p.z);
+  }
+  if (o.validation && log.count() > 0) {
+    return deviceError("surface: the validation layer reported " + std::to_string(log.count()) +
+                       " message(s), the first: " + log.messages().front());
+  }
+  return mesh;
+}
+
+void printSummary(std::ostream& out, const SurfaceCommandOptions& o, const Network& n, TessellationResolution r,
+                  const SurfaceReport& report, const std::filesystem::path& obj) {
+  out << "surface " << o.network.filename().string() << " -> " << o.output.string();
+  if (!obj.empty()) out << " and " << obj.string();
+  out << ": " << n.rows() << " x " << n.columns() << " patches";
+  if (n.closedU() || n.closedV()) {
+    out << " (closed in " << (n.closedU() && n.closedV() ? "u and v" : n.closedU() ? "u" : "v") << ")";
+  }
+  out << ", " << r.u_samples << " x " << r.v_samples << " samples each\n";
+  out << "mesh: " << report.vertices << " vertices, " << report.triangles << " triangles, welded; "
+      << (report.rim_edges == 0 ? std::string("closed (no rim)") : std::to_string(report.rim_edges) + " rim edges")
+      << ", no open edge where patches meet\n";
+  std::set<std::string> regimes;
+  for (std::uint32_t k = 0; k < n.cardinalCount(); ++k) regimes.insert(ode6RegimeName(n.cardinalAt(k).regime()));
+  out << "regimes:";
+  for (const std::string& name : regimes) out << " " << name.substr(0, 1);
+  out << " (" << n.cardinalCount() << " set" << (n.cardinalCount() == 1 ? "" : "s") << " of cardinal functions)\n";
+  char ms[32];
+  std::snprintf(ms, sizeof ms, "%.3g", 1e3 * report.tessellate_seconds);
+  out << "tessellated on " << o.backend << " in " << ms << " ms" << (o.backend == "vulkan" ? " (dispatch and read back)" : "")
+      << "\n";
+}
+
+}  // namespace
+
+int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceReport* report_out) {
+  TessellationResolution resolution;
+  Ode6Shape shape;
+  if (const std::string problem = usageProblem(o, resolution, shape); !problem.empty()) return reportUsage(console, problem);
+  Result<NetworkDescription> description = readNetworkDescription(o.network);
+  if (!description.ok()) return reportError(console, "surface: " + description.status().message(), kExitFailure);
+  if (!o.shape.empty()) std::fill(description->shapes.begin(), description->shapes.end(), shape);
+  std::vector<std::string> warnings;
+  Result<Network> network = Network::build(std::move(description).value(), &warnings);
+  if (!network.ok()) {
+    return reportError(console, "surface: " + o.network.string() + ": " + network.status().message(), kExitFailure);
+  }
+  if (!console.quiet) {
+    for (const std::string& w : warnings) console.err << "warning: " << o.network.string() << ": " << w << "\n";
+  }
+
+  SurfaceReport report;
+  report.rows = network->rows();
+  report.columns = network->columns();
+  report.warnings = warnings.size();
+  Result<SurfaceMesh> mesh = Status(internalError("surface: no backend ran"));
+  if (o.backend == "cpu") {
+    const auto start = std::chrono::steady_clock::now();
+    mesh = tessellateNetwork(*network, resolution);
+    report.tessellate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  } else {
+    mesh = tessellateOnGpu(o, *network, resolution, report.tessellate_seconds);
+  }
+  if (!mesh.ok()) {
+    const Status& s = mesh.status();
+    // Grid-size errors concern this network at this --res; device errors speak for themselves.
+    const bool about_input = s.code() == StatusCode::kOutOfRange || s.code() == StatusCode::kInvalidArgument;
+    return reportError(console, "surface: " + (about_input ? o.network.string() + ": " : std::string()) + s.message(),
+                       kExitFailure);
+  }
+  report.vertices = mesh->positions.size();
+  report.triangles = 2 * mesh->faces.faceCount();
+  report.rim_edges = unsharedEdges(mesh->faces).size();
+
+  std::error_code ec;
+  if (o.output.has_parent_path()) {
+    std::filesystem::create_directories(o.output.parent_path(), ec);
+    if (ec) {
+      return reportError(console, "surface: " + o.output.parent_path().string() + ": cannot create directory: " + ec.message(),
+                         kExitFailure);
+    }
+  }
+  std::filesystem::path obj;
+  if (o.obj) {
+    obj = std::filesystem::path(o.output).replace_extension(".obj");
+    if (Status s = writeObj(obj, mesh->positions, mesh->faces, "odeskin surface " + o.network.filename().string()); !s.ok()) {
+      return reportError(console, "surface: " + s.message(), kExitFailure);
+    }
+  }
+  const std::vector<Vec3> normals = vertexNormals(*mesh);
+  if (Status s = writeSurfaceGlb(o.output, *mesh, normals); !s.ok()) {
+    if (!obj.empty()) std::filesystem::remove(obj, ec);  // all or nothing
+    return reportError(console, "surface: " + s.message(), kExitFailure);
+  }
+  if (!console.quiet) printSummary(console.out, o, *network, resolution, report, obj);
+  if (report_out) *report_out = report;
+  return kExitOk;
+}
+
+}  // namespace odeskin
