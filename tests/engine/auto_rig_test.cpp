@@ -13,9 +13,12 @@
 #include "engine/kernels/lbs_job.hpp"
 #include "engine/mesh/adjacency.hpp"
 #include "engine/offline/residual_fit.hpp"
+#include "rigid_transform_test_support.hpp"
 
 namespace odeskin {
 namespace {
+
+using testing::transformDistance;
 
 struct Sequence {
   ObjMesh rest;
@@ -48,17 +51,6 @@ Sequence cylinder() {
     for (int k = 1; k <= 4; ++k) files.push_back(std::string("cylinder/") + set + "/cylinder-" + std::to_string(k) + ".obj");
   }
   return loadSequence(files);
-}
-
-double transformDistance(const RigidTransform& a, const RigidTransform& b) {
-  const glm::dmat3 ra = glm::mat3_cast(a.rotation);
-  const glm::dmat3 rb = glm::mat3_cast(b.rotation);
-  double worst = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r < 3; ++r) worst = std::max(worst, std::abs(ra[c][r] - rb[c][r]));
-    worst = std::max(worst, std::abs(a.translation[c] - b.translation[c]));
-  }
-  return worst;
 }
 
 struct Limits {

@@ -15,21 +15,12 @@
 
 #include "engine/kernels/lbs_job.hpp"
 #include "engine/rig/kabsch.hpp"
+#include "rigid_transform_test_support.hpp"
 
 namespace odeskin {
 namespace {
 
-// Largest entry of |R_a - R_b| and |t_a - t_b| (q and -q are one rotation).
-double transformDistance(const RigidTransform& a, const RigidTransform& b) {
-  const glm::dmat3 ra = glm::mat3_cast(a.rotation);
-  const glm::dmat3 rb = glm::mat3_cast(b.rotation);
-  double worst = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r < 3; ++r) worst = std::max(worst, std::abs(ra[c][r] - rb[c][r]));
-    worst = std::max(worst, std::abs(a.translation[c] - b.translation[c]));
-  }
-  return worst;
-}
+using testing::transformDistance;
 
 RigidTransform randomRigid(std::mt19937& rng) {
   std::normal_distribution<double> normal(0.0, 1.0);

@@ -12,9 +12,12 @@
 
 #include "engine/io/obj_reader.hpp"
 #include "engine/kernels/lbs_job.hpp"
+#include "rigid_transform_test_support.hpp"
 
 namespace odeskin {
 namespace {
+
+using testing::transformDistance;
 
 const std::string kCylinder = std::string(ODESKIN_DATA_DIR) + "/cylinder/";
 
@@ -24,18 +27,6 @@ RigidTransform randomRigid(std::mt19937& rng, double translation_scale) {
   m.rotation = glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
   m.translation = translation_scale * Vec3(normal(rng), normal(rng), normal(rng));
   return m;
-}
-
-// Largest entry of |R_a - R_b| and |t_a - t_b|: quaternions q and -q are the same rotation.
-double transformDistance(const RigidTransform& a, const RigidTransform& b) {
-  const glm::dmat3 ra = glm::mat3_cast(a.rotation);
-  const glm::dmat3 rb = glm::mat3_cast(b.rotation);
-  double worst = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r < 3; ++r) worst = std::max(worst, std::abs(ra[c][r] - rb[c][r]));
-    worst = std::max(worst, std::abs(a.translation[c] - b.translation[c]));
-  }
-  return worst;
 }
 
 // libigl ASCII .DMAT (first line "cols rows", then column-major values) as a row-major matrix.
