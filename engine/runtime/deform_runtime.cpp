@@ -143,7 +143,7 @@ Result<std::uint64_t> DeformRuntime::submitFrame() {
   return last_frame_;
 }
 
-Result<std::uint32_t> DeformRuntime::heldSlot(std::uint64_t frame, const char* what) {
+Result<std::uint32_t> DeformRuntime::slotOf(std::uint64_t frame, const char* what) const {
   const std::uint64_t held = std::min<std::uint64_t>(last_frame_, options_.frames_in_flight);
   if (frame == 0 || frame > last_frame_ || frame + held <= last_frame_) {
     const std::string frames = held == 0 ? std::string("none submitted yet")
@@ -156,6 +156,11 @@ Result<std::uint32_t> DeformRuntime::heldSlot(std::uint64_t frame, const char* w
     return invalidArgument(std::string("runtime: ") + what + ": frame " + std::to_string(frame) +
                            " has no outputs (a submission into its slot failed)");
   }
+  return slot;
+}
+
+Result<std::uint32_t> DeformRuntime::heldSlot(std::uint64_t frame, const char* what) {
+  ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, slotOf(frame, what));
   ODESKIN_TRY(waitSlot(slot));
   return slot;
 }

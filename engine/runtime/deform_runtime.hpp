@@ -148,7 +148,9 @@ class DeformRuntime {
   // GPU seconds of the finished slot (Vulkan); the CPU backend's deform time is in its FrameTimes.
   virtual double deviceSeconds(std::uint32_t slot) const = 0;
 
-  // The slot of `frame` once it has finished (waitSlot), or kInvalidArgument naming the frames held.
+  // The slot of `frame`, or kInvalidArgument naming the frames held; slotOf does not wait,
+  // heldSlot waits for the frame to finish (waitSlot).
+  Result<std::uint32_t> slotOf(std::uint64_t frame, const char* what) const;
   Result<std::uint32_t> heldSlot(std::uint64_t frame, const char* what);
 
  private:
