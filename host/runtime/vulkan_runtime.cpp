@@ -8,6 +8,7 @@
 #include "host/compute_dispatcher.hpp"
 #include "shaders/instance_normals.spv.h"
 #include "shaders/instanced_deform.spv.h"
+#include "shaders/instanced_deform_shared.spv.h"
 
 namespace odeskin {
 namespace {
@@ -34,6 +35,21 @@ std::vector<gpu::Float4> allRates(const RuntimeAsset& asset) {
   return rates;
 }
 
+// Whether compute shaders on `device` have subgroup arithmetic (instanced_deform.comp reduces the
+// bounds with subgroupMin/Max; instanced_deform_shared.comp is the fallback).
+bool subgroupArithmetic(const vk::Device& device) {
+  if (device.properties().apiVersion < VK_API_VERSION_1_1) return false;
+  VkPhysicalDeviceSubgroupProperties subgroup{};
+  subgroup.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+  VkPhysicalDeviceProperties2 properties{};
+  properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+  properties.pNext = &subgroup;
+  vkGetPhysicalDeviceProperties2(device.physicalDevice(), &properties);
+  return (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
+         (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BASIC_BIT) != 0 &&
+         (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) != 0;
+}
+
 // One dispatch of `pipeline` with `push` over (x, y) workgroups, descriptor set `slot`.
 void dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, std::uint32_t slot, const void* push,
               std::uint32_t push_bytes, std::uint32_t x, std::uint32_t y) {
@@ -56,7 +72,7 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccess
 }  // namespace
 
 Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const RuntimeAsset& asset,
-                                            const RuntimeOptions& options) {
+                                            const RuntimeOptions& options, bool allow_subgroups) {
   ODESKIN_TRY(checkOptions(options));
   const VkPhysicalDeviceLimits& limits = device.limits();
   const std::uint32_t v = asset.vertexCount();
@@ -137,7 +153,9 @@ Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const Runt
   deform_bindings.push_back(ODESKIN_RT_BINDING_OUT_POSITIONS);
   deform_bindings.push_back(ODESKIN_RT_BINDING_BOUNDS);
   vk::ComputePipelineDesc deform_desc;
-  deform_desc.spirv = kInstancedDeformSpirv;
+  rt.subgroup_bounds_ = allow_subgroups && subgroupArithmetic(device);
+  deform_desc.spirv = rt.subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
+                                          : std::span<const std::uint32_t>(kInstancedDeformSharedSpirv);
   deform_desc.storage_bindings = deform_bindings;
   deform_desc.push_constant_bytes = sizeof(gpu::InstancedPushConstants);
   deform_desc.descriptor_set_count = options.frames_in_flight;

@@ -55,9 +55,10 @@ class VulkanRuntime final : public DeformRuntime {
   // maxComputeWorkGroupCount[1], ceil(V / 64) exceeds maxComputeWorkGroupCount[0], or one frame's
   // outputs (capacity x V x 16 bytes) or inputs exceed maxStorageBufferRange (lavapipe: 128 MiB,
   // i.e. about 8.4 million instance vertices per runtime; use several runtimes beyond);
-  // kDeviceError from the driver.
+  // kDeviceError from the driver. `allow_subgroups` = false forces the shared-memory bounds
+  // reduction even where subgroup arithmetic exists (tests, benchmarks).
   static Result<VulkanRuntime> create(const vk::Device& device, const RuntimeAsset& asset,
-                                      const RuntimeOptions& options);
+                                      const RuntimeOptions& options, bool allow_subgroups = true);
 
   VulkanRuntime(VulkanRuntime&&) noexcept = default;
   // Not assignable: the old runtime's frames would have to finish first; hold runtimes by value
@@ -72,6 +73,9 @@ class VulkanRuntime final : public DeformRuntime {
   // slot is reused, framesInFlight() submissions later.
   Result<RuntimeFrameBuffers> frameBuffers(std::uint64_t frame) const;
   Result<RuntimeOutputBarriers> outputBarriers(std::uint64_t frame) const;
+  // True when the bounds are reduced with subgroup operations (instanced_deform.comp), false on
+  // devices without subgroup arithmetic in compute (instanced_deform_shared.comp).
+  bool subgroupBounds() const { return subgroup_bounds_; }
 
  protected:
   Status submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) override;
@@ -93,6 +97,7 @@ class VulkanRuntime final : public DeformRuntime {
   const vk::Device* device_ = nullptr;
   VkPipelineStageFlags reuse_stages_ = 0;
   std::uint32_t groups_x_ = 0;  // ceil(V / 64)
+  bool subgroup_bounds_ = false;
   // Host copies of one frame's inputs, prepared before waiting for the slot, then copied in.
   std::vector<gpu::InstanceRecord> records_;
   std::vector<gpu::BoneMatrix> bones_;

@@ -188,6 +188,23 @@ TEST_F(GpuTest, RuntimeHandlesZeroOneAndManyInstances) {
   EXPECT_EQ(gpu->readPositions(gpu->lastFrame(), kMany, out).code(), StatusCode::kInvalidArgument);
 }
 
+// The fallback for devices without subgroup arithmetic: the same outputs and boxes.
+TEST_F(GpuTest, RuntimeSharedMemoryBoundsMatchToo) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  Result<VulkanRuntime> subgroup = VulkanRuntime::create(device(), asset, withCapacity(6));
+  Result<VulkanRuntime> shared = VulkanRuntime::create(device(), asset, withCapacity(6), /*allow_subgroups=*/false);
+  Result<CpuRuntime> cpu = CpuRuntime::create(asset, withCapacity(6));
+  ASSERT_TRUE(subgroup.ok() && shared.ok() && cpu.ok());
+  EXPECT_FALSE(shared->subgroupBounds());
+  std::printf("subgroup bounds on %s: %s\n", device().name(), subgroup->subgroupBounds() ? "yes" : "no");
+  ASSERT_TRUE(shared->setInstanceCount(6).ok() && cpu->setInstanceCount(6).ok());
+  for (std::uint32_t k = 0; k < 6; ++k) setBoth(*cpu, *shared, k, InstanceState::atTime(0.5 * k).withPreset(k % 3));
+  Result<std::uint64_t> g = shared->submitFrame();
+  Result<std::uint64_t> c = cpu->submitFrame();
+  ASSERT_TRUE(g.ok() && c.ok());
+  expectSameFrame(*cpu, *c, *shared, *g, 6, "shared-memory bounds");
+}
+
 TEST_F(GpuTest, RuntimeWithoutNormals) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
   RuntimeOptions options = withCapacity(2);
