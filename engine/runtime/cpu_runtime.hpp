@@ -19,7 +19,7 @@ namespace odeskin {
 
 class CpuRuntime final : public DeformRuntime {
  public:
-  // `asset` must outlive the runtime. kInvalidArgument for frames_in_flight = 0; kOutOfRange when
+  // `asset` must outlive the runtime and stay where it is. kInvalidArgument for frames_in_flight = 0; kOutOfRange when
   // capacity x vertexCount() x frames_in_flight outputs do not fit a std::size_t.
   static Result<CpuRuntime> create(const RuntimeAsset& asset, const RuntimeOptions& options);
 

@@ -1,6 +1,7 @@
 # cmake -DSOURCE=file.cpp -DDOC=doc.md -P CheckSnippet.cmake
 # Passes when every block of SOURCE between a pair of "// [runtime-snippet]" marker lines appears
 # verbatim in DOC, so the documentation's code is the code the sample compiles and runs.
+cmake_minimum_required(VERSION 3.25)
 file(READ "${SOURCE}" source)
 file(READ "${DOC}" doc)
 set(marker "// [runtime-snippet]\n")
@@ -19,7 +20,7 @@ while(TRUE)
   endif()
   string(SUBSTRING "${source}" 0 ${end} block)
   # The closing marker's own indentation is the last line of the block; drop it.
-  string(REGEX REPLACE "[ ]*$" "" block "${block}")
+  string(REGEX REPLACE "\n[ ]+$" "\n" block "${block}")
   string(FIND "${doc}" "${block}" found)
   if(found EQUAL -1)
     message(FATAL_ERROR "${DOC} does not quote this block of ${SOURCE} verbatim:\n${block}")

@@ -154,7 +154,15 @@ Result<double> checkInstance(DeformRuntime& rt, std::uint64_t frame, std::uint32
 }
 
 int run(const SampleOptions& o) {
-  // 1. The asset, loaded once: a .odsk file, or the cat fitted now. Presets: its own materials and static.
+  // 1. The Vulkan device first, so a missing one fails before the asset is fitted.
+  std::unique_ptr<vk::Gpu> gpu;
+  if (o.backend == "vulkan") {
+    Result<vk::Gpu> opened = vk::Gpu::open(o.device, o.validation);
+    if (!opened.ok()) return fail(Status(opened.status().code(), "no Vulkan device opens: " + opened.status().message()));
+    gpu = std::make_unique<vk::Gpu>(std::move(opened).value());
+  }
+
+  // 2. The asset, loaded once: a .odsk file, or the cat fitted now. Presets: its own materials and static.
   const auto load_start = std::chrono::steady_clock::now();
   // [runtime-snippet]
   Result<DeformAsset> source = o.asset.empty() ? fitCat(o.data) : loadAsset(o.asset);
@@ -168,35 +176,34 @@ int run(const SampleOptions& o) {
               o.asset.empty() ? "cat-poses fitted" : o.asset.string().c_str(), asset->vertexCount(), asset->boneCount(),
               asset->segmentCount(), asset->presetCount(), o.asset.empty() ? "fitted" : "loaded", secondsSince(load_start));
 
-  // 2. A runtime on the chosen backend, sized once for every instance.
+  // 3. A runtime on the chosen backend, sized once for every instance.
   // [runtime-snippet]
   RuntimeOptions options;
   options.capacity = o.instances;
   options.threads = o.threads;
-  std::unique_ptr<vk::Gpu> gpu;
   std::unique_ptr<DeformRuntime> runtime;
   VulkanRuntime* vulkan = nullptr;
-  if (o.backend == "vulkan") {
-    Result<vk::Gpu> opened = vk::Gpu::open(o.device, o.validation);
-    if (!opened.ok()) return fail(Status(opened.status().code(), "no Vulkan device opens: " + opened.status().message()));
-    gpu = std::make_unique<vk::Gpu>(std::move(opened).value());
+  if (gpu) {
     Result<VulkanRuntime> created = VulkanRuntime::create(gpu->device, *asset, options);
     if (!created.ok()) return fail(created.status());
     runtime = std::make_unique<VulkanRuntime>(std::move(created).value());
     vulkan = static_cast<VulkanRuntime*>(runtime.get());
-    std::printf("backend: vulkan on %s\n", gpu->device.name());
   } else {
     Result<CpuRuntime> created = CpuRuntime::create(*asset, options);
     if (!created.ok()) return fail(created.status());
     runtime = std::make_unique<CpuRuntime>(std::move(created).value());
-    std::printf("backend: cpu, %u threads\n", WorkerArena(o.threads).threads());
   }
   // [runtime-snippet]
+  if (gpu) {
+    std::printf("backend: vulkan on %s\n", gpu->device.name());
+  } else {
+    std::printf("backend: cpu, %u threads\n", WorkerArena(o.threads).threads());
+  }
   const std::uint64_t frame_count = static_cast<std::uint64_t>(std::llround(o.seconds * kHz));
   std::printf("animating %u instances x %u vertices for %.2f s at %.0f Hz (%llu frames)\n", o.instances,
               asset->vertexCount(), o.seconds, kHz, static_cast<unsigned long long>(frame_count));
 
-  // 3. The frame loop.
+  // 4. The frame loop.
   DeformRuntime& rt = *runtime;
   std::vector<gpu::BoneMatrix> bones(std::size_t{o.instances} * asset->boneCount());
   std::vector<InstanceBounds> bounds(o.instances);
@@ -245,7 +252,7 @@ int run(const SampleOptions& o) {
   }
   const double wall = secondsSince(loop_start);
 
-  // 4. Totals, the scene's box from the per-instance boxes, and the self-check.
+  // 5. Totals, the scene's box from the per-instance boxes, and the self-check.
   if (totals.frames > 0) {
     const double n = static_cast<double>(totals.frames);
     const double vertices = static_cast<double>(o.instances) * asset->vertexCount();
