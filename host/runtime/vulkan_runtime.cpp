@@ -69,11 +69,8 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccess
   vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
-}  // namespace
-
-Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const RuntimeAsset& asset,
-                                            const RuntimeOptions& options, bool allow_subgroups) {
-  ODESKIN_TRY(checkOptions(options));
+// kUnavailable, naming the limit, when `options` cannot run on `device` in one dispatch.
+Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, const RuntimeOptions& options) {
   const VkPhysicalDeviceLimits& limits = device.limits();
   const std::uint32_t v = asset.vertexCount();
   const std::uint32_t groups_x = (v + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
@@ -88,23 +85,46 @@ Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const Runt
   }
   const VkDeviceSize out_bytes = VkDeviceSize{options.capacity} * v * sizeof(gpu::Float4);
   if (out_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's positions", out_bytes, device);
+  return okStatus();
+}
 
+}  // namespace
+
+Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const RuntimeAsset& asset,
+                                            const RuntimeOptions& options, bool allow_subgroups) {
+  ODESKIN_TRY(checkOptions(options));
+  ODESKIN_TRY(checkDeviceLimits(device, asset, options));
   VulkanRuntime rt(asset, options);
   rt.device_ = &device;
   rt.reuse_stages_ = vk::outputReuseStages(device);
-  rt.groups_x_ = groups_x;
+  rt.groups_x_ = (asset.vertexCount() + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  rt.subgroup_bounds_ = allow_subgroups && subgroupArithmetic(device);
   rt.records_.resize(options.capacity);
   rt.bones_.resize(std::size_t{options.capacity} * asset.boneCount());
   rt.basis_.resize(std::size_t{options.capacity} * asset.basisEntries());
+  ODESKIN_TRY(rt.uploadAsset());
 
-  // The asset, uploaded once (device-local; mapped on lavapipe/ReBAR, staged elsewhere).
-  const PackedDeformData& data = asset.packed(0);
-  const std::vector<gpu::Float4> rates = allRates(asset);
-  struct Array {
-    std::uint32_t binding;
-    std::span<const std::byte> bytes;
-  };
-  const Array arrays[] = {
+  // One frame's inputs in each ring slot: instance records, bones (and dual quaternions), basis.
+  vk::FrameInputLayout layout(device);
+  rt.records_offset_ = layout.add(ODESKIN_RT_BINDING_INSTANCES, rt.records_.size() * sizeof(gpu::InstanceRecord));
+  rt.palettes_ = vk::BonePaletteWriter::plan(layout, ODESKIN_RT_BINDING_BONES, ODESKIN_RT_BINDING_BONE_DUAL_QUATS,
+                                             rt.bones_.size(), asset.packed().skinning);
+  rt.basis_offset_ = layout.add(ODESKIN_RT_BINDING_MODE_BASIS, rt.basis_.size() * sizeof(gpu::ModeBasis));
+  ODESKIN_TRY(layout.checkLimits("vulkan runtime"));
+  ODESKIN_ASSIGN_OR_RETURN(rt.ring_, vk::FrameRing::create(device, vk::FrameRingDesc{options.frames_in_flight,
+                                                                                     layout.totalBytes()}));
+  ODESKIN_TRY(rt.createSlots());
+  ODESKIN_TRY(rt.createPipelines(layout));
+  return rt;
+}
+
+Status VulkanRuntime::uploadAsset() {
+  // Device-local, read every frame (mapped on lavapipe/ReBAR, staged elsewhere). RATES holds every
+  // preset's rates back to back (RuntimeAsset::ratesOffset).
+  const RuntimeAsset& a = asset();
+  const PackedDeformData& data = a.packed(0);
+  const std::vector<gpu::Float4> rates = allRates(a);
+  const std::pair<std::uint32_t, std::span<const std::byte>> arrays[] = {
       {ODESKIN_BINDING_REST_POSITIONS, bytesOf(std::span(data.rest_positions))},
       {ODESKIN_BINDING_VERTEX_BINDINGS, bytesOf(std::span(data.bindings))},
       {ODESKIN_BINDING_SEGMENT_VERTICES, bytesOf(std::span(data.segment_vertices))},
@@ -114,79 +134,70 @@ Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const Runt
       {ODESKIN_BINDING_RATES, bytesOf(std::span(rates))},
       {ODESKIN_BINDING_INFLUENCE_OFFSETS, bytesOf(std::span(data.influence_offsets))},
       {ODESKIN_BINDING_INFLUENCES, bytesOf(std::span(data.influences))},
-      {ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, bytesOf(asset.cornerOffsets())},
-      {ODESKIN_RT_NORMALS_BINDING_CORNERS, bytesOf(asset.corners())},
   };
-  std::vector<std::uint32_t> deform_bindings;
-  for (const Array& array : arrays) {
-    ODESKIN_ASSIGN_OR_RETURN(vk::Buffer buffer, vk::createStorageBuffer(device, array.bytes));
-    rt.statics_.push_back(std::move(buffer));
+  for (const auto& [binding, bytes] : arrays) {
+    ODESKIN_ASSIGN_OR_RETURN(vk::Buffer buffer, vk::createStorageBuffer(*device_, bytes));
+    deform_statics_.emplace_back(binding, std::move(buffer));
   }
-  constexpr std::size_t kDeformArrays = 9;  // arrays[0..8] feed the deform shader, the rest the normals
+  ODESKIN_ASSIGN_OR_RETURN(corner_offsets_, vk::createStorageBuffer(*device_, bytesOf(a.cornerOffsets())));
+  ODESKIN_ASSIGN_OR_RETURN(corners_, vk::createStorageBuffer(*device_, bytesOf(a.corners())));
+  return okStatus();
+}
 
-  // One frame's inputs in each ring slot: instance records, bones (and dual quaternions), basis.
-  vk::FrameInputLayout layout(device);
-  rt.records_offset_ = layout.add(ODESKIN_RT_BINDING_INSTANCES, std::size_t{options.capacity} * sizeof(gpu::InstanceRecord));
-  rt.palettes_ = vk::BonePaletteWriter::plan(layout, ODESKIN_RT_BINDING_BONES, ODESKIN_RT_BINDING_BONE_DUAL_QUATS,
-                                             rt.bones_.size(), data.skinning);
-  rt.basis_offset_ = layout.add(ODESKIN_RT_BINDING_MODE_BASIS, rt.basis_.size() * sizeof(gpu::ModeBasis));
-  ODESKIN_TRY(layout.checkLimits("vulkan runtime"));
-
+Status VulkanRuntime::createSlots() {
   // Each slot's outputs: positions and normals (storage + vertex + copy source), bounds mapped.
-  for (std::uint32_t s = 0; s < options.frames_in_flight; ++s) {
+  const VkDeviceSize out_bytes = VkDeviceSize{capacity()} * asset().vertexCount() * sizeof(gpu::Float4);
+  const VkDeviceSize bytes = out_bytes < 16 ? 16 : out_bytes;
+  const VkDeviceSize bounds_bytes = std::max<VkDeviceSize>(VkDeviceSize{capacity()} * sizeof(gpu::BoundsKeys), 32);
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
     Slot slot;
-    const VkDeviceSize bytes = out_bytes < 16 ? 16 : out_bytes;
-    ODESKIN_ASSIGN_OR_RETURN(slot.positions, vk::Buffer::create(device, bytes, vk::kOutputBufferUsage));
-    if (options.normals) {
-      ODESKIN_ASSIGN_OR_RETURN(slot.normals, vk::Buffer::create(device, bytes, vk::kOutputBufferUsage));
+    ODESKIN_ASSIGN_OR_RETURN(slot.positions, vk::Buffer::create(*device_, bytes, vk::kOutputBufferUsage));
+    if (options().normals) {
+      ODESKIN_ASSIGN_OR_RETURN(slot.normals, vk::Buffer::create(*device_, bytes, vk::kOutputBufferUsage));
     }
-    const VkDeviceSize bounds_bytes = std::max<VkDeviceSize>(VkDeviceSize{options.capacity} * sizeof(gpu::BoundsKeys), 32);
-    ODESKIN_ASSIGN_OR_RETURN(slot.bounds, vk::Buffer::create(device, bounds_bytes,
+    ODESKIN_ASSIGN_OR_RETURN(slot.bounds, vk::Buffer::create(*device_, bounds_bytes,
                                                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                              vk::MemoryUse::kHostVisible));
-    rt.slots_.push_back(std::move(slot));
+    slots_.push_back(std::move(slot));
   }
+  return okStatus();
+}
 
-  // Pipelines, one descriptor set per slot, written once.
+Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
+  // One descriptor set per slot, written once: nothing is rebound per frame.
+  std::vector<std::uint32_t> deform_bindings = {ODESKIN_RT_BINDING_OUT_POSITIONS, ODESKIN_RT_BINDING_BOUNDS};
+  for (const auto& [binding, buffer] : deform_statics_) deform_bindings.push_back(binding);
   for (const vk::FrameBinding& b : layout.bindings()) deform_bindings.push_back(b.binding);
-  for (std::size_t a = 0; a < kDeformArrays; ++a) deform_bindings.push_back(arrays[a].binding);
-  deform_bindings.push_back(ODESKIN_RT_BINDING_OUT_POSITIONS);
-  deform_bindings.push_back(ODESKIN_RT_BINDING_BOUNDS);
   vk::ComputePipelineDesc deform_desc;
-  rt.subgroup_bounds_ = allow_subgroups && subgroupArithmetic(device);
-  deform_desc.spirv = rt.subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
-                                          : std::span<const std::uint32_t>(kInstancedDeformSharedSpirv);
+  deform_desc.spirv = subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
+                                       : std::span<const std::uint32_t>(kInstancedDeformSharedSpirv);
   deform_desc.storage_bindings = deform_bindings;
   deform_desc.push_constant_bytes = sizeof(gpu::InstancedPushConstants);
-  deform_desc.descriptor_set_count = options.frames_in_flight;
-  ODESKIN_ASSIGN_OR_RETURN(rt.deform_, vk::ComputePipeline::create(device, deform_desc));
-  if (options.normals) {
-    const std::uint32_t normal_bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
-                                             ODESKIN_RT_NORMALS_BINDING_CORNERS, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS};
-    vk::ComputePipelineDesc normals_desc;
-    normals_desc.spirv = kInstanceNormalsSpirv;
-    normals_desc.storage_bindings = normal_bindings;
-    normals_desc.push_constant_bytes = sizeof(gpu::NormalsPushConstants);
-    normals_desc.descriptor_set_count = options.frames_in_flight;
-    ODESKIN_ASSIGN_OR_RETURN(rt.normals_, vk::ComputePipeline::create(device, normals_desc));
+  deform_desc.descriptor_set_count = framesInFlight();
+  ODESKIN_ASSIGN_OR_RETURN(deform_, vk::ComputePipeline::create(*device_, deform_desc));
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    for (const auto& [binding, buffer] : deform_statics_) deform_.bindBuffer(s, binding, buffer.handle());
+    for (const vk::FrameBinding& b : layout.bindings()) deform_.bindBuffer(s, b.binding, ring_.inputBuffer(s), b.offset, b.size);
+    deform_.bindBuffer(s, ODESKIN_RT_BINDING_OUT_POSITIONS, slots_[s].positions.handle());
+    deform_.bindBuffer(s, ODESKIN_RT_BINDING_BOUNDS, slots_[s].bounds.handle());
   }
-  ODESKIN_ASSIGN_OR_RETURN(rt.ring_, vk::FrameRing::create(device, vk::FrameRingDesc{options.frames_in_flight,
-                                                                                     layout.totalBytes()}));
-  for (std::uint32_t s = 0; s < options.frames_in_flight; ++s) {
-    for (std::size_t a = 0; a < kDeformArrays; ++a) rt.deform_.bindBuffer(s, arrays[a].binding, rt.statics_[a].handle());
-    for (const vk::FrameBinding& b : layout.bindings()) {
-      rt.deform_.bindBuffer(s, b.binding, rt.ring_.inputBuffer(s), b.offset, b.size);
-    }
-    rt.deform_.bindBuffer(s, ODESKIN_RT_BINDING_OUT_POSITIONS, rt.slots_[s].positions.handle());
-    rt.deform_.bindBuffer(s, ODESKIN_RT_BINDING_BOUNDS, rt.slots_[s].bounds.handle());
-    if (options.normals) {
-      rt.normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_POSITIONS, rt.slots_[s].positions.handle());
-      rt.normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, rt.statics_[kDeformArrays].handle());
-      rt.normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNERS, rt.statics_[kDeformArrays + 1].handle());
-      rt.normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS, rt.slots_[s].normals.handle());
-    }
+  if (!options().normals) return okStatus();
+
+  const std::uint32_t normal_bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
+                                           ODESKIN_RT_NORMALS_BINDING_CORNERS, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS};
+  vk::ComputePipelineDesc normals_desc;
+  normals_desc.spirv = kInstanceNormalsSpirv;
+  normals_desc.storage_bindings = normal_bindings;
+  normals_desc.push_constant_bytes = sizeof(gpu::NormalsPushConstants);
+  normals_desc.descriptor_set_count = framesInFlight();
+  ODESKIN_ASSIGN_OR_RETURN(normals_, vk::ComputePipeline::create(*device_, normals_desc));
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_POSITIONS, slots_[s].positions.handle());
+    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, corner_offsets_.handle());
+    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNERS, corners_.handle());
+    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS, slots_[s].normals.handle());
   }
-  return rt;
+  return okStatus();
 }
 
 Status VulkanRuntime::submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) {

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -87,6 +88,9 @@ class VulkanRuntime final : public DeformRuntime {
 
  private:
   VulkanRuntime(const RuntimeAsset& asset, const RuntimeOptions& options) : DeformRuntime(asset, options) {}
+  Status uploadAsset();
+  Status createSlots();
+  Status createPipelines(const vk::FrameInputLayout& layout);
   void record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const;
 
   struct Slot {
@@ -105,7 +109,9 @@ class VulkanRuntime final : public DeformRuntime {
   VkDeviceSize records_offset_ = 0;
   VkDeviceSize basis_offset_ = 0;
   vk::BonePaletteWriter palettes_;
-  std::vector<vk::Buffer> statics_;
+  std::vector<std::pair<std::uint32_t, vk::Buffer>> deform_statics_;  // (binding, asset array), uploaded once
+  vk::Buffer corner_offsets_;  // normals: RuntimeAsset::cornerOffsets
+  vk::Buffer corners_;         // normals: RuntimeAsset::corners
   std::vector<Slot> slots_;
   vk::ComputePipeline deform_;
   vk::ComputePipeline normals_;
