@@ -1,23 +1,20 @@
 // SPDX-License-Identifier: MIT
-// What GpuDeformer and GpuLbs share: one pipeline, static storage buffers bound once, and a ring of
-// frames in flight. Each frame slot owns a persistently-mapped per-frame input buffer, a descriptor
-// set, a command buffer, a fence and a timestamp pair, so frame k+1's inputs are written while
-// frame k runs and nothing is allocated per frame.
+// One compute pipeline on a FrameRing: static storage buffers bound once, slices of each slot's
+// mapped per-frame buffer bound once per slot, and one dispatch per frame, bracketed by the barriers
+// a shared output buffer needs between frames. What GpuDeformer and GpuLbs (through
+// SingleMeshDispatch) run on.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <vector>
 
 #include <vulkan/vulkan.h>
 
-#include "buffer.hpp"
 #include "compute_pipeline.hpp"
 #include "device.hpp"
 #include "engine/core/result.hpp"
-#include "timestamp_queries.hpp"
-#include "vk_handle.hpp"
+#include "frame_ring.hpp"
 
 namespace odeskin::vk {
 
@@ -43,6 +40,10 @@ struct ComputeDispatcherDesc {
   std::uint32_t frames_in_flight = 2;
 };
 
+// Stages that may still read or write a deformer's output from an earlier frame on this queue:
+// compute and transfer (readbacks), and vertex fetch where the queue can draw.
+VkPipelineStageFlags outputReuseStages(const Device& device);
+
 class ComputeDispatcher {
  public:
   static Result<ComputeDispatcher> create(const Device& device, const ComputeDispatcherDesc& desc);
@@ -52,8 +53,6 @@ class ComputeDispatcher {
   ComputeDispatcher& operator=(ComputeDispatcher&& other) noexcept;
   ComputeDispatcher(const ComputeDispatcher&) = delete;
   ComputeDispatcher& operator=(const ComputeDispatcher&) = delete;
-  // Waits for in-flight frames: their command buffers and buffers must not die under the GPU.
-  ~ComputeDispatcher();
 
   // Waits until the next slot's previous frame has finished and returns its mapped per-frame bytes
   // for the caller to fill. Call submitFrame next.
@@ -62,30 +61,16 @@ class ComputeDispatcher {
   // timestamps and by the barriers a shared output buffer needs between frames.
   Status submitFrame(const void* push, std::uint32_t group_count);
   // Waits for every submitted frame and updates lastGpuSeconds().
-  Status wait();
+  Status wait() { return ring_.waitAll(); }
   // GPU time of the most recently completed frame in seconds (0 before any, or without timestamps).
-  double lastGpuSeconds() const { return last_gpu_seconds_; }
+  double lastGpuSeconds() const { return ring_.lastGpuSeconds(); }
 
  private:
-  struct Slot {
-    Buffer inputs;
-    UniqueCommandBuffer cmd;
-    UniqueFence fence;
-    bool pending = false;
-  };
-  Status retire(std::uint32_t slot);
-  void waitAll() noexcept;
-
-  VkDevice device_ = VK_NULL_HANDLE;
-  VkQueue queue_ = VK_NULL_HANDLE;
-  VkPipelineStageFlags reuse_stages_ = 0;  // stages that may still use the previous frame's output
+  VkPipelineStageFlags reuse_stages_ = 0;
   ComputePipeline pipeline_;
-  TimestampQueries timestamps_;
-  std::vector<Slot> slots_;
-  std::uint32_t next_ = 0;     // slot beginFrame hands out
-  std::uint32_t current_ = 0;  // slot being filled between beginFrame and submitFrame
-  std::uint32_t last_submitted_ = 0;
-  double last_gpu_seconds_ = 0.0;
+  std::uint32_t slot_ = 0;  // from the last beginFrame
+  // Last, so it is destroyed first: it waits for in-flight frames before the pipeline goes.
+  FrameRing ring_;
 };
 
 }  // namespace odeskin::vk

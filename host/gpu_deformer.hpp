@@ -4,7 +4,8 @@
 // as the CPU job (segment, bones, basis) into a double-buffered mapped buffer and runs ONE dispatch
 // of ceil(V / 64) workgroups into an output buffer a renderer can bind as vertex input. With
 // data.skinning = kDualQuaternion each frame also converts the bones to dual quaternions on the
-// host (toGpuDualQuaternions, as FourierDeformFastJob does) and writes them beside the bones.
+// host (toGpuDualQuaternions, as FourierDeformFastJob does) and writes them beside the bones. The
+// frame ring, per-frame writer and readback are SingleMeshDispatch's, shared with GpuLbs.
 #pragma once
 
 #include <cstdint>
@@ -14,10 +15,11 @@
 #include <vulkan/vulkan.h>
 
 #include "buffer.hpp"
-#include "compute_dispatcher.hpp"
 #include "device.hpp"
 #include "engine/core/result.hpp"
 #include "engine/kernels/packed_deform.hpp"
+#include "output_barrier.hpp"
+#include "single_mesh_dispatch.hpp"
 
 namespace odeskin {
 
@@ -26,14 +28,6 @@ struct GpuDeformFrame {
   std::uint32_t segment = 0;                // < data.segment_count
   std::span<const gpu::BoneMatrix> bones;   // data.bone_count, required: M_b(tau)
   std::span<const gpu::ModeBasis> basis;    // data.material_count * (N+1), required
-};
-
-// Barrier a renderer records before reading outputBuffer() as vertex input (same queue, later
-// submission): compute-shader writes made visible to vertex attribute fetch.
-struct OutputBarrier {
-  VkPipelineStageFlags src_stage = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
-  VkPipelineStageFlags dst_stage = VK_PIPELINE_STAGE_VERTEX_INPUT_BIT;
-  VkBufferMemoryBarrier barrier{};
 };
 
 class GpuDeformer {
@@ -52,37 +46,30 @@ class GpuDeformer {
   // the inputs, records and submits. No allocation. V = 0 validates and submits nothing.
   Status submit(const GpuDeformFrame& frame);
   // Waits for every submitted frame and updates lastGpuSeconds().
-  Status wait();
+  Status wait() { return dispatch_.wait(); }
 
   // Copies the last completed frame's positions (xyz, w = 1) into `out_positions`, whose size
   // must be vertex_count (kInvalidArgument otherwise). Waits for submitted frames first.
-  Status readPositions(std::span<gpu::Float4> out_positions);
+  Status readPositions(std::span<gpu::Float4> out_positions) { return dispatch_.readPositions(out_positions); }
 
-  VkBuffer outputBuffer() const { return out_positions_.handle(); }
-  VkDeviceSize outputBytes() const { return static_cast<VkDeviceSize>(vertex_count_) * sizeof(gpu::Float4); }
-  OutputBarrier outputBarrier() const;
+  VkBuffer outputBuffer() const { return dispatch_.outputBuffer(); }
+  VkDeviceSize outputBytes() const { return static_cast<VkDeviceSize>(vertexCount()) * sizeof(gpu::Float4); }
+  OutputBarrier outputBarrier() const { return dispatch_.outputBarrier(); }
   // GPU time of the last completed dispatch from timestamp queries, in seconds (0 if unsupported).
-  double lastGpuSeconds() const { return dispatcher_.lastGpuSeconds(); }
-  std::uint32_t vertexCount() const { return vertex_count_; }
+  double lastGpuSeconds() const { return dispatch_.lastGpuSeconds(); }
+  std::uint32_t vertexCount() const { return dispatch_.vertexCount(); }
 
  private:
   GpuDeformer() = default;
 
-  const vk::Device* device_ = nullptr;
-  std::uint32_t vertex_count_ = 0;
   std::uint32_t segment_count_ = 0;
   std::uint32_t bone_count_ = 0;
   std::size_t basis_count_ = 0;
-  VkDeviceSize basis_offset_ = 0;  // of the basis slice inside each per-frame buffer
-  VkDeviceSize dual_quat_offset_ = 0;  // of the bone dual quaternion slice
-  bool dual_quaternion_ = false;       // data.skinning == kDualQuaternion
-  std::vector<gpu::DualQuat> dual_quats_;  // bone_count when dual_quaternion_: per-frame scratch
   std::vector<gpu::DeformPushConstants> push_constants_;  // one per segment, computed once
-  // The dispatcher is declared last so it is destroyed first: it waits for in-flight frames
-  // before the buffers they read go away.
   std::vector<vk::Buffer> inputs_;
-  vk::Buffer out_positions_;
-  vk::ComputeDispatcher dispatcher_;
+  // Declared last so it is destroyed first: it waits for in-flight frames before the buffers they
+  // read go away.
+  SingleMeshDispatch dispatch_;
 };
 
 }  // namespace odeskin

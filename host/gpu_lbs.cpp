@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "gpu_lbs.hpp"
 
-#include <cstring>
 #include <string>
 
 #include "engine/kernels/fourier_deform_fast_job.hpp"
@@ -21,8 +20,6 @@ Result<GpuLbs> GpuLbs::create(const vk::Device& device, const PackedDeformData& 
     ODESKIN_TRY(job.validate());
   }
   GpuLbs lbs;
-  lbs.device_ = &device;
-  lbs.vertex_count_ = data.vertex_count;
   lbs.bone_count_ = data.bone_count;
   // lbs.comp reads vertex_count, influence_layout and skinning of the shared push block; segment 0
   // is only a placeholder (deformPushConstants tolerates segment_count = 0).
@@ -39,35 +36,16 @@ Result<GpuLbs> GpuLbs::create(const vk::Device& device, const PackedDeformData& 
     statics.push_back({binding, buffer.handle()});
     lbs.inputs_.push_back(std::move(buffer));
   }
-  const VkDeviceSize out_bytes = static_cast<VkDeviceSize>(data.vertex_count) * sizeof(gpu::Float4);
-  ODESKIN_ASSIGN_OR_RETURN(lbs.out_positions_,
-                           vk::Buffer::create(device, out_bytes < 16 ? 16 : out_bytes, vk::kOutputBufferUsage));
-  statics.push_back({ODESKIN_BINDING_OUT_POSITIONS, lbs.out_positions_.handle()});
 
-  // Per-frame buffer: bones, then their dual quaternions (bound in either mode, written for DQS).
-  const std::size_t raw_bones = static_cast<std::size_t>(data.bone_count) * sizeof(gpu::BoneMatrix);
-  const VkDeviceSize bones_bytes = raw_bones < 16 ? 16 : raw_bones;
-  const std::size_t raw_dual_quats = static_cast<std::size_t>(data.bone_count) * sizeof(gpu::DualQuat);
-  const VkDeviceSize dual_quat_bytes = raw_dual_quats < 16 ? 16 : raw_dual_quats;
-  if (bones_bytes > device.limits().maxStorageBufferRange || dual_quat_bytes > device.limits().maxStorageBufferRange) {
-    return unavailable("lbs gpu: " + std::to_string(data.bone_count) + " bones exceed maxStorageBufferRange");
-  }
-  const VkDeviceSize alignment = device.limits().minStorageBufferOffsetAlignment;
-  lbs.dual_quat_offset_ = alignment == 0 ? bones_bytes : (bones_bytes + alignment - 1) / alignment * alignment;
-  lbs.dual_quaternion_ = data.skinning == SkinningMode::kDualQuaternion;
-  if (lbs.dual_quaternion_) lbs.dual_quats_.resize(data.bone_count);
-  const vk::FrameBinding frame_bindings[] = {
-      {ODESKIN_BINDING_BONES, 0, bones_bytes},
-      {ODESKIN_BINDING_BONE_DUAL_QUATS, lbs.dual_quat_offset_, dual_quat_bytes},
-  };
-  vk::ComputeDispatcherDesc desc;
+  SingleMeshDispatchDesc desc;
+  desc.name = "lbs gpu";
   desc.spirv = kLbsSpirv;
-  desc.static_bindings = statics;
-  desc.frame_bindings = frame_bindings;
-  desc.frame_bytes = lbs.dual_quat_offset_ + dual_quat_bytes;
+  desc.vertex_count = data.vertex_count;
+  desc.bone_count = data.bone_count;
+  desc.skinning = data.skinning;
+  desc.statics = statics;
   desc.push_constant_bytes = sizeof(gpu::DeformPushConstants);
-  desc.frames_in_flight = 2;
-  ODESKIN_ASSIGN_OR_RETURN(lbs.dispatcher_, vk::ComputeDispatcher::create(device, desc));
+  ODESKIN_ASSIGN_OR_RETURN(lbs.dispatch_, SingleMeshDispatch::create(device, desc));
   return lbs;
 }
 
@@ -81,31 +59,12 @@ Status GpuLbs::validate(const GpuLbsFrame& frame) const {
 
 Status GpuLbs::submit(const GpuLbsFrame& frame) {
   ODESKIN_TRY(validate(frame));
-  if (vertex_count_ == 0) return okStatus();
-  ODESKIN_ASSIGN_OR_RETURN(std::span<std::byte> inputs, dispatcher_.beginFrame());
-  if (!frame.bones.empty()) std::memcpy(inputs.data(), frame.bones.data(), frame.bones.size_bytes());
-  if (dual_quaternion_ && !frame.bones.empty()) {
-    toGpuDualQuaternions(frame.bones, dual_quats_);
-    std::memcpy(inputs.data() + dual_quat_offset_, dual_quats_.data(), dual_quats_.size() * sizeof(gpu::DualQuat));
-  }
-  const std::uint32_t groups = (vertex_count_ + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
-  return dispatcher_.submitFrame(&push_constants_, groups);
+  return dispatch_.submit(frame.bones, {}, &push_constants_);
 }
-
-Status GpuLbs::wait() { return dispatcher_.wait(); }
 
 Status GpuLbs::run(const GpuLbsFrame& frame) {
   ODESKIN_TRY(submit(frame));
   return wait();
-}
-
-Status GpuLbs::readPositions(std::span<gpu::Float4> out_positions) {
-  if (out_positions.size() != vertex_count_) {
-    return invalidArgument("lbs gpu: out_positions has " + std::to_string(out_positions.size()) +
-                           " entries, expected " + std::to_string(vertex_count_));
-  }
-  ODESKIN_TRY(wait());
-  return vk::downloadSpan(*device_, out_positions_, out_positions);
 }
 
 }  // namespace odeskin

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // GPU dispatcher of LbsFastJob (shaders/lbs.comp; thesis Eq 6.1): plain skinning of the same
 // packed data, the baseline of every speed ratio; linear blend, or dual-quaternion skinning when
-// data.skinning says so (bones converted per frame on the host, as in GpuDeformer). Same frame
-// ring as GpuDeformer.
+// data.skinning says so (bones converted per frame on the host, as in GpuDeformer). The frame
+// ring, per-frame writer and readback are SingleMeshDispatch's, shared with GpuDeformer.
 #pragma once
 
 #include <cstdint>
@@ -12,11 +12,11 @@
 #include <vulkan/vulkan.h>
 
 #include "buffer.hpp"
-#include "compute_dispatcher.hpp"
 #include "device.hpp"
 #include "engine/core/result.hpp"
 #include "engine/kernels/packed_deform.hpp"
 #include "gpu_deformer.hpp"
+#include "single_mesh_dispatch.hpp"
 
 namespace odeskin {
 
@@ -35,26 +35,21 @@ class GpuLbs {
   Status validate(const GpuLbsFrame& frame) const;
   Status run(const GpuLbsFrame& frame);
   Status submit(const GpuLbsFrame& frame);
-  Status wait();
-  Status readPositions(std::span<gpu::Float4> out_positions);
+  Status wait() { return dispatch_.wait(); }
+  Status readPositions(std::span<gpu::Float4> out_positions) { return dispatch_.readPositions(out_positions); }
 
-  VkBuffer outputBuffer() const { return out_positions_.handle(); }
-  double lastGpuSeconds() const { return dispatcher_.lastGpuSeconds(); }
-  std::uint32_t vertexCount() const { return vertex_count_; }
+  VkBuffer outputBuffer() const { return dispatch_.outputBuffer(); }
+  OutputBarrier outputBarrier() const { return dispatch_.outputBarrier(); }
+  double lastGpuSeconds() const { return dispatch_.lastGpuSeconds(); }
+  std::uint32_t vertexCount() const { return dispatch_.vertexCount(); }
 
  private:
   GpuLbs() = default;
 
-  const vk::Device* device_ = nullptr;
-  std::uint32_t vertex_count_ = 0;
   std::uint32_t bone_count_ = 0;
   gpu::DeformPushConstants push_constants_{};
-  VkDeviceSize dual_quat_offset_ = 0;      // of the bone dual quaternion slice in the frame buffer
-  bool dual_quaternion_ = false;           // data.skinning == kDualQuaternion
-  std::vector<gpu::DualQuat> dual_quats_;  // bone_count when dual_quaternion_: per-frame scratch
   std::vector<vk::Buffer> inputs_;
-  vk::Buffer out_positions_;
-  vk::ComputeDispatcher dispatcher_;  // last: destroyed first, after waiting for its frames
+  SingleMeshDispatch dispatch_;  // last: destroyed first, after waiting for its frames
 };
 
 }  // namespace odeskin

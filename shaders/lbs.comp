@@ -23,6 +23,6 @@ layout(push_constant) uniform Push { DeformPushConstants pc; };
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.vertex_count) return;
-  vec3 p = skinPoint(i, vec3(rest_positions[i].x, rest_positions[i].y, rest_positions[i].z));
+  vec3 p = skinPoint(0u, i, vec3(rest_positions[i].x, rest_positions[i].y, rest_positions[i].z));
   out_positions[i] = Float4(p.x, p.y, p.z, 1.0);
 }

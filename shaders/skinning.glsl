@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
-// Skinning of one point, shared by fourier_deform.comp and lbs.comp: linear blend skinning (thesis
-// Eq 6.1) or dual-quaternion skinning (Kavan et al. 2008, Algorithm 1), chosen by pc.skinning.
-// Mirrors skinPoint / skinPointDq in engine/kernels/fourier_deform_fast_job.cpp operation for
-// operation (reference: engine/kernels/dual_quaternion.cpp). The including shader declares pc and
-// the influence_offsets, influences, bones and bone_dual_quats buffers.
+// Skinning of one point, shared by fourier_deform.comp, lbs.comp and instanced_deform.comp: linear
+// blend skinning (thesis Eq 6.1) or dual-quaternion skinning (Kavan et al. 2008, Algorithm 1),
+// chosen by pc.skinning. Mirrors skinPoint / skinPointDq in
+// engine/kernels/fourier_deform_fast_job.cpp operation for operation (reference:
+// engine/kernels/dual_quaternion.cpp). The including shader declares pc (with influence_layout and
+// skinning) and the influence_offsets, influences, bones and bone_dual_quats buffers. `bone_base`
+// is the first bone of the palette in use: 0 for one mesh, instance x bone_count when instanced.
 
 vec4 vec(Float4 f) { return vec4(f.x, f.y, f.z, f.w); }
 
@@ -17,7 +19,7 @@ void influenceRange(uint vertex, out uint begin, out uint end) {
   }
 }
 
-vec3 skinPointLbs(uint vertex, vec3 p) {
+vec3 skinPointLbs(uint bone_base, uint vertex, vec3 p) {
   uint begin;
   uint end;
   influenceRange(vertex, begin, end);
@@ -25,7 +27,7 @@ vec3 skinPointLbs(uint vertex, vec3 p) {
   vec3 out_p = vec3(0.0);
   for (uint k = begin; k < end; ++k) {
     Influence inf = influences[k];
-    BoneMatrix m = bones[inf.bone];
+    BoneMatrix m = bones[bone_base + inf.bone];
     vec3 q = vec3(dot(vec(m.row0), h), dot(vec(m.row1), h), dot(vec(m.row2), h));
     out_p += inf.weight * q;
   }
@@ -34,28 +36,28 @@ vec3 skinPointLbs(uint vertex, vec3 p) {
 
 // Bones taken on the side of the first largest weight's quaternion (q and -q are one rotation),
 // blended, divided by |real|, applied as x -> R x + t. A degenerate blend skins by LBS.
-vec3 skinPointDq(uint vertex, vec3 p) {
+vec3 skinPointDq(uint bone_base, uint vertex, vec3 p) {
   uint begin;
   uint end;
   influenceRange(vertex, begin, end);
-  if (begin == end) return skinPointLbs(vertex, p);
+  if (begin == end) return skinPointLbs(bone_base, vertex, p);
   uint pivot = begin;
   for (uint k = begin + 1u; k < end; ++k) {
     if (influences[k].weight > influences[pivot].weight) pivot = k;
   }
-  vec4 pivot_real = vec(bone_dual_quats[influences[pivot].bone].real);
+  vec4 pivot_real = vec(bone_dual_quats[bone_base + influences[pivot].bone].real);
   vec4 real = vec4(0.0);
   vec4 dual = vec4(0.0);
   for (uint k = begin; k < end; ++k) {
     Influence inf = influences[k];
-    DualQuat q = bone_dual_quats[inf.bone];
+    DualQuat q = bone_dual_quats[bone_base + inf.bone];
     vec4 q_real = vec(q.real);
     float w = dot(q_real, pivot_real) < 0.0 ? -inf.weight : inf.weight;
     real += w * q_real;
     dual += w * vec(q.dual);
   }
   float norm = length(real);
-  if (!(norm > ODESKIN_DQS_MIN_BLEND_NORM)) return skinPointLbs(vertex, p);
+  if (!(norm > ODESKIN_DQS_MIN_BLEND_NORM)) return skinPointLbs(bone_base, vertex, p);
   float inv_norm = 1.0 / norm;
   vec4 r = real * inv_norm;
   vec4 e = dual * inv_norm;
@@ -69,6 +71,7 @@ vec3 skinPointDq(uint vertex, vec3 p) {
   return c0 * p.x + c1 * p.y + c2 * p.z + t;
 }
 
-vec3 skinPoint(uint vertex, vec3 p) {
-  return pc.skinning == ODESKIN_SKINNING_DUAL_QUATERNION ? skinPointDq(vertex, p) : skinPointLbs(vertex, p);
+vec3 skinPoint(uint bone_base, uint vertex, vec3 p) {
+  return pc.skinning == ODESKIN_SKINNING_DUAL_QUATERNION ? skinPointDq(bone_base, vertex, p)
+                                                         : skinPointLbs(bone_base, vertex, p);
 }

@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: MIT
+#include "cpu_runtime.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <mutex>
+#include <string>
+
+namespace odeskin {
+
+Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOptions& options) {
+  ODESKIN_TRY(checkOptions(options));
+  const std::size_t v = asset.vertexCount();
+  const std::size_t limit = std::numeric_limits<std::size_t>::max() / sizeof(gpu::Float4) / 2;
+  if (v != 0 && std::size_t{options.capacity} * options.frames_in_flight > limit / v) {
+    return outOfRange("cpu runtime: capacity " + std::to_string(options.capacity) + " x " + std::to_string(v) +
+                      " vertices does not fit in memory");
+  }
+  CpuRuntime rt(asset, options);
+  for (std::uint32_t p = 0; p < asset.presetCount(); ++p) {
+    ODESKIN_ASSIGN_OR_RETURN(InstanceDeformer deformer, InstanceDeformer::create(asset.packed(p)));
+    rt.deformers_.push_back(deformer);
+  }
+  rt.records_.resize(options.capacity);
+  rt.bones_.resize(std::size_t{options.capacity} * asset.boneCount());
+  rt.basis_.resize(std::size_t{options.capacity} * asset.basisEntries());
+  rt.slots_.resize(options.frames_in_flight);
+  for (Slot& slot : rt.slots_) {
+    slot.positions.resize(std::size_t{options.capacity} * v);
+    if (options.normals) slot.normals.resize(slot.positions.size());
+    slot.bounds.resize(options.capacity);
+  }
+  return rt;
+}
+
+Status CpuRuntime::submitSlot(std::uint32_t slot_index, std::uint32_t instance_count, FrameTimes& times) {
+  const auto start = std::chrono::steady_clock::now();
+  prepareInputs(std::span(records_).first(instance_count),
+                std::span(bones_).first(std::size_t{instance_count} * asset().boneCount()),
+                std::span(basis_).first(std::size_t{instance_count} * asset().basisEntries()));
+  const auto prepared = std::chrono::steady_clock::now();
+  times.prepare_seconds = std::chrono::duration<double>(prepared - start).count();
+
+  Slot& slot = slots_[slot_index];
+  const std::size_t v = asset().vertexCount();
+  const std::size_t b = asset().boneCount();
+  const std::size_t e = asset().basisEntries();
+  // Instances are the parallel unit (one thread each, the cache holds one instance's output); a
+  // single instance spreads its vertices over the arena instead.
+  const unsigned per_instance_threads = instance_count == 1 ? 0u : 1u;
+  std::mutex error_mutex;
+  Status first_error;
+  arena().parallelFor(instance_count, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const gpu::InstanceRecord& r = records_[k];
+      std::span<gpu::Float4> out = std::span(slot.positions).subspan(k * v, v);
+      Status status = deformers_[r.preset].deform(r.segment, std::span(bones_).subspan(k * b, b),
+                                                  std::span(basis_).subspan(k * e, e), out, per_instance_threads);
+      if (!status.ok()) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (first_error.ok()) first_error = Status(status.code(), "cpu runtime: instance " + std::to_string(k) + ": " + status.message());
+        continue;
+      }
+      if (!slot.normals.empty()) {
+        computeVertexNormals(asset().cornerOffsets(), asset().corners(), out, std::span(slot.normals).subspan(k * v, v));
+      }
+      slot.bounds[k] = computeBounds(out);
+    }
+  });
+  slot.instance_count = instance_count;
+  times.deform_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - prepared).count();
+  return first_error;
+}
+
+Result<std::span<const gpu::Float4>> CpuRuntime::positions(std::uint64_t frame) {
+  ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, heldSlot(frame, "positions"));
+  return std::span<const gpu::Float4>(slots_[slot].positions)
+      .first(std::size_t{slots_[slot].instance_count} * asset().vertexCount());
+}
+
+Result<std::span<const gpu::Float4>> CpuRuntime::normals(std::uint64_t frame) {
+  ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, heldSlot(frame, "normals"));
+  if (slots_[slot].normals.empty()) return std::span<const gpu::Float4>();
+  return std::span<const gpu::Float4>(slots_[slot].normals)
+      .first(std::size_t{slots_[slot].instance_count} * asset().vertexCount());
+}
+
+Status CpuRuntime::copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
+  const std::size_t v = asset().vertexCount();
+  std::copy_n(slots_[slot].positions.begin() + static_cast<std::ptrdiff_t>(instance * v), v, out.begin());
+  return okStatus();
+}
+
+Status CpuRuntime::copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
+  const std::size_t v = asset().vertexCount();
+  std::copy_n(slots_[slot].normals.begin() + static_cast<std::ptrdiff_t>(instance * v), v, out.begin());
+  return okStatus();
+}
+
+Status CpuRuntime::copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) {
+  std::copy_n(slots_[slot].bounds.begin(), out.size(), out.begin());
+  return okStatus();
+}
+
+}  // namespace odeskin

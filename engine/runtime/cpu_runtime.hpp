@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// The runtime on the CPU (DeformRuntime's API) for engines without compute: every instance is
+// deformed by the float fast path (FourierDeformFastJob, SIMD-friendly float32 in the shader's order
+// of operations), instances spread over the WorkerArena's threads, then normals and bounds per
+// instance (instance_outputs.hpp). This backend is the reference of the instanced shaders
+// (shaders/instanced_deform.comp, shaders/instance_normals.comp). submitFrame() does the work
+// before it returns; wait() has nothing to wait for.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "deform_runtime.hpp"
+#include "instance_deformer.hpp"
+
+namespace odeskin {
+
+class CpuRuntime final : public DeformRuntime {
+ public:
+  // `asset` must outlive the runtime and stay where it is. kInvalidArgument for frames_in_flight = 0; kOutOfRange when
+  // capacity x vertexCount() x frames_in_flight outputs do not fit a std::size_t.
+  static Result<CpuRuntime> create(const RuntimeAsset& asset, const RuntimeOptions& options);
+
+  CpuRuntime(CpuRuntime&&) noexcept = default;
+  CpuRuntime& operator=(CpuRuntime&&) noexcept = default;
+
+  std::string_view backendName() const override { return "cpu"; }
+  Status wait() override { return okStatus(); }
+
+  // Zero-copy views of a finished frame's outputs, valid until its slot is reused (framesInFlight()
+  // submissions later): every instance's positions (instance k at k * V), likewise normals (empty
+  // when normals are off). kInvalidArgument as readPositions for a frame not held.
+  Result<std::span<const gpu::Float4>> positions(std::uint64_t frame);
+  Result<std::span<const gpu::Float4>> normals(std::uint64_t frame);
+
+ protected:
+  Status submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) override;
+  Status waitSlot(std::uint32_t) override { return okStatus(); }
+  Status copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) override;
+  Status copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) override;
+  Status copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) override;
+  double deviceSeconds(std::uint32_t) const override { return 0.0; }
+
+ private:
+  CpuRuntime(const RuntimeAsset& asset, const RuntimeOptions& options) : DeformRuntime(asset, options) {}
+
+  struct Slot {
+    std::vector<gpu::Float4> positions;  // capacity x V
+    std::vector<gpu::Float4> normals;    // capacity x V, or empty
+    std::vector<InstanceBounds> bounds;  // capacity
+    std::uint32_t instance_count = 0;
+  };
+  std::vector<InstanceDeformer> deformers_;  // one per material preset
+  // This frame's inputs; one set suffices, since the frame is done when submitFrame returns.
+  std::vector<gpu::InstanceRecord> records_;
+  std::vector<gpu::BoneMatrix> bones_;
+  std::vector<gpu::ModeBasis> basis_;
+  std::vector<Slot> slots_;
+};
+
+}  // namespace odeskin

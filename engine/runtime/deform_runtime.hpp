@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: MIT
+// The runtime API an engine drives every frame (issue 6 point 1), shared by CpuRuntime (here) and
+// VulkanRuntime (host/runtime): load a RuntimeAsset once, hold up to `capacity` instances, each with
+// its own time (or segment and local time), bones (the engine's, or interpolated from the asset's
+// key poses) and material preset; submitFrame() deforms every instance into one output array per
+// frame (instance k's vertices at k * V), with recomputed normals and per-instance bounding boxes.
+//
+// Frames and buffering: submitFrame() returns the frame's number (1, 2, ...). The outputs of the
+// last framesInFlight() frames stay readable: frame k's live in slot (k - 1) % framesInFlight(), so
+// a renderer can draw frame k while frame k + 1 is deformed. Readers wait for their frame.
+//
+// Threading: one thread at a time calls the methods of a runtime (they are not synchronised); the
+// runtime itself spreads work over its WorkerArena (options.threads). No method allocates after
+// create() except error messages; nothing throws.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "../core/result.hpp"
+#include "instance_outputs.hpp"
+#include "runtime_asset.hpp"
+#include "worker_arena.hpp"
+
+namespace odeskin {
+
+struct RuntimeOptions {
+  std::uint32_t capacity = 1;          // most instances per frame; every buffer is sized for it once
+  std::uint32_t frames_in_flight = 2;  // frames whose outputs stay readable (>= 1); Vulkan runs that many at once
+  bool normals = true;                 // recompute vertex normals every frame
+  unsigned threads = 0;                // host threads for preparing inputs (and the CPU backend's deformation); 0 = all
+};
+
+// Local time of one segment: segment s < segmentCount() from key s to s + 1, tau in [0, 1].
+struct SegmentTime {
+  std::uint32_t segment = 0;
+  double tau = 0.0;
+};
+
+struct InstanceState {
+  // Global time in key units, [0, segmentCount()]: plays segment floor(t) at tau = t - floor(t)
+  // (the end plays the last segment at tau = 1), as DeformPlayer::locate. Used when segment_time
+  // is empty. Looping or ping-pong is the engine's arithmetic (seconds / asset.segmentSeconds()).
+  double time = 0.0;
+  std::optional<SegmentTime> segment_time;
+  // Empty: bones interpolated from the asset's key poses at the instance's time (C1 key paths).
+  // Else boneCount() matrices, bind space -> pose space, from the engine's own animation
+  // (world placement included if it wants world-space output); copied by setInstance.
+  std::span<const gpu::BoneMatrix> bones;
+  std::uint32_t preset = 0;  // material preset, < asset.presetCount() (0: the asset's own materials)
+
+  // Builders, so call sites read InstanceState::atTime(t).withPreset(1) (brace-initialising some
+  // fields trips -Wmissing-field-initializers).
+  static InstanceState atTime(double t) {
+    InstanceState s;
+    s.time = t;
+    return s;
+  }
+  static InstanceState atSegment(std::uint32_t segment, double tau) {
+    InstanceState s;
+    s.segment_time = SegmentTime{segment, tau};
+    return s;
+  }
+  InstanceState withBones(std::span<const gpu::BoneMatrix> engine_bones) const {
+    InstanceState s = *this;
+    s.bones = engine_bones;
+    return s;
+  }
+  InstanceState withPreset(std::uint32_t material_preset) const {
+    InstanceState s = *this;
+    s.preset = material_preset;
+    return s;
+  }
+};
+
+// Host and device time of one frame, in seconds.
+struct FrameTimes {
+  double prepare_seconds = 0.0;  // host: every instance's segment, time basis and bones
+  double submit_seconds = 0.0;   // host: the whole submitFrame() call (prepare included)
+  // CPU backend: wall time of deforming, normals and bounds (inside submit_seconds). Vulkan: GPU
+  // time between the frame's timestamp queries (0 when the queue has no timestamps).
+  double deform_seconds = 0.0;
+};
+
+class DeformRuntime {
+ public:
+  virtual ~DeformRuntime() = default;
+  DeformRuntime(const DeformRuntime&) = delete;
+  DeformRuntime& operator=(const DeformRuntime&) = delete;
+
+  const RuntimeAsset& asset() const { return *asset_; }
+  const RuntimeOptions& options() const { return options_; }
+  std::uint32_t capacity() const { return options_.capacity; }
+  std::uint32_t framesInFlight() const { return options_.frames_in_flight; }
+  std::uint32_t instanceCount() const { return instance_count_; }
+  std::uint64_t lastFrame() const { return last_frame_; }
+  virtual std::string_view backendName() const = 0;
+
+  // Instances [0, count) take part in the next frames; new ones start at time 0, interpolated
+  // bones, preset 0. kInvalidArgument when count > capacity().
+  Status setInstanceCount(std::uint32_t count);
+  // Sets instance `index` for the next submitFrame(). kInvalidArgument, naming the instance and the
+  // problem, for an index >= instanceCount(), a non-finite or out-of-range time, segment or tau, a
+  // bones span that is neither empty nor boneCount() long or holds a non-finite entry, or a preset
+  // >= presetCount(). A rejected call leaves the instance as it was.
+  Status setInstance(std::uint32_t index, const InstanceState& state);
+
+  // Deforms every instance in its current state; returns the frame's number. Waits first for the
+  // frame that last used this frame's slot (framesInFlight() frames ago). Backend errors only.
+  Result<std::uint64_t> submitFrame();
+  // Waits for every submitted frame.
+  virtual Status wait() = 0;
+
+  // Outputs of `frame`, one of the last framesInFlight() submitted (kInvalidArgument otherwise,
+  // naming the frames held), for `instance` < that frame's instance count; each waits for the frame.
+  // `out` has exactly vertexCount() entries (kInvalidArgument otherwise).
+  Status readPositions(std::uint64_t frame, std::uint32_t instance, std::span<gpu::Float4> out);
+  // kInvalidArgument when options().normals is false.
+  Status readNormals(std::uint64_t frame, std::uint32_t instance, std::span<gpu::Float4> out);
+  // One box per instance of the frame: `out` has exactly that frame's instance count.
+  Status readBounds(std::uint64_t frame, std::span<InstanceBounds> out);
+  Result<FrameTimes> frameTimes(std::uint64_t frame);
+
+ protected:
+  // kInvalidArgument for frames_in_flight = 0 (other limits are the backends').
+  static Status checkOptions(const RuntimeOptions& options);
+  DeformRuntime(const RuntimeAsset& asset, const RuntimeOptions& options);
+  DeformRuntime(DeformRuntime&&) noexcept = default;
+  DeformRuntime& operator=(DeformRuntime&&) noexcept = default;
+
+  // Writes what instances [0, instanceCount()) play this frame: `records` (instanceCount()),
+  // `bones` (instanceCount() x B), `basis` (instanceCount() x basisEntries()), on the arena.
+  void prepareInputs(std::span<gpu::InstanceRecord> records, std::span<gpu::BoneMatrix> bones,
+                     std::span<gpu::ModeBasis> basis) const;
+  const WorkerArena& arena() const { return arena_; }
+
+  // Backends: deform instanceCount() instances into `slot`, preparing the inputs with
+  // prepareInputs, and store its host times. Frame bookkeeping is the base's.
+  virtual Status submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) = 0;
+  virtual Status waitSlot(std::uint32_t slot) = 0;
+  // Copies from the finished slot. Sizes and indices are checked already.
+  virtual Status copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) = 0;
+  virtual Status copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) = 0;
+  virtual Status copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) = 0;
+  // GPU seconds of the finished slot (Vulkan); the CPU backend's deform time is in its FrameTimes.
+  virtual double deviceSeconds(std::uint32_t slot) const = 0;
+
+  // The slot of `frame`, or kInvalidArgument naming the frames held; slotOf does not wait,
+  // heldSlot waits for the frame to finish (waitSlot).
+  Result<std::uint32_t> slotOf(std::uint64_t frame, const char* what) const;
+  Result<std::uint32_t> heldSlot(std::uint64_t frame, const char* what);
+
+ private:
+  struct Instance {
+    std::uint32_t segment = 0;
+    double tau = 0.0;
+    std::uint32_t preset = 0;
+    bool engine_bones = false;
+  };
+  struct Slot {
+    std::uint64_t frame = 0;  // 0: never used
+    std::uint32_t instance_count = 0;
+    FrameTimes times;
+  };
+  Result<std::uint32_t> checkRead(std::uint64_t frame, std::uint32_t instance, std::size_t out_size, const char* what);
+
+  const RuntimeAsset* asset_ = nullptr;
+  RuntimeOptions options_;
+  WorkerArena arena_;
+  std::uint32_t instance_count_ = 0;
+  std::uint64_t last_frame_ = 0;
+  std::vector<Instance> instances_;            // capacity
+  std::vector<gpu::BoneMatrix> engine_bones_;  // capacity x B: bones given by setInstance
+  std::vector<Slot> slots_;                    // frames_in_flight
+};
+
+}  // namespace odeskin

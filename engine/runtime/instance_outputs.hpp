@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// The per-instance outputs besides positions: vertex normals recomputed from the deformed
+// triangles, and the axis-aligned bounding box. CPU references of shaders/instance_normals.comp
+// and of the bounds reduction in shaders/instanced_deform.comp (same float operations, same order).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <span>
+
+#include <glm/vec3.hpp>
+
+#include "runtime_layout.hpp"
+
+namespace odeskin {
+
+// Why recomputed, not rotated: the analytic residual (series and remainders) changes the surface's
+// shape between keys, which the bones' rotation of rest normals cannot show. Each normal is the
+// area-weighted sum of its triangles' normals, sum cross(p[next] - p[i], p[prev] - p[i]) over the
+// vertex's corners, normalised; (0, 0, 0) where that sum is zero (no triangle, or degenerate ones).
+// A gather per vertex rather than a scatter per face: no float atomics, so the order of the sum is
+// fixed and the GPU and CPU results differ only by rounding.
+//   corner_offsets: V + 1, corners: corner_offsets[V] (RuntimeAsset::cornerOffsets / corners);
+//   positions, normals: V each (xyz; normals get w = 0).
+void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
+                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals);
+
+// Axis-aligned box of one instance's deformed vertices; empty (min = +inf, max = -inf) without any.
+struct InstanceBounds {
+  glm::vec3 min{std::numeric_limits<float>::infinity()};
+  glm::vec3 max{-std::numeric_limits<float>::infinity()};
+  bool empty() const { return !(min.x <= max.x); }
+};
+
+// Min and max of the xyz of `positions` (exact: no rounding is involved).
+InstanceBounds computeBounds(std::span<const gpu::Float4> positions);
+// Decodes the GPU's ordered keys (runtime_layout.h); untouched keys (no vertex) give an empty box.
+InstanceBounds decodeBounds(const gpu::BoundsKeys& keys);
+
+}  // namespace odeskin

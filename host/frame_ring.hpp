@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+// A ring of frames in flight, the one implementation of double buffering on the GPU side: each
+// slot owns a persistently-mapped per-frame input buffer, a command buffer, a fence and a timestamp
+// pair, so frame k+1's inputs are written while frame k runs and nothing is allocated per frame.
+// Users: ComputeDispatcher (GpuDeformer, GpuLbs) and host/runtime's VulkanRuntime.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "buffer.hpp"
+#include "device.hpp"
+#include "engine/core/result.hpp"
+#include "timestamp_queries.hpp"
+#include "vk_handle.hpp"
+
+namespace odeskin::vk {
+
+struct FrameRingDesc {
+  std::uint32_t frames_in_flight = 2;  // >= 1
+  VkDeviceSize input_bytes = 0;        // per-slot mapped input buffer; 0 for none
+};
+
+class FrameRing {
+ public:
+  // kInvalidArgument for frames_in_flight = 0; kDeviceError / kUnavailable from the driver.
+  static Result<FrameRing> create(const Device& device, const FrameRingDesc& desc);
+
+  FrameRing() = default;
+  FrameRing(FrameRing&&) noexcept = default;
+  FrameRing& operator=(FrameRing&& other) noexcept;
+  FrameRing(const FrameRing&) = delete;
+  FrameRing& operator=(const FrameRing&) = delete;
+  // Waits for in-flight frames: their command buffers and inputs must not die under the GPU.
+  ~FrameRing();
+
+  std::uint32_t slotCount() const { return static_cast<std::uint32_t>(slots_.size()); }
+  // The slot's input buffer (bind its slices once; its contents change every frame).
+  VkBuffer inputBuffer(std::uint32_t slot) const { return slots_[slot].inputs.handle(); }
+  // The slot's mapped input bytes (empty without inputs).
+  std::span<std::byte> inputs(std::uint32_t slot) const;
+
+  // Waits until the next slot's previous frame has finished and returns that slot; the caller
+  // fills inputs(slot), then beginRecording() and submit(). Slots are handed out 0, 1, ..., n-1, 0, ...
+  Result<std::uint32_t> beginFrame();
+  // Resets and begins the current slot's command buffer and writes its begin timestamp.
+  Result<VkCommandBuffer> beginRecording();
+  // Writes the end timestamp, ends the command buffer and submits it with the slot's fence.
+  // Host writes to the mapped (coherent) inputs become visible to the device at this submission.
+  Status submit();
+
+  // Waits for slot `slot`'s frame (nothing if none is pending) and reads its GPU time.
+  Status waitSlot(std::uint32_t slot);
+  // Waits for every submitted frame, oldest first.
+  Status waitAll();
+  // GPU seconds of `slot`'s finished frame, and of the most recently finished one (0 before any,
+  // or without timestamps).
+  double gpuSeconds(std::uint32_t slot) const { return slots_[slot].gpu_seconds; }
+  double lastGpuSeconds() const { return last_gpu_seconds_; }
+
+ private:
+  struct Slot {
+    Buffer inputs;
+    UniqueCommandBuffer cmd;
+    UniqueFence fence;
+    bool pending = false;
+    double gpu_seconds = 0.0;
+  };
+  void waitAllNoThrow() noexcept;
+
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  TimestampQueries timestamps_;
+  std::vector<Slot> slots_;
+  std::uint32_t next_ = 0;     // slot beginFrame hands out
+  std::uint32_t current_ = 0;  // slot being filled between beginFrame and submit
+  std::uint32_t last_submitted_ = 0;
+  double last_gpu_seconds_ = 0.0;
+};
+
+}  // namespace odeskin::vk

@@ -1,0 +1,303 @@
+// SPDX-License-Identifier: MIT
+#include "vulkan_runtime.hpp"
+
+#include <chrono>
+#include <cstring>
+#include <string>
+
+#include "host/compute_dispatcher.hpp"
+#include "shaders/instance_normals.spv.h"
+#include "shaders/instanced_deform.spv.h"
+#include "shaders/instanced_deform_shared.spv.h"
+
+namespace odeskin {
+namespace {
+
+template <typename T>
+std::span<const std::byte> bytesOf(std::span<const T> v) {
+  return std::as_bytes(v);
+}
+
+Status tooLarge(const char* what, VkDeviceSize bytes, const vk::Device& device) {
+  return unavailable("vulkan runtime: " + std::string(what) + " take " + std::to_string(bytes) +
+                     " bytes, more than maxStorageBufferRange (" +
+                     std::to_string(device.limits().maxStorageBufferRange) + " bytes) of " + device.name() +
+                     "; lower the capacity or split the instances over several runtimes");
+}
+
+// Every preset's rates back to back, in preset order (RuntimeAsset::ratesOffset's order).
+std::vector<gpu::Float4> allRates(const RuntimeAsset& asset) {
+  std::vector<gpu::Float4> rates;
+  for (std::uint32_t p = 0; p < asset.presetCount(); ++p) {
+    const auto& r = asset.packed(p).rates;
+    rates.insert(rates.end(), r.begin(), r.end());
+  }
+  return rates;
+}
+
+// Whether compute shaders on `device` have subgroup arithmetic (instanced_deform.comp reduces the
+// bounds with subgroupMin/Max; instanced_deform_shared.comp is the fallback).
+bool subgroupArithmetic(const vk::Device& device) {
+  if (device.properties().apiVersion < VK_API_VERSION_1_1) return false;
+  VkPhysicalDeviceSubgroupProperties subgroup{};
+  subgroup.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+  VkPhysicalDeviceProperties2 properties{};
+  properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+  properties.pNext = &subgroup;
+  vkGetPhysicalDeviceProperties2(device.physicalDevice(), &properties);
+  return (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
+         (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BASIC_BIT) != 0 &&
+         (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) != 0;
+}
+
+// One dispatch of `pipeline` with `push` over (x, y) workgroups, descriptor set `slot`.
+void dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, std::uint32_t slot, const void* push,
+              std::uint32_t push_bytes, std::uint32_t x, std::uint32_t y) {
+  VkDescriptorSet set = pipeline.set(slot);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0, nullptr);
+  vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);
+  vkCmdDispatch(cmd, x, y, 1);
+}
+
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                   VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
+  VkMemoryBarrier barrier{};
+  barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+  barrier.srcAccessMask = src_access;
+  barrier.dstAccessMask = dst_access;
+  vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+// kUnavailable, naming the limit, when `options` cannot run on `device` in one dispatch.
+Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, const RuntimeOptions& options) {
+  const VkPhysicalDeviceLimits& limits = device.limits();
+  const std::uint32_t v = asset.vertexCount();
+  const std::uint32_t groups_x = (v + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  if (options.capacity > limits.maxComputeWorkGroupCount[1]) {
+    return unavailable("vulkan runtime: capacity " + std::to_string(options.capacity) +
+                       " exceeds maxComputeWorkGroupCount[1] (" + std::to_string(limits.maxComputeWorkGroupCount[1]) +
+                       ") of " + device.name());
+  }
+  if (groups_x > limits.maxComputeWorkGroupCount[0]) {
+    return unavailable("vulkan runtime: " + std::to_string(v) + " vertices need " + std::to_string(groups_x) +
+                       " workgroups, more than maxComputeWorkGroupCount[0] of " + device.name());
+  }
+  const VkDeviceSize out_bytes = VkDeviceSize{options.capacity} * v * sizeof(gpu::Float4);
+  if (out_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's positions", out_bytes, device);
+  return okStatus();
+}
+
+}  // namespace
+
+Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const RuntimeAsset& asset,
+                                            const RuntimeOptions& options, bool allow_subgroups) {
+  ODESKIN_TRY(checkOptions(options));
+  ODESKIN_TRY(checkDeviceLimits(device, asset, options));
+  VulkanRuntime rt(asset, options);
+  rt.device_ = &device;
+  rt.reuse_stages_ = vk::outputReuseStages(device);
+  rt.groups_x_ = (asset.vertexCount() + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  rt.subgroup_bounds_ = allow_subgroups && subgroupArithmetic(device);
+  rt.records_.resize(options.capacity);
+  rt.bones_.resize(std::size_t{options.capacity} * asset.boneCount());
+  rt.basis_.resize(std::size_t{options.capacity} * asset.basisEntries());
+  ODESKIN_TRY(rt.uploadAsset());
+
+  // One frame's inputs in each ring slot: instance records, bones (and dual quaternions), basis.
+  vk::FrameInputLayout layout(device);
+  rt.records_offset_ = layout.add(ODESKIN_RT_BINDING_INSTANCES, rt.records_.size() * sizeof(gpu::InstanceRecord));
+  rt.palettes_ = vk::BonePaletteWriter::plan(layout, ODESKIN_RT_BINDING_BONES, ODESKIN_RT_BINDING_BONE_DUAL_QUATS,
+                                             rt.bones_.size(), asset.packed().skinning);
+  rt.basis_offset_ = layout.add(ODESKIN_RT_BINDING_MODE_BASIS, rt.basis_.size() * sizeof(gpu::ModeBasis));
+  ODESKIN_TRY(layout.checkLimits("vulkan runtime"));
+  ODESKIN_ASSIGN_OR_RETURN(rt.ring_, vk::FrameRing::create(device, vk::FrameRingDesc{options.frames_in_flight,
+                                                                                     layout.totalBytes()}));
+  ODESKIN_TRY(rt.createSlots());
+  ODESKIN_TRY(rt.createPipelines(layout));
+  return rt;
+}
+
+Status VulkanRuntime::uploadAsset() {
+  // Device-local, read every frame (mapped on lavapipe/ReBAR, staged elsewhere). RATES holds every
+  // preset's rates back to back (RuntimeAsset::ratesOffset).
+  const RuntimeAsset& a = asset();
+  const PackedDeformData& data = a.packed(0);
+  const std::vector<gpu::Float4> rates = allRates(a);
+  const std::pair<std::uint32_t, std::span<const std::byte>> arrays[] = {
+      {ODESKIN_BINDING_REST_POSITIONS, bytesOf(std::span(data.rest_positions))},
+      {ODESKIN_BINDING_VERTEX_BINDINGS, bytesOf(std::span(data.bindings))},
+      {ODESKIN_BINDING_SEGMENT_VERTICES, bytesOf(std::span(data.segment_vertices))},
+      {ODESKIN_BINDING_REMAINDERS, bytesOf(std::span(data.remainders))},
+      {ODESKIN_BINDING_CURVE_MATERIALS, bytesOf(std::span(data.curve_materials))},
+      {ODESKIN_BINDING_COEFFICIENTS, bytesOf(std::span(data.coefficients))},
+      {ODESKIN_BINDING_RATES, bytesOf(std::span(rates))},
+      {ODESKIN_BINDING_INFLUENCE_OFFSETS, bytesOf(std::span(data.influence_offsets))},
+      {ODESKIN_BINDING_INFLUENCES, bytesOf(std::span(data.influences))},
+  };
+  for (const auto& [binding, bytes] : arrays) {
+    ODESKIN_ASSIGN_OR_RETURN(vk::Buffer buffer, vk::createStorageBuffer(*device_, bytes));
+    deform_statics_.emplace_back(binding, std::move(buffer));
+  }
+  ODESKIN_ASSIGN_OR_RETURN(corner_offsets_, vk::createStorageBuffer(*device_, bytesOf(a.cornerOffsets())));
+  ODESKIN_ASSIGN_OR_RETURN(corners_, vk::createStorageBuffer(*device_, bytesOf(a.corners())));
+  return okStatus();
+}
+
+Status VulkanRuntime::createSlots() {
+  // Each slot's outputs: positions and normals (storage + vertex + copy source), bounds mapped.
+  const VkDeviceSize out_bytes = VkDeviceSize{capacity()} * asset().vertexCount() * sizeof(gpu::Float4);
+  const VkDeviceSize bytes = out_bytes < 16 ? 16 : out_bytes;
+  const VkDeviceSize bounds_bytes = std::max<VkDeviceSize>(VkDeviceSize{capacity()} * sizeof(gpu::BoundsKeys), 32);
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    Slot slot;
+    ODESKIN_ASSIGN_OR_RETURN(slot.positions, vk::Buffer::create(*device_, bytes, vk::kOutputBufferUsage));
+    if (options().normals) {
+      ODESKIN_ASSIGN_OR_RETURN(slot.normals, vk::Buffer::create(*device_, bytes, vk::kOutputBufferUsage));
+    }
+    ODESKIN_ASSIGN_OR_RETURN(slot.bounds, vk::Buffer::create(*device_, bounds_bytes,
+                                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                             vk::MemoryUse::kHostVisible));
+    slots_.push_back(std::move(slot));
+  }
+  return okStatus();
+}
+
+Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
+  // One descriptor set per slot, written once: nothing is rebound per frame.
+  std::vector<std::uint32_t> deform_bindings = {ODESKIN_RT_BINDING_OUT_POSITIONS, ODESKIN_RT_BINDING_BOUNDS};
+  for (const auto& [binding, buffer] : deform_statics_) deform_bindings.push_back(binding);
+  for (const vk::FrameBinding& b : layout.bindings()) deform_bindings.push_back(b.binding);
+  vk::ComputePipelineDesc deform_desc;
+  deform_desc.spirv = subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
+                                       : std::span<const std::uint32_t>(kInstancedDeformSharedSpirv);
+  deform_desc.storage_bindings = deform_bindings;
+  deform_desc.push_constant_bytes = sizeof(gpu::InstancedPushConstants);
+  deform_desc.descriptor_set_count = framesInFlight();
+  ODESKIN_ASSIGN_OR_RETURN(deform_, vk::ComputePipeline::create(*device_, deform_desc));
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    for (const auto& [binding, buffer] : deform_statics_) deform_.bindBuffer(s, binding, buffer.handle());
+    for (const vk::FrameBinding& b : layout.bindings()) deform_.bindBuffer(s, b.binding, ring_.inputBuffer(s), b.offset, b.size);
+    deform_.bindBuffer(s, ODESKIN_RT_BINDING_OUT_POSITIONS, slots_[s].positions.handle());
+    deform_.bindBuffer(s, ODESKIN_RT_BINDING_BOUNDS, slots_[s].bounds.handle());
+  }
+  if (!options().normals) return okStatus();
+
+  const std::uint32_t normal_bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
+                                           ODESKIN_RT_NORMALS_BINDING_CORNERS, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS};
+  vk::ComputePipelineDesc normals_desc;
+  normals_desc.spirv = kInstanceNormalsSpirv;
+  normals_desc.storage_bindings = normal_bindings;
+  normals_desc.push_constant_bytes = sizeof(gpu::NormalsPushConstants);
+  normals_desc.descriptor_set_count = framesInFlight();
+  ODESKIN_ASSIGN_OR_RETURN(normals_, vk::ComputePipeline::create(*device_, normals_desc));
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_POSITIONS, slots_[s].positions.handle());
+    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, corner_offsets_.handle());
+    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNERS, corners_.handle());
+    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS, slots_[s].normals.handle());
+  }
+  return okStatus();
+}
+
+Status VulkanRuntime::submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) {
+  // Inputs are prepared before waiting for the slot, so this overlaps the frames still running.
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t bone_values = std::size_t{instance_count} * asset().boneCount();
+  const std::size_t basis_values = std::size_t{instance_count} * asset().basisEntries();
+  prepareInputs(std::span(records_).first(instance_count), std::span(bones_).first(bone_values),
+                std::span(basis_).first(basis_values));
+  times.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t ring_slot, ring_.beginFrame());
+  if (ring_slot != slot) {
+    return internalError("vulkan runtime: frame slot " + std::to_string(slot) + " but ring slot " +
+                         std::to_string(ring_slot));
+  }
+  // Plain copies into coherent mapped memory; the queue submit publishes them to the device.
+  const std::span<std::byte> inputs = ring_.inputs(slot);
+  vk::writeSlice(inputs, records_offset_, std::span<const gpu::InstanceRecord>(records_).first(instance_count));
+  palettes_.write(inputs, std::span<const gpu::BoneMatrix>(bones_).first(bone_values));
+  vk::writeSlice(inputs, basis_offset_, std::span<const gpu::ModeBasis>(basis_).first(basis_values));
+  ODESKIN_ASSIGN_OR_RETURN(VkCommandBuffer cmd, ring_.beginRecording());
+  record(cmd, slot, instance_count);
+  return ring_.submit();
+}
+
+void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const {
+  const std::uint32_t v = asset().vertexCount();
+  // The slot's previous frame may still be read (a renderer's vertex fetch, a readback copy) by
+  // work submitted after it: finish those reads before this frame writes over them.
+  memoryBarrier(cmd, reuse_stages_, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  if (instance_count == 0) return;
+  // Every key 0xFFFFFFFF: above every float's key, so the first atomicMin of each workgroup wins.
+  vkCmdFillBuffer(cmd, slots_[slot].bounds.handle(), 0, VkDeviceSize{instance_count} * sizeof(gpu::BoundsKeys), 0xFFFFFFFFu);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  if (v > 0) {
+    const PackedDeformData& d = asset().packed(0);
+    gpu::InstancedPushConstants pc{};
+    pc.vertex_count = v;
+    pc.instance_count = instance_count;
+    pc.modes = d.modes;
+    pc.curve_count = d.curve_count;
+    pc.material_count = d.material_count;
+    pc.bone_count = d.bone_count;
+    pc.influence_layout = d.influence_layout;
+    pc.residual_space = d.residual_space == ResidualSpace::kBind ? ODESKIN_RESIDUAL_BIND : ODESKIN_RESIDUAL_POSED;
+    pc.skinning = d.skinning == SkinningMode::kDualQuaternion ? ODESKIN_SKINNING_DUAL_QUATERNION : ODESKIN_SKINNING_LINEAR;
+    pc.basis_entries = asset().basisEntries();
+    dispatch(cmd, deform_, slot, &pc, sizeof(pc), groups_x_, instance_count);
+    if (options().normals) {
+      // Normals read neighbours' positions: every position of the frame first.
+      memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+      const gpu::NormalsPushConstants npc{v, instance_count, 0, 0};
+      dispatch(cmd, normals_, slot, &npc, sizeof(npc), groups_x_, instance_count);
+    }
+  }
+  // A fence alone does not make device writes visible to the host (mapped bounds and outputs).
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                VK_ACCESS_HOST_READ_BIT);
+}
+
+Result<RuntimeFrameBuffers> VulkanRuntime::frameBuffers(std::uint64_t frame) const {
+  ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, slotOf(frame, "frameBuffers"));
+  RuntimeFrameBuffers b;
+  b.positions = slots_[slot].positions.handle();
+  b.normals = options().normals ? slots_[slot].normals.handle() : VK_NULL_HANDLE;
+  b.instance_stride = VkDeviceSize{asset().vertexCount()} * sizeof(gpu::Float4);
+  return b;
+}
+
+Result<RuntimeOutputBarriers> VulkanRuntime::outputBarriers(std::uint64_t frame) const {
+  ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, slotOf(frame, "outputBarriers"));
+  RuntimeOutputBarriers b;
+  b.barriers[b.count++] = vertexInputBarrier(slots_[slot].positions.handle());
+  if (options().normals) b.barriers[b.count++] = vertexInputBarrier(slots_[slot].normals.handle());
+  return b;
+}
+
+Status VulkanRuntime::copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
+  const VkDeviceSize offset = VkDeviceSize{instance} * asset().vertexCount() * sizeof(gpu::Float4);
+  return vk::downloadSpan(*device_, slots_[slot].positions, out, offset);
+}
+
+Status VulkanRuntime::copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
+  const VkDeviceSize offset = VkDeviceSize{instance} * asset().vertexCount() * sizeof(gpu::Float4);
+  return vk::downloadSpan(*device_, slots_[slot].normals, out, offset);
+}
+
+Status VulkanRuntime::copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) {
+  const std::byte* keys = slots_[slot].bounds.mapped();
+  if (keys == nullptr) return internalError("vulkan runtime: the bounds buffer is not mapped");
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    gpu::BoundsKeys entry;
+    std::memcpy(&entry, keys + k * sizeof(gpu::BoundsKeys), sizeof(entry));
+    out[k] = decodeBounds(entry);
+  }
+  return okStatus();
+}
+
+}  // namespace odeskin

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: MIT
+// The runtime on Vulkan compute (DeformRuntime's API, issue 6 point 1). The asset is uploaded once;
+// each submitFrame() writes every instance's inputs (InstanceRecord, bones, time basis; runtime_layout.h)
+// into the next slot of a FrameRing and records ONE command buffer: reset the slot's bounds, ONE
+// dispatch of instanced_deform.comp over (ceil(V / 64), instances) workgroups that deforms all
+// instances into the slot's output buffer (instance k at k * V) and reduces their boxes, then one
+// dispatch of instance_normals.comp. framesInFlight() slots (default 2) each own their outputs, so
+// the host prepares frame k+1 and a renderer draws frame k while the GPU deforms. No allocation
+// per frame (readbacks from non-mappable memory stage through a temporary buffer, on request only).
+// Reference: CpuRuntime, instance for instance (tests/runtime/vulkan_runtime_test.cpp).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "engine/runtime/deform_runtime.hpp"
+#include "host/buffer.hpp"
+#include "host/compute_pipeline.hpp"
+#include "host/device.hpp"
+#include "host/frame_inputs.hpp"
+#include "host/frame_ring.hpp"
+#include "host/output_barrier.hpp"
+
+namespace odeskin {
+
+// What a renderer needs to draw a frame's instances straight from the deformer's buffers.
+struct RuntimeFrameBuffers {
+  VkBuffer positions = VK_NULL_HANDLE;  // Float4 xyz1 per vertex, instance k at k * instance_stride bytes
+  VkBuffer normals = VK_NULL_HANDLE;    // Float4 xyz0 per vertex, same layout; null with normals off
+  VkDeviceSize instance_stride = 0;     // vertexCount() * 16 bytes
+};
+
+// The barriers a renderer records (same queue, after submitFrame's submission, before the draws)
+// so vertex fetch sees the frame's compute writes: one per output buffer.
+struct RuntimeOutputBarriers {
+  VkPipelineStageFlags src_stage = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  VkPipelineStageFlags dst_stage = VK_PIPELINE_STAGE_VERTEX_INPUT_BIT;
+  std::array<VkBufferMemoryBarrier, 2> barriers{};
+  std::uint32_t count = 0;
+
+  void record(VkCommandBuffer cmd) const {
+    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, count, barriers.data(), 0, nullptr);
+  }
+};
+
+class VulkanRuntime final : public DeformRuntime {
+ public:
+  // `device` and `asset` must outlive the runtime and stay where they are. kInvalidArgument for
+  // frames_in_flight = 0; kUnavailable, naming the limit, when capacity exceeds
+  // maxComputeWorkGroupCount[1], ceil(V / 64) exceeds maxComputeWorkGroupCount[0], or one frame's
+  // outputs (capacity x V x 16 bytes) or inputs exceed maxStorageBufferRange (lavapipe: 128 MiB,
+  // i.e. about 8.4 million instance vertices per runtime; use several runtimes beyond);
+  // kDeviceError from the driver. `allow_subgroups` = false forces the shared-memory bounds
+  // reduction even where subgroup arithmetic exists (tests, benchmarks).
+  static Result<VulkanRuntime> create(const vk::Device& device, const RuntimeAsset& asset,
+                                      const RuntimeOptions& options, bool allow_subgroups = true);
+
+  VulkanRuntime(VulkanRuntime&&) noexcept = default;
+  // Not assignable: the old runtime's frames would have to finish first; hold runtimes by value
+  // or pointer instead.
+  VulkanRuntime& operator=(VulkanRuntime&&) = delete;
+  ~VulkanRuntime() override = default;
+
+  std::string_view backendName() const override { return "vulkan"; }
+  Status wait() override { return ring_.waitAll(); }
+
+  // `frame`'s buffers, without waiting (kInvalidArgument for a frame not held). Valid until its
+  // slot is reused, framesInFlight() submissions later.
+  Result<RuntimeFrameBuffers> frameBuffers(std::uint64_t frame) const;
+  Result<RuntimeOutputBarriers> outputBarriers(std::uint64_t frame) const;
+  // True when the bounds are reduced with subgroup operations (instanced_deform.comp), false on
+  // devices without subgroup arithmetic in compute (instanced_deform_shared.comp).
+  bool subgroupBounds() const { return subgroup_bounds_; }
+
+ protected:
+  Status submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) override;
+  Status waitSlot(std::uint32_t slot) override { return ring_.waitSlot(slot); }
+  Status copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) override;
+  Status copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) override;
+  Status copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) override;
+  double deviceSeconds(std::uint32_t slot) const override { return ring_.gpuSeconds(slot); }
+
+ private:
+  VulkanRuntime(const RuntimeAsset& asset, const RuntimeOptions& options) : DeformRuntime(asset, options) {}
+  Status uploadAsset();
+  Status createSlots();
+  Status createPipelines(const vk::FrameInputLayout& layout);
+  void record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const;
+
+  struct Slot {
+    vk::Buffer positions;  // capacity x V Float4
+    vk::Buffer normals;    // likewise, when normals are on
+    vk::Buffer bounds;     // capacity BoundsKeys, host-visible
+  };
+  const vk::Device* device_ = nullptr;
+  VkPipelineStageFlags reuse_stages_ = 0;
+  std::uint32_t groups_x_ = 0;  // ceil(V / 64)
+  bool subgroup_bounds_ = false;
+  // Host copies of one frame's inputs, prepared before waiting for the slot, then copied in.
+  std::vector<gpu::InstanceRecord> records_;
+  std::vector<gpu::BoneMatrix> bones_;
+  std::vector<gpu::ModeBasis> basis_;
+  VkDeviceSize records_offset_ = 0;
+  VkDeviceSize basis_offset_ = 0;
+  vk::BonePaletteWriter palettes_;
+  std::vector<std::pair<std::uint32_t, vk::Buffer>> deform_statics_;  // (binding, asset array), uploaded once
+  vk::Buffer corner_offsets_;  // normals: RuntimeAsset::cornerOffsets
+  vk::Buffer corners_;         // normals: RuntimeAsset::corners
+  std::vector<Slot> slots_;
+  vk::ComputePipeline deform_;
+  vk::ComputePipeline normals_;
+  // Last, so it is destroyed first: it waits for in-flight frames before anything they use goes.
+  vk::FrameRing ring_;
+};
+
+}  // namespace odeskin

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+#include "single_mesh_dispatch.hpp"
+
+#include <vector>
+
+namespace odeskin {
+
+Result<SingleMeshDispatch> SingleMeshDispatch::create(const vk::Device& device, const SingleMeshDispatchDesc& desc) {
+  SingleMeshDispatch d;
+  d.device_ = &device;
+  d.name_ = desc.name;
+  d.vertex_count_ = desc.vertex_count;
+  // The output doubles as a vertex buffer and a copy source (readback on non-mappable memory).
+  const VkDeviceSize out_bytes = static_cast<VkDeviceSize>(desc.vertex_count) * sizeof(gpu::Float4);
+  ODESKIN_ASSIGN_OR_RETURN(d.out_positions_,
+                           vk::Buffer::create(device, out_bytes < 16 ? 16 : out_bytes, vk::kOutputBufferUsage));
+  std::vector<vk::StaticBinding> statics(desc.statics.begin(), desc.statics.end());
+  statics.push_back({ODESKIN_BINDING_OUT_POSITIONS, d.out_positions_.handle()});
+
+  // Per-frame buffer: bones, the basis (when read), then the bones' dual quaternions.
+  vk::FrameInputLayout layout(device);
+  d.palettes_ = vk::BonePaletteWriter::plan(layout, ODESKIN_BINDING_BONES, ODESKIN_BINDING_BONE_DUAL_QUATS,
+                                            desc.bone_count, desc.skinning);
+  if (desc.basis_count > 0) d.basis_offset_ = layout.add(ODESKIN_BINDING_MODE_BASIS, desc.basis_count * sizeof(gpu::ModeBasis));
+  ODESKIN_TRY(layout.checkLimits(desc.name.c_str()));
+
+  vk::ComputeDispatcherDesc dispatcher;
+  dispatcher.spirv = desc.spirv;
+  dispatcher.static_bindings = statics;
+  dispatcher.frame_bindings = layout.bindings();
+  dispatcher.frame_bytes = layout.totalBytes();
+  dispatcher.push_constant_bytes = desc.push_constant_bytes;
+  dispatcher.frames_in_flight = 2;
+  ODESKIN_ASSIGN_OR_RETURN(d.dispatcher_, vk::ComputeDispatcher::create(device, dispatcher));
+  return d;
+}
+
+Status SingleMeshDispatch::submit(std::span<const gpu::BoneMatrix> bones, std::span<const gpu::ModeBasis> basis,
+                                  const void* push) {
+  if (vertex_count_ == 0) return okStatus();
+  ODESKIN_ASSIGN_OR_RETURN(std::span<std::byte> inputs, dispatcher_.beginFrame());
+  // Plain copies into coherent mapped memory; the queue submit publishes them to the device.
+  palettes_.write(inputs, bones);
+  vk::writeSlice(inputs, basis_offset_, basis);
+  const std::uint32_t groups = (vertex_count_ + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  return dispatcher_.submitFrame(push, groups);
+}
+
+Status SingleMeshDispatch::readPositions(std::span<gpu::Float4> out_positions) {
+  if (out_positions.size() != vertex_count_) {
+    return invalidArgument(name_ + ": out_positions has " + std::to_string(out_positions.size()) +
+                           " entries, expected " + std::to_string(vertex_count_));
+  }
+  ODESKIN_TRY(wait());
+  return vk::downloadSpan(*device_, out_positions_, out_positions);
+}
+
+OutputBarrier SingleMeshDispatch::outputBarrier() const {
+  OutputBarrier result;
+  result.barrier = vertexInputBarrier(out_positions_.handle());
+  return result;
+}
+
+}  // namespace odeskin

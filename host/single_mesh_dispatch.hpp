@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// What GpuDeformer and GpuLbs share: one mesh's output buffer (storage, vertex and copy source),
+// a ComputeDispatcher whose per-frame inputs are a bone palette and optionally a time basis
+// (BonePaletteWriter), and submit / wait / readPositions. The two classes keep their own checks,
+// uploads and push constants.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include <vulkan/vulkan.h>
+
+#include "buffer.hpp"
+#include "compute_dispatcher.hpp"
+#include "device.hpp"
+#include "engine/core/result.hpp"
+#include "engine/kernels/packed_deform.hpp"
+#include "frame_inputs.hpp"
+#include "output_barrier.hpp"
+
+namespace odeskin {
+
+struct SingleMeshDispatchDesc {
+  std::string name;                             // "fourier deform gpu": prefixes every message
+  std::span<const std::uint32_t> spirv;         // gpu_layout.h bindings
+  std::uint32_t vertex_count = 0;
+  std::uint32_t bone_count = 0;
+  SkinningMode skinning = SkinningMode::kLinear;
+  std::size_t basis_count = 0;                  // 0: the shader reads no time basis
+  std::span<const vk::StaticBinding> statics;   // uploaded arrays; the output is added here
+  std::uint32_t push_constant_bytes = 0;
+};
+
+class SingleMeshDispatch {
+ public:
+  // `device` must outlive the object and stay where it is. kUnavailable when a per-frame slice
+  // exceeds maxStorageBufferRange; kDeviceError from the driver.
+  static Result<SingleMeshDispatch> create(const vk::Device& device, const SingleMeshDispatchDesc& desc);
+
+  // Writes `bones` and `basis` (sizes checked by the caller) into the next frame slot, waiting for
+  // the frame that used it last, and submits ceil(V / 64) workgroups with `push`. V = 0: nothing.
+  Status submit(std::span<const gpu::BoneMatrix> bones, std::span<const gpu::ModeBasis> basis, const void* push);
+  Status wait() { return dispatcher_.wait(); }
+  // kInvalidArgument when `out_positions` is not vertex_count long; waits for submitted frames.
+  Status readPositions(std::span<gpu::Float4> out_positions);
+
+  VkBuffer outputBuffer() const { return out_positions_.handle(); }
+  OutputBarrier outputBarrier() const;
+  double lastGpuSeconds() const { return dispatcher_.lastGpuSeconds(); }
+  std::uint32_t vertexCount() const { return vertex_count_; }
+
+ private:
+  const vk::Device* device_ = nullptr;
+  std::string name_;
+  std::uint32_t vertex_count_ = 0;
+  VkDeviceSize basis_offset_ = 0;
+  vk::BonePaletteWriter palettes_;
+  vk::Buffer out_positions_;
+  vk::ComputeDispatcher dispatcher_;  // last: destroyed first, after waiting for its frames
+};
+
+}  // namespace odeskin

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+// Vertex normals of every instance, recomputed from the deformed triangles after
+// instanced_deform.comp: n_i = normalize(sum over i's corners of cross(p[next] - p[i], p[prev] - p[i])),
+// the area-weighted sum of the incident triangles' normals, (0, 0, 0) where it vanishes. A gather
+// per vertex (RuntimeAsset's corner lists), so no float atomics and a fixed summation order.
+// Reference: computeVertexNormals in engine/runtime/instance_outputs.cpp (same float operations,
+// same order), which the CPU runtime backend runs per instance.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "../engine/runtime/runtime_layout.h"
+
+layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
+
+layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_POSITIONS) readonly buffer Positions { Float4 positions[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS) readonly buffer CornerOffsets { uint corner_offsets[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNERS) readonly buffer Corners { Corner corners[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS) writeonly buffer OutNormals { Float4 out_normals[]; };
+
+layout(push_constant) uniform Push { NormalsPushConstants pc; };
+
+vec3 xyz(Float4 f) { return vec3(f.x, f.y, f.z); }
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.vertex_count) return;
+  uint base = gl_WorkGroupID.y * pc.vertex_count;  // instance y's vertices
+  vec3 p = xyz(positions[base + i]);
+  vec3 n = vec3(0.0);
+  for (uint k = corner_offsets[i]; k < corner_offsets[i + 1u]; ++k) {
+    Corner c = corners[k];
+    n += cross(xyz(positions[base + c.next]) - p, xyz(positions[base + c.prev]) - p);
+  }
+  float len = length(n);
+  n = len > 0.0 ? n / len : vec3(0.0);
+  out_normals[base + i] = Float4(n.x, n.y, n.z, 0.0);
+}

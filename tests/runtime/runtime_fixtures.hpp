@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: MIT
+// Fitted assets and double-precision references for the runtime tests: the cylinder with its libigl
+// rig (3 segments, 420 vertices, fast) and the cat (9 segments, 7207 vertices, automatic rig), each
+// fitted once per test program, with two material presets besides the asset's own.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../pipeline/dataset_fixtures.hpp"
+#include "engine/offline/deform_player.hpp"
+#include "engine/offline/residual_fit.hpp"
+#include "engine/pipeline/fit_pipeline.hpp"
+#include "engine/runtime/runtime_asset.hpp"
+
+namespace odeskin::testing {
+
+// A preset with a lighter, stiffer skin, so each preset plays differently.
+inline MaterialPreset springyPreset() { return MaterialPreset{"springy", {Material{200.0, 20.0, 1e4, 1e-3}}}; }
+
+inline RuntimeAssetOptions presetOptions() {
+  RuntimeAssetOptions options;
+  options.presets = {staticPreset(), springyPreset()};
+  return options;
+}
+
+inline DeformAsset fitOrDie(const Result<ExampleSet>& examples, const PipelineOptions& options) {
+  EXPECT_TRUE(examples.ok()) << examples.status().toString();
+  if (!examples.ok()) return DeformAsset{};
+  Result<PipelineResult> fitted = runFitPipeline(*examples, options);
+  EXPECT_TRUE(fitted.ok()) << fitted.status().toString();
+  return fitted.ok() ? std::move(fitted->asset) : DeformAsset{};
+}
+
+// Fitted once: the cylinder with its given rig and the skin material.
+inline const DeformAsset& cylinderAsset(SkinningMode skinning = SkinningMode::kLinear) {
+  static std::unique_ptr<DeformAsset> assets[2];
+  std::unique_ptr<DeformAsset>& slot = assets[skinning == SkinningMode::kLinear ? 0 : 1];
+  if (!slot) {
+    PipelineOptions options;
+    options.material = skinMaterial();
+    options.skinning = skinning;
+    slot = std::make_unique<DeformAsset>(fitOrDie(cylinderWithRig(true, true), options));
+  }
+  return *slot;
+}
+
+inline const DeformAsset& catAsset() {
+  static std::unique_ptr<DeformAsset> asset;
+  if (!asset) {
+    const auto paths = catPoses(10);
+    PipelineOptions options;
+    options.material = skinMaterial();
+    asset = std::make_unique<DeformAsset>(fitOrDie(readObjSequence(paths), options));
+  }
+  return *asset;
+}
+
+// The double-precision reference of one instance: preset `preset` of `runtime_asset` at (segment,
+// tau), with `bones` from the engine (rounded float matrices, as the runtime gets them) or, when
+// empty, the asset's key paths in double.
+inline std::vector<Vec3> referencePositions(const RuntimeAsset& runtime_asset, std::uint32_t preset,
+                                            std::uint32_t segment, double tau,
+                                            std::span<const gpu::BoneMatrix> bones = {}) {
+  const DeformAsset& source = runtime_asset.source();
+  DeformAsset variant;
+  if (preset > 0) {
+    MaterialPreset p = presetOptions().presets[preset - 1];
+    Result<DeformAsset> made = assetWithPreset(source, p);
+    EXPECT_TRUE(made.ok()) << made.status().toString();
+    variant = std::move(made).value();
+  }
+  const DeformAsset& played = preset == 0 ? source : variant;
+  Result<DeformPlayer> player = DeformPlayer::create(played);
+  EXPECT_TRUE(player.ok());
+  std::vector<Vec3> out(played.vertexCount());
+  std::vector<ModeBasisValue> basis(player->basisSize());
+  std::vector<BoneTransform> matrices(played.bone_count);
+  player->basisAt(tau, basis);
+  if (bones.empty()) {
+    player->bonesAt(played, segment, tau, matrices);
+  } else {
+    for (std::size_t b = 0; b < matrices.size(); ++b) {
+      const gpu::Float4 rows[3] = {bones[b].row0, bones[b].row1, bones[b].row2};
+      for (int r = 0; r < 3; ++r) {
+        matrices[b][0][r] = rows[r].x;
+        matrices[b][1][r] = rows[r].y;
+        matrices[b][2][r] = rows[r].z;
+        matrices[b][3][r] = rows[r].w;
+      }
+    }
+  }
+  EXPECT_TRUE(referenceJob(played, segment, basis, matrices, out).run().ok());
+  return out;
+}
+
+// Max |a - b| over the vertices, and the vertex where it occurs.
+struct WorstGap {
+  double gap = 0.0;
+  std::size_t vertex = 0;
+};
+
+inline WorstGap worstGap(std::span<const Vec3> expected, std::span<const gpu::Float4> actual) {
+  WorstGap w;
+  for (std::size_t i = 0; i < expected.size() && i < actual.size(); ++i) {
+    const double d = glm::length(Vec3(actual[i].x, actual[i].y, actual[i].z) - expected[i]);
+    if (!(d <= w.gap)) w = {d, i};
+  }
+  return w;
+}
+
+inline WorstGap worstGap(std::span<const gpu::Float4> expected, std::span<const gpu::Float4> actual) {
+  WorstGap w;
+  for (std::size_t i = 0; i < expected.size() && i < actual.size(); ++i) {
+    const double d = std::max({std::fabs(double{expected[i].x} - actual[i].x), std::fabs(double{expected[i].y} - actual[i].y),
+                               std::fabs(double{expected[i].z} - actual[i].z), std::fabs(double{expected[i].w} - actual[i].w)});
+    if (!(d <= w.gap)) w = {d, i};
+  }
+  return w;
+}
+
+// A rigid world placement (rotation about y, then a translation) composed after `bones`: what an
+// engine hands over when it wants world-space output.
+inline std::vector<gpu::BoneMatrix> placed(std::span<const gpu::BoneMatrix> bones, double angle, const Vec3& offset) {
+  const glm::dmat3 rotation(std::cos(angle), 0.0, -std::sin(angle), 0.0, 1.0, 0.0, std::sin(angle), 0.0, std::cos(angle));
+  std::vector<gpu::BoneMatrix> out(bones.size());
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    const gpu::Float4 rows[3] = {bones[b].row0, bones[b].row1, bones[b].row2};
+    gpu::Float4 placed_rows[3];
+    for (int r = 0; r < 3; ++r) {
+      double values[4];
+      for (int c = 0; c < 4; ++c) {
+        double v = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const gpu::Float4& row = rows[k];
+          const double m = c == 0 ? row.x : c == 1 ? row.y : c == 2 ? row.z : row.w;
+          v += rotation[k][r] * m;
+        }
+        values[c] = v + (c == 3 ? offset[r] : 0.0);
+      }
+      placed_rows[r] = gpu::Float4{static_cast<float>(values[0]), static_cast<float>(values[1]),
+                                   static_cast<float>(values[2]), static_cast<float>(values[3])};
+    }
+    out[b] = gpu::BoneMatrix{placed_rows[0], placed_rows[1], placed_rows[2]};
+  }
+  return out;
+}
+
+}  // namespace odeskin::testing

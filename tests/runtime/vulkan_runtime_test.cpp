@@ -1,0 +1,259 @@
+// SPDX-License-Identifier: MIT
+// VulkanRuntime against CpuRuntime (the instanced shaders' reference) under the validation layer:
+// positions within 1e-5 of the bounding box's longest side (both float32 in the same order of
+// operations; the gap is the GPU's cos/sin and fused multiply-adds), normals within 1e-3 (unit
+// vectors rebuilt from those positions: short edges amplify the positions' gap), bounds exactly the
+// min and max of the GPU's own positions. Also double buffering, instance counts 0, 1 and many,
+// and bad input.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/runtime/cpu_runtime.hpp"
+#include "host/gpu_test_support.hpp"
+#include "host/runtime/vulkan_runtime.hpp"
+#include "runtime_fixtures.hpp"
+
+namespace odeskin {
+namespace {
+
+using testing::GpuTest;
+using testing::presetOptions;
+using testing::worstGap;
+
+constexpr double kPositionTolerance = 1e-5;  // x the longest box side
+constexpr double kNormalTolerance = 1e-3;    // absolute, on unit normals
+
+RuntimeAsset makeAsset(const DeformAsset& asset) {
+  Result<RuntimeAsset> r = RuntimeAsset::create(asset, presetOptions());
+  EXPECT_TRUE(r.ok()) << r.status().toString();
+  return std::move(r).value();
+}
+
+RuntimeOptions withCapacity(std::uint32_t capacity) {
+  RuntimeOptions options;
+  options.capacity = capacity;
+  return options;
+}
+
+// The same instance states on both backends.
+void setBoth(DeformRuntime& a, DeformRuntime& b, std::uint32_t index, const InstanceState& state) {
+  ASSERT_TRUE(a.setInstance(index, state).ok());
+  ASSERT_TRUE(b.setInstance(index, state).ok());
+}
+
+std::vector<gpu::Float4> read(DeformRuntime& rt, std::uint64_t frame, std::uint32_t instance, bool normals = false) {
+  std::vector<gpu::Float4> out(rt.asset().vertexCount());
+  const Status status = normals ? rt.readNormals(frame, instance, out) : rt.readPositions(frame, instance, out);
+  EXPECT_TRUE(status.ok()) << status.toString();
+  return out;
+}
+
+InstanceBounds boxOf(std::span<const gpu::Float4> positions) {
+  InstanceBounds b;
+  for (const gpu::Float4& p : positions) {
+    b.min = glm::min(b.min, glm::vec3(p.x, p.y, p.z));
+    b.max = glm::max(b.max, glm::vec3(p.x, p.y, p.z));
+  }
+  return b;
+}
+
+// Frame `gpu_frame` of `gpu` against frame `cpu_frame` of `cpu`, instance by instance.
+void expectSameFrame(DeformRuntime& cpu, std::uint64_t cpu_frame, DeformRuntime& gpu, std::uint64_t gpu_frame,
+                     std::uint32_t count, const std::string& what) {
+  const double box = longestBoxSide(cpu.asset().source().rest_positions);
+  std::vector<InstanceBounds> gpu_bounds(count), cpu_bounds(count);
+  ASSERT_TRUE(gpu.readBounds(gpu_frame, gpu_bounds).ok());
+  ASSERT_TRUE(cpu.readBounds(cpu_frame, cpu_bounds).ok());
+  double worst_position = 0.0, worst_normal = 0.0;
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const auto expected = read(cpu, cpu_frame, k);
+    const auto actual = read(gpu, gpu_frame, k);
+    const auto gap = worstGap(expected, actual);
+    EXPECT_LT(gap.gap / box, kPositionTolerance) << what << " instance " << k << ": worst vertex " << gap.vertex;
+    worst_position = std::max(worst_position, gap.gap / box);
+    if (gpu.options().normals) {
+      const auto normal_gap = worstGap(read(cpu, cpu_frame, k, true), read(gpu, gpu_frame, k, true));
+      EXPECT_LT(normal_gap.gap, kNormalTolerance) << what << " instance " << k << ": worst normal " << normal_gap.vertex;
+      worst_normal = std::max(worst_normal, normal_gap.gap);
+    }
+    // The GPU's reduction gives exactly the min and max of what it wrote.
+    const InstanceBounds own = boxOf(actual);
+    EXPECT_EQ(gpu_bounds[k].min, own.min) << what << " instance " << k;
+    EXPECT_EQ(gpu_bounds[k].max, own.max) << what << " instance " << k;
+    EXPECT_LT(glm::length(glm::dvec3(gpu_bounds[k].max - cpu_bounds[k].max)) / box, kPositionTolerance);
+  }
+  std::printf("%s: max |vulkan - cpu| / box = %.2e, normals %.2e\n", what.c_str(), worst_position, worst_normal);
+}
+
+TEST_F(GpuTest, RuntimeMatchesTheCpuRuntimeOnTheCat) {
+  const RuntimeAsset asset = makeAsset(testing::catAsset());
+  constexpr std::uint32_t kCount = 12;
+  Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(kCount));
+  ASSERT_TRUE(gpu.ok()) << gpu.status().toString();
+  Result<CpuRuntime> cpu = CpuRuntime::create(asset, withCapacity(kCount));
+  ASSERT_TRUE(cpu.ok());
+  ASSERT_TRUE(gpu->setInstanceCount(kCount).ok());
+  ASSERT_TRUE(cpu->setInstanceCount(kCount).ok());
+  std::vector<gpu::BoneMatrix> bones(asset.boneCount());
+  asset.bonesAt(5, 0.25, bones);
+  const auto world = testing::placed(bones, 1.1, Vec3(-2.0, 0.5, 4.0));
+  for (std::uint32_t k = 0; k < kCount; ++k) {
+    InstanceState state = k % 4 == 3 ? InstanceState::atSegment(k % 9, 0.5 * (k % 3)) : InstanceState::atTime(0.77 * k);
+    state = state.withPreset(k % 3);
+    if (k % 5 == 1) state = state.withBones(world);
+    setBoth(*cpu, *gpu, k, state);
+  }
+  Result<std::uint64_t> cpu_frame = cpu->submitFrame();
+  Result<std::uint64_t> gpu_frame = gpu->submitFrame();
+  ASSERT_TRUE(cpu_frame.ok() && gpu_frame.ok()) << gpu_frame.status().toString();
+  expectSameFrame(*cpu, *cpu_frame, *gpu, *gpu_frame, kCount, "cat, 12 instances");
+  Result<FrameTimes> times = gpu->frameTimes(*gpu_frame);
+  ASSERT_TRUE(times.ok());
+  EXPECT_GT(times->deform_seconds, 0.0);  // lavapipe has timestamps
+  EXPECT_LT(times->deform_seconds, 10.0);
+}
+
+TEST_F(GpuTest, RuntimeMatchesTheCpuRuntimeWithDualQuaternions) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset(SkinningMode::kDualQuaternion));
+  Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(5));
+  Result<CpuRuntime> cpu = CpuRuntime::create(asset, withCapacity(5));
+  ASSERT_TRUE(gpu.ok() && cpu.ok()) << gpu.status().toString();
+  ASSERT_TRUE(gpu->setInstanceCount(5).ok() && cpu->setInstanceCount(5).ok());
+  for (std::uint32_t k = 0; k < 5; ++k) setBoth(*cpu, *gpu, k, InstanceState::atTime(0.7 * k).withPreset(k % 3));
+  Result<std::uint64_t> cpu_frame = cpu->submitFrame();
+  Result<std::uint64_t> gpu_frame = gpu->submitFrame();
+  ASSERT_TRUE(cpu_frame.ok() && gpu_frame.ok());
+  expectSameFrame(*cpu, *cpu_frame, *gpu, *gpu_frame, 5, "cylinder dqs");
+}
+
+// Two frames submitted before any wait: each keeps its own inputs and outputs.
+TEST_F(GpuTest, RuntimeDoubleBuffersItsFrames) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(8));
+  Result<CpuRuntime> cpu = CpuRuntime::create(asset, withCapacity(8));
+  ASSERT_TRUE(gpu.ok() && cpu.ok());
+  ASSERT_TRUE(gpu->setInstanceCount(8).ok() && cpu->setInstanceCount(8).ok());
+  std::uint64_t gpu_frames[2], cpu_frames[2];
+  for (int f = 0; f < 2; ++f) {
+    for (std::uint32_t k = 0; k < 8; ++k) setBoth(*cpu, *gpu, k, InstanceState::atTime(f == 0 ? 0.1 * k : 2.9 - 0.3 * k));
+    Result<std::uint64_t> g = gpu->submitFrame();
+    Result<std::uint64_t> c = cpu->submitFrame();
+    ASSERT_TRUE(g.ok() && c.ok());
+    gpu_frames[f] = *g;
+    cpu_frames[f] = *c;
+  }
+  ASSERT_EQ(gpu_frames[1], gpu_frames[0] + 1);
+  for (int f = 0; f < 2; ++f) expectSameFrame(*cpu, cpu_frames[f], *gpu, gpu_frames[f], 8, "frame " + std::to_string(f + 1));
+  // The frames differ, so keeping both apart is tested.
+  EXPECT_GT(worstGap(read(*gpu, gpu_frames[0], 3), read(*gpu, gpu_frames[1], 3)).gap, 1e-3);
+  Result<RuntimeFrameBuffers> first = gpu->frameBuffers(gpu_frames[0]);
+  Result<RuntimeFrameBuffers> second = gpu->frameBuffers(gpu_frames[1]);
+  ASSERT_TRUE(first.ok() && second.ok());
+  EXPECT_NE(first->positions, second->positions);
+  EXPECT_EQ(first->instance_stride, VkDeviceSize{asset.vertexCount()} * 16);
+  Result<RuntimeOutputBarriers> barriers = gpu->outputBarriers(gpu_frames[1]);
+  ASSERT_TRUE(barriers.ok());
+  EXPECT_EQ(barriers->count, 2u);
+  EXPECT_EQ(barriers->barriers[0].buffer, second->positions);
+  EXPECT_EQ(barriers->barriers[1].buffer, second->normals);
+  EXPECT_EQ(barriers->barriers[0].dstAccessMask, static_cast<VkAccessFlags>(VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT));
+  // A third frame reuses the first one's slot.
+  ASSERT_TRUE(gpu->submitFrame().ok());
+  EXPECT_EQ(gpu->frameBuffers(gpu_frames[0]).status().code(), StatusCode::kInvalidArgument);
+  ASSERT_TRUE(gpu->wait().ok());
+}
+
+TEST_F(GpuTest, RuntimeHandlesZeroOneAndManyInstances) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  constexpr std::uint32_t kMany = 300;
+  RuntimeOptions options = withCapacity(kMany);
+  options.frames_in_flight = 3;
+  Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, options);
+  Result<CpuRuntime> cpu = CpuRuntime::create(asset, options);
+  ASSERT_TRUE(gpu.ok() && cpu.ok()) << gpu.status().toString();
+  for (std::uint32_t count : {0u, 1u, 37u, kMany}) {
+    ASSERT_TRUE(gpu->setInstanceCount(count).ok() && cpu->setInstanceCount(count).ok());
+    for (std::uint32_t k = 0; k < count; ++k) setBoth(*cpu, *gpu, k, InstanceState::atTime(3.0 * k / kMany).withPreset(k % 3));
+    Result<std::uint64_t> g = gpu->submitFrame();
+    Result<std::uint64_t> c = cpu->submitFrame();
+    ASSERT_TRUE(g.ok() && c.ok()) << g.status().toString();
+    expectSameFrame(*cpu, *c, *gpu, *g, count, std::to_string(count) + " instances");
+  }
+  std::vector<gpu::Float4> out(asset.vertexCount());
+  EXPECT_EQ(gpu->readPositions(gpu->lastFrame(), kMany, out).code(), StatusCode::kInvalidArgument);
+}
+
+// The fallback for devices without subgroup arithmetic: the same outputs and boxes.
+TEST_F(GpuTest, RuntimeSharedMemoryBoundsMatchToo) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  Result<VulkanRuntime> subgroup = VulkanRuntime::create(device(), asset, withCapacity(6));
+  Result<VulkanRuntime> shared = VulkanRuntime::create(device(), asset, withCapacity(6), /*allow_subgroups=*/false);
+  Result<CpuRuntime> cpu = CpuRuntime::create(asset, withCapacity(6));
+  ASSERT_TRUE(subgroup.ok() && shared.ok() && cpu.ok());
+  EXPECT_FALSE(shared->subgroupBounds());
+  std::printf("subgroup bounds on %s: %s\n", device().name(), subgroup->subgroupBounds() ? "yes" : "no");
+  ASSERT_TRUE(shared->setInstanceCount(6).ok() && cpu->setInstanceCount(6).ok());
+  for (std::uint32_t k = 0; k < 6; ++k) setBoth(*cpu, *shared, k, InstanceState::atTime(0.5 * k).withPreset(k % 3));
+  Result<std::uint64_t> g = shared->submitFrame();
+  Result<std::uint64_t> c = cpu->submitFrame();
+  ASSERT_TRUE(g.ok() && c.ok());
+  expectSameFrame(*cpu, *c, *shared, *g, 6, "shared-memory bounds");
+}
+
+TEST_F(GpuTest, RuntimeWithoutNormals) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  RuntimeOptions options = withCapacity(2);
+  options.normals = false;
+  Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, options);
+  Result<CpuRuntime> cpu = CpuRuntime::create(asset, options);
+  ASSERT_TRUE(gpu.ok() && cpu.ok());
+  ASSERT_TRUE(gpu->setInstanceCount(2).ok() && cpu->setInstanceCount(2).ok());
+  setBoth(*cpu, *gpu, 1, InstanceState::atTime(1.5));
+  Result<std::uint64_t> g = gpu->submitFrame();
+  Result<std::uint64_t> c = cpu->submitFrame();
+  ASSERT_TRUE(g.ok() && c.ok());
+  expectSameFrame(*cpu, *c, *gpu, *g, 2, "no normals");
+  EXPECT_EQ(gpu->frameBuffers(*g)->normals, VK_NULL_HANDLE);
+  EXPECT_EQ(gpu->outputBarriers(*g)->count, 1u);
+}
+
+TEST_F(GpuTest, RuntimeRejectsBadInputNamingTheProblem) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(2));
+  ASSERT_TRUE(gpu.ok());
+  ASSERT_TRUE(gpu->setInstanceCount(2).ok());
+  std::vector<gpu::BoneMatrix> bones(3);
+  Status status = gpu->setInstance(0, InstanceState::atTime(0.5).withBones(bones));
+  EXPECT_EQ(status.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(status.message().find("instance 0: 3 bone matrices, expected"), std::string::npos) << status.message();
+  status = gpu->setInstance(1, InstanceState::atTime(NAN));
+  EXPECT_NE(status.message().find("instance 1: time is NaN"), std::string::npos) << status.message();
+  status = gpu->setInstance(5, InstanceState::atTime(0.5));
+  EXPECT_NE(status.message().find("instance 5 is out of range"), std::string::npos) << status.message();
+  EXPECT_EQ(gpu->frameBuffers(1).status().code(), StatusCode::kInvalidArgument);  // nothing submitted yet
+  std::vector<InstanceBounds> bounds(2);
+  EXPECT_NE(gpu->readBounds(1, bounds).message().find("none submitted yet"), std::string::npos);
+
+  // Limits of the device: more instances than a dispatch's y extent, or outputs beyond one binding.
+  const std::uint32_t too_many = device().limits().maxComputeWorkGroupCount[1] + 1u;
+  if (too_many != 0) {
+    status = VulkanRuntime::create(device(), asset, withCapacity(too_many)).status();
+    EXPECT_EQ(status.code(), StatusCode::kUnavailable);
+    EXPECT_NE(status.message().find("maxComputeWorkGroupCount[1]"), std::string::npos) << status.message();
+  }
+  const VkDeviceSize per_instance = VkDeviceSize{asset.vertexCount()} * 16;
+  const VkDeviceSize over = device().limits().maxStorageBufferRange / per_instance + 1;
+  if (over <= device().limits().maxComputeWorkGroupCount[1]) {
+    status = VulkanRuntime::create(device(), asset, withCapacity(static_cast<std::uint32_t>(over))).status();
+    EXPECT_EQ(status.code(), StatusCode::kUnavailable);
+    EXPECT_NE(status.message().find("maxStorageBufferRange"), std::string::npos) << status.message();
+  }
+}
+
+}  // namespace
+}  // namespace odeskin
