@@ -21,11 +21,12 @@ using visual::Rgba8;
 constexpr int kWidth = 960, kHeight = 600;
 constexpr int kLeft = 90, kRight = 260, kTop = 50, kBottom = 60;  // plot margins; the legend sits right
 
-// A colour per backend and a dash per case, so both read without a colour-blind guess.
+// A colour per series (twelve before any repeats: 3 kernels x 4 backends) and a dash per case.
 Rgba8 seriesColour(std::size_t index) {
   static const Rgba8 palette[] = {{31, 119, 180, 255}, {214, 39, 40, 255},  {44, 160, 44, 255},
                                   {148, 103, 189, 255}, {255, 127, 14, 255}, {23, 190, 207, 255},
-                                  {140, 86, 75, 255},  {127, 127, 127, 255}, {188, 189, 34, 255}};
+                                  {140, 86, 75, 255},  {127, 127, 127, 255}, {188, 189, 34, 255},
+                                  {0, 0, 0, 255},      {227, 119, 194, 255}, {0, 90, 50, 255}};
   return palette[index % std::size(palette)];
 }
 

@@ -19,8 +19,8 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
   }
   CpuRuntime rt(asset, options);
   for (std::uint32_t p = 0; p < asset.presetCount(); ++p) {
-    ODESKIN_ASSIGN_OR_RETURN(InstanceDeformer deformer, InstanceDeformer::create(asset.packed(p)));
-    rt.deformers_.push_back(deformer);
+    ODESKIN_ASSIGN_OR_RETURN(CpuDeformKernel deformer, CpuDeformKernel::create(asset.packed(p)));
+    rt.deformers_.push_back(std::move(deformer));
   }
   rt.records_.resize(options.capacity);
   rt.bones_.resize(std::size_t{options.capacity} * asset.boneCount());

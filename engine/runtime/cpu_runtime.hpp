@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The runtime on the CPU (DeformRuntime's API) for engines without compute: every instance is
-// deformed by the float fast path (FourierDeformFastJob, SIMD-friendly float32 in the shader's order
-// of operations), instances spread over the WorkerArena's threads, then normals and bounds per
+// deformed by CpuDeformKernel (float32 at SIMD width, within float rounding of the shader and of the
+// double reference), instances spread over the WorkerArena's threads, then normals and bounds per
 // instance (instance_outputs.hpp). This backend is the reference of the instanced shaders
 // (shaders/instanced_deform.comp, shaders/instance_normals.comp). submitFrame() does the work
 // before it returns; wait() has nothing to wait for.
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "deform_runtime.hpp"
-#include "instance_deformer.hpp"
+#include "../kernels/cpu_deform_kernel.hpp"
 
 namespace odeskin {
 
@@ -52,7 +52,7 @@ class CpuRuntime final : public DeformRuntime {
     std::vector<InstanceBounds> bounds;  // capacity
     std::uint32_t instance_count = 0;
   };
-  std::vector<InstanceDeformer> deformers_;  // one per material preset
+  std::vector<CpuDeformKernel> deformers_;  // one per material preset (the SIMD kernel, prepared once)
   // This frame's inputs; one set suffices, since the frame is done when submitFrame returns.
   std::vector<gpu::InstanceRecord> records_;
   std::vector<gpu::BoneMatrix> bones_;

@@ -116,7 +116,7 @@ void printTargets(const BenchReport& report, std::ostream& out) {
     const double ratio = v.verticesPerSecond() / c->verticesPerSecond();
     char line[200];
     std::snprintf(line, sizeof line,
-                  "  vulkan / cpu_fast 1 thread throughput, N=%d, %zu vertices: %.2f (target >= 0.5: %s)\n", v.terms,
+                  "  vulkan / cpu_fast 1 thread throughput, N=%d, %zu vertices: %.3f (target >= 0.5: %s)\n", v.terms,
                   v.vertices, ratio, verdict(ratio >= 0.5));
     out << line;
   }
