@@ -120,8 +120,11 @@ void chainBends(const Chain& chain, const CurveSkeleton& cs, const std::vector<s
 }
 
 // The root joint without a template: the junction with the most branches, nearest the curve
-// skeleton's centre ring (node 0); a tube without junctions hangs from its centre ring.
-std::uint32_t defaultRoot(const std::vector<std::vector<std::uint32_t>>& adjacent) {
+// skeleton's centre ring (node 0); a tube without junctions hangs from its centre ring, or from a
+// bend within one ring radius of it (the centre is only where the distance grew from; a bend
+// there is where the tube really turns).
+std::uint32_t defaultRoot(const CurveSkeleton& cs, const std::vector<std::vector<std::uint32_t>>& adjacent,
+                          const std::vector<Bend>& bends) {
   std::vector<std::int64_t> hops(adjacent.size(), -1);
   std::vector<std::uint32_t> queue{0};
   hops[0] = 0;
@@ -135,6 +138,15 @@ std::uint32_t defaultRoot(const std::vector<std::vector<std::uint32_t>>& adjacen
   std::uint32_t best = 0;
   for (const std::uint32_t n : queue) {  // in order of hops from node 0
     if (adjacent[n].size() > std::max<std::size_t>(2, adjacent[best].size())) best = n;
+  }
+  if (best != 0 || adjacent[0].size() > 2) return best;
+  double nearest = cs.radii[0];
+  for (const Bend& b : bends) {
+    const double d = glm::length(cs.positions[b.node] - cs.positions[0]);
+    if (d <= nearest) {
+      nearest = d;
+      best = b.node;
+    }
   }
   return best;
 }
@@ -196,7 +208,7 @@ Result<AnimationSkeleton> buildAnimationSkeleton(const CurveSkeleton& cs, const 
 
   const SkeletonTreeView view{cs.positions, cs.radii, adjacent};
   const TemplateMatch match = matchTemplate(view, bend_nodes, o.template_kind, o.up);
-  const std::uint32_t root = match.kind != SkeletonTemplateKind::kNone ? match.root : defaultRoot(adjacent);
+  const std::uint32_t root = match.kind != SkeletonTemplateKind::kNone ? match.root : defaultRoot(cs, adjacent, bends);
 
   // Which nodes are joints, why, and under what name.
   std::vector<std::int8_t> reason(n_count, -1);

@@ -2,7 +2,10 @@
 #include "curve_rig.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <string>
+
+#include "kabsch.hpp"
 
 namespace odeskin {
 
@@ -38,6 +41,25 @@ Result<CurveRig> buildCurveRig(std::span<const Vec3> rest, const FaceList& faces
     out.seconds_weights = std::chrono::duration<double>(std::chrono::steady_clock::now() - weights_start).count();
   }
   return out;
+}
+
+Result<Rig> curveRigForPoses(std::span<const Vec3> rest, const FaceList& faces, const std::vector<std::vector<Vec3>>& poses,
+                             std::string* summary, const CurveRigOptions& options) {
+  ODESKIN_ASSIGN_OR_RETURN(CurveRig curve_rig, buildCurveRig(rest, faces, poses, options));
+  Rig rig = std::move(curve_rig.rig);
+  Result<std::vector<std::vector<RigidTransform>>> fitted = fitBoneTransforms(rest, poses, rig.influences, rig.skeleton);
+  if (!fitted.ok()) return Status(fitted.status().code(), "curve rig: bone transforms: " + fitted.status().message());
+  rig.key_poses = std::move(*fitted);
+  if (summary) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "curves: %zu bones from the bind mesh's iso-curves (template %s; %.1f ms curves, %.1f ms skeleton, "
+                  "%.1f ms weights), Kabsch transforms",
+                  rig.skeleton.boneCount(), std::string(templateKindName(curve_rig.animation.used)).c_str(),
+                  1e3 * curve_rig.seconds_curves, 1e3 * curve_rig.seconds_skeleton, 1e3 * curve_rig.seconds_weights);
+    *summary = line;
+  }
+  return rig;
 }
 
 }  // namespace odeskin

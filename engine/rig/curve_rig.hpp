@@ -7,6 +7,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "../core/result.hpp"
@@ -42,5 +43,11 @@ struct CurveRig {
 // hold two rings).
 Result<CurveRig> buildCurveRig(std::span<const Vec3> rest, const FaceList& faces, const std::vector<std::vector<Vec3>>& poses,
                                const CurveRigOptions& options = {});
+
+// The curve rig for a fit (`odeskin fit --rig curves`): buildCurveRig on the bind mesh with the
+// example poses, then per-pose bone transforms by weighted Kabsch (fitBoneTransforms). `summary`
+// receives one line for the user ("curves: 29 bones, template quadruped, ...").
+Result<Rig> curveRigForPoses(std::span<const Vec3> rest, const FaceList& faces, const std::vector<std::vector<Vec3>>& poses,
+                             std::string* summary, const CurveRigOptions& options = {});
 
 }  // namespace odeskin

@@ -55,8 +55,8 @@ Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const Curve
     return invalidArgument("curve skeleton: level spacing must be a finite number >= 0 (0: automatic)");
   }
   if (!(options.prune_radii >= 0.0) || !std::isfinite(options.prune_radii) || !(options.prune_fraction >= 0.0) ||
-      !(options.prune_fraction < 1.0)) {
-    return invalidArgument("curve skeleton: prune_radii must be >= 0 and prune_fraction in [0, 1)");
+      !(options.prune_fraction < 1.0) || !(options.prune_thin_fraction >= 0.0) || !(options.prune_thin_fraction < 1.0)) {
+    return invalidArgument("curve skeleton: prune_radii must be >= 0, prune_fraction and prune_thin_fraction in [0, 1)");
   }
   return okStatus();
 }
@@ -144,13 +144,14 @@ std::int32_t centreContour(const LevelGraph& graph, const LevelTree& tree) {
   return best;
 }
 
-// The vertices within half a spacing of the plane through the centre ring's centroid, across the
+// The vertices within `half_width` (a mean edge length at least, so that the band is a closed
+// ring of vertices even where edges run along it) of the plane through the centre ring's centroid, across the
 // chain of ring centroids there (three rings either way) and within two ring radii of it: of the
 // pieces that leaves (a limb may pass near), the one holding most of the centre ring's own edge
 // ends, with their distances to the plane (so the distance grown from them starts flat). The
 // ring's own vertices (distances left empty: 0) if that leaves none.
 std::vector<std::uint32_t> centreBand(std::span<const Vec3> rest, const MeshTopology& mesh, const LevelGraph& graph,
-                                      const LevelTree& tree, std::uint32_t centre, double spacing,
+                                      const LevelTree& tree, std::uint32_t centre, double half_width,
                                       std::vector<double>& distance_to_plane) {
   constexpr int kSteps = 3;
   const LevelContour& ring = graph.contours[centre];
@@ -184,7 +185,7 @@ std::vector<std::uint32_t> centreBand(std::span<const Vec3> rest, const MeshTopo
   std::vector<std::uint32_t> band;
   for (std::uint32_t v = 0; v < rest.size(); ++v) {
     const Vec3 d = rest[v] - ring.centroid;
-    if (std::abs(glm::dot(normal, d)) <= 0.5 * spacing && glm::length(d) <= 2.0 * radius) {
+    if (std::abs(glm::dot(normal, d)) <= half_width && glm::length(d) <= 2.0 * radius) {
       label[v] = -2;
       band.push_back(v);
     }
@@ -232,7 +233,8 @@ std::vector<std::uint32_t> centreBand(std::span<const Vec3> rest, const MeshTopo
 }
 
 CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& graph, const LevelTree& tree,
-                                 const TreeParts& parts, const MeshTopology& mesh, std::vector<IsoCurve>& curves) {
+                                 const TreeParts& parts, const MeshTopology& mesh, std::span<const SkeletonAnchor> root_anchors,
+                                 std::vector<IsoCurve>& curves) {
   CurveSkeleton s;
   std::vector<std::int32_t> region_node(graph.regions.size(), -1);
   std::vector<std::int32_t> contour_node(graph.contours.size(), -1);
@@ -248,7 +250,7 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
     return n > 0 ? sum / static_cast<double>(n) : 0.0;
   };
   addSkeletonNode(s, SkeletonNodeKind::kRoot, -1, static_cast<std::uint32_t>(parts.region_part[tree.root]), regionRadius(tree.root),
-                  regionAnchors(graph, tree.root), rest);
+                  root_anchors, rest);
   region_node[tree.root] = 0;
   std::vector<std::uint32_t> order{tree.root};
   for (std::size_t head = 0; head < order.size(); ++head) {
@@ -316,7 +318,8 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   const double spacing = options.level_spacing > 0.0
                              ? options.level_spacing
                              : std::min(kDefaultSpacingEdges * mean_edge, glm::length(hi - lo) / kMinLevelsPerDiagonal);
-  const double prune_length = options.prune_fraction * glm::length(hi - lo);
+  const PruneRule prune{options.prune_radii, options.prune_fraction * glm::length(hi - lo),
+                        options.prune_thin_fraction * glm::length(hi - lo)};
 
   // Pass 1, coarse (edge paths, levels kFirstPassSpacing apart: it only has to find the centre):
   // from an extremity, the far end of a breadth-first sweep from any vertex of the largest component.
@@ -325,7 +328,7 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
       static_cast<std::uint32_t>(std::max_element(hops.begin(), hops.end()) - hops.begin())};
   const std::vector<double> f1 = edgeDistance(mesh, extremity);
   const LevelGraph first = levelGraph(rest, mesh, f1, kFirstPassSpacing * spacing);
-  const LevelTree first_tree = levelTree(first, first.vertex_region[extremity[0]], options.prune_radii, prune_length);
+  const LevelTree first_tree = levelTree(first, first.vertex_region[extremity[0]], prune);
   const std::int32_t centre = centreContour(first, first_tree);
   if (centre < 0) {
     return degenerate("curve skeleton: no closed ring at level spacing " + std::to_string(kFirstPassSpacing * spacing) +
@@ -335,11 +338,15 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   // sides of it (the first pass's rings lean wherever its source was).
   std::vector<double> band_distance;
   const std::vector<std::uint32_t> band =
-      centreBand(rest, mesh, first, first_tree, static_cast<std::uint32_t>(centre), spacing, band_distance);
+      centreBand(rest, mesh, first, first_tree, static_cast<std::uint32_t>(centre), std::max(0.5 * spacing, mean_edge),
+                 band_distance);
   const std::vector<double> f = surfaceDistance(mesh, rest, band, band_distance);
   const LevelGraph graph = levelGraph(rest, mesh, f, spacing);
-  const LevelTree tree = levelTree(graph, graph.vertex_region[band.front()], options.prune_radii, prune_length);
+  const LevelTree tree = levelTree(graph, graph.vertex_region[band.front()], prune);
   const TreeParts parts = treeParts(graph, tree);
+  // The root node is the centre of the band itself (the slab next to it may hold part of a ring).
+  std::vector<SkeletonAnchor> root_anchors;
+  for (const std::uint32_t v : band) root_anchors.push_back({CurvePoint{v, v, 0.0}, 1.0});
 
   CurveSkeletonResult result;
   result.seconds_topology = seconds_topology;
@@ -352,7 +359,7 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
     const double levels = secondsSince(start);
     const Clock::time_point cuts = Clock::now();
     double seconds_cuts = 0.0;
-    Result<CurveSkeleton> from_cuts = skeletonFromPlaneCuts(rest, faces, graph, tree, parts, f, mesh, result.curves, seconds_cuts);
+    Result<CurveSkeleton> from_cuts = skeletonFromPlaneCuts(rest, faces, graph, tree, parts, f, mesh, root_anchors, result.curves, seconds_cuts);
     if (from_cuts.ok()) {
       result.skeleton = std::move(*from_cuts);
       result.seconds_curves = levels + seconds_cuts;
@@ -365,7 +372,7 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   }
   result.seconds_curves = secondsSince(start);
   const Clock::time_point skeleton_start = Clock::now();
-  result.skeleton = skeletonFromLevels(rest, graph, tree, parts, mesh, result.curves);
+  result.skeleton = skeletonFromLevels(rest, graph, tree, parts, mesh, root_anchors, result.curves);
   result.seconds_skeleton = secondsSince(skeleton_start);
   return result;
 }

@@ -5,15 +5,17 @@
 // The thesis reads the curves off a quad mesh its designer laid out; an arbitrary triangle mesh
 // has none, and odeskin's curve identification (curves/iso_curves.hpp) needs body parts first. So:
 //  1. Parts from geometry alone (curve_skeleton_levels.hpp): rings of a geodesic distance, whose
-//     graph is a tree of tubes and junctions. The distance is measured twice: from an extremity
-//     (the far end of a sweep from any vertex), then from the ring at the centre of that first
-//     tree, so that rings run across the body and its limbs (a ring grown from a point on a
-//     torso first spreads over its surface as a disc). Bumps shorter than their base ring's
-//     radius are pruned (curve_skeleton_tree.hpp).
-//  2. Curves: with CurveSource::kPlaneCuts the existing identification cuts each part (a branch of
-//     the tree) with planes across it (centroid-following, dichotomy between seams), the curves
-//     odeskin binds vertices to; with kLevels the geodesic rings themselves are the curves (faster,
-//     but rings near a junction lean along the body).
+//     graph is a tree of tubes and junctions. The distance is measured twice: coarsely along
+//     edges from an extremity (the far end of a sweep from any vertex), then by fast marching
+//     from a plane band across the body at the centre of that first tree, so that rings run
+//     across the body and its limbs (a ring grown from a point on a torso first spreads over its
+//     surface as a disc). Short branches off thin rings are bumps and are pruned
+//     (curve_skeleton_tree.hpp).
+//  2. Curves: with CurveSource::kLevels (the default) the geodesic rings themselves; with
+//     kPlaneCuts the existing identification cuts each part (a branch of the tree) with planes
+//     across it (centroid-following, dichotomy between seams), the curves odeskin binds vertices
+//     to. On the shared data the rings give skeletons closer to the ground truth, in a fraction of
+//     the time (docs/rigging.md).
 //  3. Nodes: every curve's length-weighted centroid; a junction region's centroid where branches
 //     meet (the seam curves of the limbs that leave there are its children); at each free end the
 //     centroid of the cap beyond the last ring. Node 0 is the centre ring of step 1.
@@ -34,8 +36,8 @@
 namespace odeskin {
 
 enum class CurveSource {
+  kLevels,     // the geodesic rings (default: closer to the ground-truth skeletons and faster, docs/rigging.md)
   kPlaneCuts,  // curves/iso_curves.hpp on the geodesic parts (the curves odeskin fits)
-  kLevels,     // the geodesic rings
 };
 
 enum class SkeletonNodeKind : std::uint8_t {
@@ -66,10 +68,11 @@ struct CurveSkeleton {
 std::vector<Vec3> curveSkeletonPositions(const CurveSkeleton& skeleton, std::span<const Vec3> pose);
 
 struct CurveSkeletonOptions {
-  CurveSource source = CurveSource::kPlaneCuts;
+  CurveSource source = CurveSource::kLevels;
   double level_spacing = 0.0;    // distance between geodesic levels; 0: 2 mean edge lengths, at most 1/50 of the box diagonal
-  double prune_radii = 1.5;      // a leaf branch shorter than this x its base ring's radius is a bump
-  double prune_fraction = 0.04;  // ... or shorter than this x the box diagonal
+  double prune_fraction = 0.04;       // a leaf branch shorter than this x the box diagonal is a bump,
+  double prune_radii = 1.5;           // ... and one shorter than this x its base ring's radius
+  double prune_thin_fraction = 0.03;  // ... when that ring is thinner than this x the box diagonal
 };
 
 struct CurveSkeletonResult {
@@ -79,7 +82,7 @@ struct CurveSkeletonResult {
   std::size_t part_count = 0;
   std::size_t pruned_branches = 0;
   std::size_t unreached_vertices = 0;        // in other connected components than the largest (not rigged)
-  CurveSource source = CurveSource::kPlaneCuts;  // what was used: kLevels when the plane cuts failed
+  CurveSource source = CurveSource::kLevels;  // what was used: kLevels when the plane cuts failed
   std::string note;                          // why the plane cuts were not used, if they were asked for
   // Table 5.1's two stages: finding the curves (geodesic levels, and plane cuts if asked) and
   // making the skeleton from them (tree, pruning, centroids).

@@ -18,8 +18,8 @@ namespace odeskin {
 
 Result<CurveSkeleton> skeletonFromPlaneCuts(std::span<const Vec3> rest, const FaceList& faces, const LevelGraph& graph,
                                             const LevelTree& tree, const TreeParts& parts, std::span<const double> f,
-                                            const MeshTopology& mesh, std::vector<IsoCurve>& curves,
-                                            double& seconds_cuts) {
+                                            const MeshTopology& mesh, std::span<const SkeletonAnchor> root_anchors,
+                                            std::vector<IsoCurve>& curves, double& seconds_cuts) {
   const auto cut_start = std::chrono::steady_clock::now();
   const std::size_t p_count = parts.parts.size();
   Skeleton pseudo;
@@ -75,7 +75,7 @@ Result<CurveSkeleton> skeletonFromPlaneCuts(std::span<const Vec3> rest, const Fa
     }
     return n > 0 ? sum / static_cast<double>(n) : fallback;
   };
-  addSkeletonNode(s, SkeletonNodeKind::kRoot, -1, 0, regionRadius(tree.root, 0.0), regionAnchors(graph, tree.root), rest);
+  addSkeletonNode(s, SkeletonNodeKind::kRoot, -1, 0, regionRadius(tree.root, 0.0), root_anchors, rest);
   region_node[tree.root] = 0;
   for (std::uint32_t p = 0; p < p_count; ++p) {
     const TreePart& part = parts.parts[p];

@@ -50,12 +50,12 @@ std::vector<SkeletonAnchor> curveAnchors(std::span<const CurvePoint> points, boo
 // The contour's points in order along it (a closed one from point 0, an open one from an end).
 IsoCurve orderedContour(const LevelContour& contour, std::uint32_t part);
 
-// The plane-cut curves of the parts (curves/iso_curves.hpp) as skeleton nodes; `f` orders them
+// The root node is `root_anchors` (the band the distance grew from). The plane-cut curves of the parts (curves/iso_curves.hpp) as skeleton nodes; `f` orders them
 // along each part; `seconds_cuts` receives the time buildIsoCurves took. Errors: buildIsoCurves'
 // (the caller falls back to the rings).
 Result<CurveSkeleton> skeletonFromPlaneCuts(std::span<const Vec3> rest, const FaceList& faces, const LevelGraph& graph,
                                             const LevelTree& tree, const TreeParts& parts, std::span<const double> f,
-                                            const MeshTopology& mesh, std::vector<IsoCurve>& curves,
-                                            double& seconds_cuts);
+                                            const MeshTopology& mesh, std::span<const SkeletonAnchor> root_anchors,
+                                            std::vector<IsoCurve>& curves, double& seconds_cuts);
 
 }  // namespace odeskin

@@ -12,7 +12,7 @@ std::uint32_t LevelTree::parentRegion(const LevelGraph& graph, std::uint32_t con
   return child_region[contour] == static_cast<std::int32_t>(c.upper) ? c.lower : c.upper;
 }
 
-LevelTree levelTree(const LevelGraph& graph, std::uint32_t root_region, double prune_radii, double prune_length) {
+LevelTree levelTree(const LevelGraph& graph, std::uint32_t root_region, const PruneRule& prune) {
   const std::size_t r_count = graph.regions.size();
   LevelTree tree;
   tree.root = root_region;
@@ -64,7 +64,8 @@ LevelTree levelTree(const LevelGraph& graph, std::uint32_t root_region, double p
       if (contours.empty() || (r == root_region && tree.children[r].size() <= 1)) continue;
       length += glm::length(graph.regions[r].centroid - previous);
       const double base_radius = graph.contours[contours.back()].radius;
-      if (length >= prune_radii * base_radius && length >= prune_length) continue;
+      const bool bump = length < prune.length || (length < prune.radii * base_radius && base_radius < prune.thin_radius);
+      if (!bump) continue;
       // A bump: its regions join the junction r, its contours leave the tree.
       for (const std::uint32_t c : contours) {
         const auto below = static_cast<std::uint32_t>(tree.child_region[c]);

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The level graph (curve_skeleton_levels.hpp) as a tree hung from one region, with the bumps cut
-// off: a leaf branch (tip region up to the first junction) shorter than `prune_radii` times the
-// radius of the ring it starts from, or than `prune_fraction` of the mesh's box diagonal, is a
-// bump on the surface (a knuckle, a nose, a fold), not a limb; its regions join the junction. A
+// off: a leaf branch (tip region up to the first junction) shorter than `length`, or shorter than
+// `radii` times the radius of the thin ring it starts from (thinner than `thin_radius`), is a bump
+// on the surface (a knuckle, a toe, a fold), not a limb; its regions join the junction. A stubby
+// branch on a thick ring (a chubby character's foot) is a limb. A
 // contour that would close a cycle (a handle of a genus > 0 mesh, or two rings the level cut into
 // one piece twice) is dropped, so each region is reached once.
 #pragma once
@@ -28,6 +29,12 @@ struct LevelTree {
   std::uint32_t parentRegion(const LevelGraph& graph, std::uint32_t contour) const;
 };
 
-LevelTree levelTree(const LevelGraph& graph, std::uint32_t root_region, double prune_radii, double prune_length);
+struct PruneRule {
+  double radii = 1.5;
+  double length = 0.0;
+  double thin_radius = 0.0;
+};
+
+LevelTree levelTree(const LevelGraph& graph, std::uint32_t root_region, const PruneRule& prune);
 
 }  // namespace odeskin

@@ -56,7 +56,9 @@ CLI::App* addFitCommand(CLI::App& app, odeskin::FitCommandOptions& o, std::strin
       "Example: odeskin fit horse-01.obj horse-03.obj horse-05.obj -o horse.odsk --terms 9 --timings");
   fit->add_option("poses", o.inputs, "Example poses: OBJ files, or one .gltf/.glb")->required();
   fit->add_option("-o,--output", o.output, "The .odsk asset to write")->required();
-  fit->add_option("--rig", o.rig, "auto (derive bones from the poses) or a libigl .tgf skeleton; default: the input's rig, else auto");
+  fit->add_option("--rig", o.rig,
+                  "auto (derive bones from the poses' motion), curves (from the bind mesh's iso-curves, `odeskin rig`)\n"
+                  "or a libigl .tgf skeleton; default: the input's rig, else auto");
   fit->add_option("--bind", o.bind, "Rest mesh (.obj) of the OBJ poses; default: the first pose");
   fit->add_option("--weights", o.weights, "Skinning weights (.dmat) for --rig SKELETON.tgf");
   fit->add_option("--transforms", o.transforms, "One .Tmat per pose for --rig SKELETON.tgf")->delimiter(',');
@@ -126,7 +128,9 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
       ->delimiter(',');
   cmd->add_option("--terms", o.terms, "Fourier terms N per curve of the odeskin fit (default 9)")
       ->check(CLI::Range(1, odeskin::kMaxFourierModes));
-  cmd->add_option("--rig", o.rig, "auto (default: bones derived from the keys) or a libigl .tgf skeleton");
+  cmd->add_option("--rig", o.rig,
+                  "auto (default: bones derived from the keys' motion), curves (from the first key's iso-curves)\n"
+                  "or a libigl .tgf skeleton");
   cmd->add_option("--bind", o.bind, "Rest mesh (.obj) for --rig SKELETON.tgf");
   cmd->add_option("--weights", o.weights, "Skinning weights (.dmat) for --rig SKELETON.tgf");
   cmd->add_option("--bones", o.bones, "Automatic rig: bone count (0: chosen from the mesh)");
@@ -176,7 +180,7 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
       "Examples: odeskin rig cat-00.obj -o cat.tgf --weights cat.dmat --png cat-rig.png\n"
       "          odeskin rig cheburashka.obj -o cheb.tgf --template humanoid --gltf cheb.glb\n"
       "          odeskin rig cylinder.obj poses-2/cylinder-*.obj -o cyl.tgf --template none\n"
-      "          odeskin rig cat-00.obj -o cat.tgf --curves levels --repeat 20   (timings: medians of 20)");
+      "          odeskin rig cat-00.obj -o cat.tgf --curves cuts --repeat 20   (timings: medians of 20)");
   cmd->add_option("meshes", o.meshes, "OBJ files: the bind mesh, then optional example poses")->required();
   cmd->add_option("-o,--output", o.output, "The skeleton to write (.tgf)")->required();
   cmd->add_option("--weights", o.weights, "Also write the skinning weights (.dmat, vertices x bones)");
@@ -184,10 +188,12 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
       ->check(CLI::IsMember({"auto", "humanoid", "quadruped", "none"}));
   cmd->add_option("--gltf", o.gltf, "Also write the mesh with its skin and joints as a .glb");
   cmd->add_option("--png", o.png, "Also draw the curves and the skeleton over the mesh (Vulkan; lavapipe works)");
-  cmd->add_option("--curves", o.curves, "cuts (plane cuts of each body part, default) or levels (geodesic rings: faster)")
+  cmd->add_option("--curves", o.curves, "levels (geodesic rings, default) or cuts (odeskin's plane-cut curve identification\n"
+                  "run on the parts the rings find)")
       ->check(CLI::IsMember({"cuts", "levels"}));
   cmd->add_option("--angle", o.angle_deg, "Turn in degrees that makes a joint (default 20)");
   cmd->add_option("--up", o.up, "The mesh's up axis: x, y, z, -x, -y or -z (default y)");
+  cmd->add_option("--compare", o.compare, "A ground-truth skeleton (.tgf): print joint errors and bone counts against it");
   cmd->add_option("--azimuth", o.azimuth_deg, "--png camera angle about the up axis in degrees (default 30)");
   cmd->add_option("--repeat", o.repeat, "Run the rig N times and print the median time of each stage");
   return cmd;

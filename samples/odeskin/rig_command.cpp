@@ -5,12 +5,18 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <ostream>
 
+#include <glm/geometric.hpp>
+
 #include "engine/io/gltf_rig_writer.hpp"
+#include "engine/io/libigl_io.hpp"
 #include "engine/io/libigl_writer.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_rig.hpp"
+#include "engine/rig/skeleton_compare.hpp"
 #include "render_session.hpp"
 #include "rig_picture.hpp"
 
@@ -35,6 +41,9 @@ std::string usageProblem(const RigCommandOptions& o) {
   }
   if (!o.gltf.empty() && lowerExtension(o.gltf) != ".glb") return "rig: --gltf " + o.gltf.string() + ": must be a .glb file";
   if (!o.png.empty() && lowerExtension(o.png) != ".png") return "rig: --png " + o.png.string() + ": must be a .png file";
+  if (!o.compare.empty() && lowerExtension(o.compare) != ".tgf") {
+    return "rig: --compare " + o.compare.string() + ": give the ground-truth skeleton as a .tgf file";
+  }
   if (!parseTemplateKind(o.template_kind)) {
     return "rig: --template " + o.template_kind + ": use auto, humanoid, quadruped or none";
   }
@@ -84,6 +93,13 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     poses.assign(set->poses.begin() + 1, set->poses.end());
   }
 
+  std::optional<Skeleton> truth;
+  if (!o.compare.empty()) {
+    Result<Skeleton> read = readTgf(o.compare);
+    if (!read.ok()) return reportFailure(console, Status(read.status().code(), "rig: --compare: " + read.status().message()));
+    truth = std::move(*read);
+  }
+
   CurveRigOptions options;
   options.curves.source = o.curves == "levels" ? CurveSource::kLevels : CurveSource::kPlaneCuts;
   options.animation.angle_threshold_deg = o.angle_deg;
@@ -102,6 +118,13 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   }
   const CurveRig& r = *rig;
 
+  for (const std::filesystem::path* file : {&o.output, &o.weights, &o.gltf, &o.png}) {
+    const std::filesystem::path parent = file->parent_path();
+    if (file->empty() || parent.empty()) continue;
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);
+    if (ec) return reportFailure(console, ioError("rig: " + parent.string() + ": cannot create directory: " + ec.message()));
+  }
   if (Status s = writeTgf(o.output, r.rig.skeleton); !s.ok()) return reportFailure(console, s);
   if (!o.weights.empty()) {
     if (Status s = writeWeightsDmat(o.weights, r.rig.influences, r.rig.skeleton.boneCount()); !s.ok()) {
@@ -117,6 +140,7 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     picture.device = o.device;
     picture.azimuth_deg = o.azimuth_deg;
     picture.title = o.meshes.front().filename().string();
+    picture.truth = truth ? &*truth : nullptr;
     Status s = drawRigPicture(o.png, rest, faces, r.curve_skeleton.curves, r.curve_skeleton.skeleton, r.animation, picture);
     if (!s.ok()) return reportFailure(console, Status(s.code(), "rig: --png: " + s.message()));
   }
@@ -150,6 +174,20 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
                 o.repeat > 1 ? (" (median of " + std::to_string(o.repeat) + " runs)").c_str() : "",
                 1e3 * median(topology_s), 1e3 * median(curves_s), 1e3 * median(skeleton_s), 1e3 * median(weights_s));
   out << line;
+  if (truth) {
+    Vec3 lo(1e300), hi(-1e300);
+    for (const Vec3& p : rest) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    const SkeletonComparison c = compareSkeletons(*truth, r.rig.skeleton, glm::length(hi - lo));
+    std::snprintf(line, sizeof line,
+                  "compare: %zu bones vs %zu in %s; joints: truth -> nearest ours mean %.2f%% max %.2f%%, ours -> nearest "
+                  "truth mean %.2f%% max %.2f%% of the box diagonal\n",
+                  c.bones, c.truth_bones, o.compare.filename().string().c_str(), 100.0 * c.truth_to_ours_mean,
+                  100.0 * c.truth_to_ours_max, 100.0 * c.ours_to_truth_mean, 100.0 * c.ours_to_truth_max);
+    out << line;
+  }
   out << "wrote " << o.output.string();
   if (!o.weights.empty()) out << ", " << o.weights.string();
   if (!o.gltf.empty()) out << ", " << o.gltf.string();

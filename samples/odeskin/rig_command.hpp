@@ -21,9 +21,10 @@ struct RigCommandOptions {
   std::filesystem::path gltf;                 // .glb, optional: mesh, skin and joints at the bind pose
   std::filesystem::path png;                  // .png, optional: curves and skeleton over the mesh (Vulkan)
   std::string template_kind = "auto";         // auto | humanoid | quadruped | none
-  std::string curves = "cuts";                // cuts (plane cuts of the parts) | levels (geodesic rings)
+  std::string curves = "levels";              // levels (geodesic rings) | cuts (plane cuts of the parts)
   double angle_deg = 20.0;                    // the turn that makes a joint
   std::string up = "y";                       // the mesh's up axis (templates, picture)
+  std::filesystem::path compare;              // a ground-truth .tgf: print the joint errors against it
   double azimuth_deg = 30.0;                  // --png camera angle about the up axis
   int repeat = 1;                             // run the rig this many times; timings are the medians
   std::string device = "auto";                // for --png

@@ -16,6 +16,7 @@ namespace {
 constexpr std::uint32_t kCurveColour = 0;
 constexpr std::uint32_t kCentroidColour = 2;
 constexpr std::uint32_t kBoneColour = 3;
+constexpr std::uint32_t kTruthColour = 4;
 
 void addSegment(PanelGeometry& g, const Vec3& a, const Vec3& b, std::uint32_t colour) {
   g.curve_endpoints.push_back(a);
@@ -57,7 +58,11 @@ Status drawRigPicture(const std::filesystem::path& path, std::span<const Vec3> p
       addSegment(xray, p - d, p + d, kBoneColour);
     }
   }
-  xray.label = {std::to_string(skeleton.boneCount()) + " bones (red), curve skeleton (green)",
+  if (o.truth != nullptr) {
+    for (std::size_t b = 0; b < o.truth->boneCount(); ++b) addSegment(xray, o.truth->heads[b], o.truth->tails[b], kTruthColour);
+  }
+  xray.label = {std::to_string(skeleton.boneCount()) + " bones (red), curve skeleton (green)" +
+                    (o.truth != nullptr ? ", truth (purple)" : ""),
                 std::string("template: ") + std::string(templateKindName(skeleton.used))};
 
   visual::PictureSpec spec;

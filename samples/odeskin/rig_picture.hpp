@@ -2,7 +2,7 @@
 // `odeskin rig --png`: the rig drawn over its mesh in two panels, one camera: the surface with the
 // iso-parametric curves coloured by body part, and an x-ray of the same curves (thin, one colour)
 // with the curve skeleton (the centroid chains) and the animation skeleton's bones and joints,
-// which the surface would hide.
+// which the surface would hide (and a ground-truth skeleton when given, for comparison).
 #pragma once
 
 #include <filesystem>
@@ -14,6 +14,7 @@
 #include "engine/core/result.hpp"
 #include "engine/rig/animation_skeleton.hpp"
 #include "engine/rig/curve_skeleton.hpp"
+#include "engine/rig/rig.hpp"
 
 namespace odeskin {
 
@@ -24,6 +25,7 @@ struct RigPictureOptions {
   Vec3 up{0.0, 1.0, 0.0};
   std::string device = "auto";
   std::string title;  // the first label line (the mesh's file name)
+  const Skeleton* truth = nullptr;  // optional: a ground-truth skeleton drawn in purple
 };
 
 // Errors: a malformed size, no Vulkan device (kUnavailable with a hint), the renderer's, kIoError
