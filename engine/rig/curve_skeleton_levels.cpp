@@ -140,46 +140,62 @@ std::vector<double> surfaceDistance(const MeshTopology& mesh, std::span<const Ve
   const std::size_t v_count = mesh.vertex_offsets.size() - 1;
   std::vector<double> distance(v_count, kUnreached);
   std::vector<char> fixed(v_count, 0);
-  using Entry = std::pair<double, std::uint32_t>;
-  std::vector<Entry> heap;
-  heap.reserve(2 * v_count);
+  // An untidy priority queue (Yatziv, Bartesaghi & Sapiro 2006): buckets kBucketEdges of a mean
+  // edge wide, each popped in any order. Vertices within a bucket are fixed out of order by less
+  // than its width, an error far below the level spacing (2 edges), for a queue without a heap.
+  constexpr double kBucketEdges = 0.05;
+  double mean_edge = 0.0;
+  for (const double l : mesh.edge_lengths) mean_edge += l;
+  mean_edge = mesh.edge_lengths.empty() ? 1.0 : mean_edge / static_cast<double>(mesh.edge_lengths.size());
+  const double width = mean_edge > 0.0 ? kBucketEdges * mean_edge : 1.0;
+  std::vector<std::vector<std::uint32_t>> buckets;
+  std::size_t current = 0;
+  auto push = [&](std::uint32_t w, double value) {
+    const auto b = static_cast<std::size_t>(value / width);
+    if (b >= buckets.size()) buckets.resize(b + 1 + buckets.size() / 2);
+    buckets[std::max(b, current)].push_back(w);
+  };
   for (std::size_t i = 0; i < sources.size(); ++i) {
     const std::uint32_t s = sources[i];
     assert(s < v_count);
     const double d0 = initial.empty() ? 0.0 : initial[i];
-    if (d0 < distance[s]) {
-      distance[s] = d0;
-      heap.push_back({d0, s});
-    }
+    if (d0 < distance[s]) distance[s] = d0;
   }
-  const auto later = std::greater<Entry>();
-  std::make_heap(heap.begin(), heap.end(), later);
+  for (const std::uint32_t s : sources) push(s, distance[s]);
   auto offer = [&](std::uint32_t w, double candidate) {
     if (candidate < distance[w]) {
       distance[w] = candidate;
-      heap.push_back({candidate, w});
-      std::push_heap(heap.begin(), heap.end(), later);
+      push(w, candidate);
     }
   };
-  while (!heap.empty()) {
-    std::pop_heap(heap.begin(), heap.end(), later);
-    const auto [d, u] = heap.back();
-    heap.pop_back();
-    if (fixed[u] || d > distance[u]) continue;
+  while (true) {
+    while (current < buckets.size() && buckets[current].empty()) ++current;
+    if (current == buckets.size()) break;
+    const std::uint32_t u = buckets[current].back();
+    buckets[current].pop_back();
+    if (fixed[u]) continue;
+    const double d = distance[u];
     fixed[u] = 1;
-    for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
-      const std::uint32_t e = mesh.vertex_edges[k];
-      const std::uint32_t w = mesh.edges[e][0] == u ? mesh.edges[e][1] : mesh.edges[e][0];
-      if (!fixed[w]) offer(w, d + mesh.edge_lengths[e]);
-    }
+    // Each unfixed corner c of a triangle at u: the edge step from u, or the planar front through
+    // u and the triangle's third corner o when o is fixed too; one offer per (triangle, corner).
     for (std::uint32_t k = mesh.vertex_triangle_offsets[u]; k < mesh.vertex_triangle_offsets[u + 1]; ++k) {
       const auto& t = mesh.triangles[mesh.vertex_triangles[k]];
-      for (int i = 0; i < 3; ++i) {
-        const std::uint32_t c = t[static_cast<std::size_t>(i)];
-        const std::uint32_t o = t[static_cast<std::size_t>((i + 1) % 3)] == u ? t[static_cast<std::size_t>((i + 2) % 3)]
-                                                                              : t[static_cast<std::size_t>((i + 1) % 3)];
-        if (c == u || o == u || fixed[c] || !fixed[o]) continue;
-        offer(c, triangleUpdate(positions[u], positions[o], positions[c], d, distance[o]));
+      const int at = t[0] == u ? 0 : (t[1] == u ? 1 : 2);
+      for (int step = 1; step <= 2; ++step) {
+        const std::uint32_t c = t[static_cast<std::size_t>((at + step) % 3)];
+        if (fixed[c]) continue;
+        const std::uint32_t o = t[static_cast<std::size_t>((at + 3 - step) % 3)];
+        double candidate = d + glm::length(positions[c] - positions[u]);
+        if (fixed[o]) candidate = std::min(candidate, triangleUpdate(positions[u], positions[o], positions[c], d, distance[o]));
+        offer(c, candidate);
+      }
+    }
+    // Edges without a triangle at u (a wire edge of a non-manifold fan) still carry the front.
+    if (mesh.vertex_triangle_offsets[u] == mesh.vertex_triangle_offsets[u + 1]) {
+      for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
+        const std::uint32_t e = mesh.vertex_edges[k];
+        const std::uint32_t w = mesh.edges[e][0] == u ? mesh.edges[e][1] : mesh.edges[e][0];
+        if (!fixed[w]) offer(w, d + mesh.edge_lengths[e]);
       }
     }
   }
@@ -245,21 +261,23 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
   LevelGraph graph;
   graph.spacing = spacing;
   const std::size_t t_count = mesh.triangles.size();
-  auto reached = [&](std::uint32_t t) {
-    for (const std::uint32_t v : mesh.triangles[t]) {
-      if (!std::isfinite(f[v])) return false;
-    }
-    return true;
-  };
+  // Slabs per vertex (kUnreachedSlab where f is infinite), computed once.
+  constexpr std::uint32_t kUnreachedSlab = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> vertex_slab(f.size());
+  for (std::size_t v = 0; v < f.size(); ++v) vertex_slab[v] = std::isfinite(f[v]) ? slabOf(f[v], spacing) : kUnreachedSlab;
+  std::vector<char> reached_triangle(t_count, 0);
+  auto reached = [&](std::uint32_t t) { return reached_triangle[t] != 0; };
 
   // Pieces: triangle t owns one piece per slab in [lo[t], hi[t]].
   std::vector<std::uint32_t> lo(t_count, 0), hi(t_count, 0), base(t_count + 1, 0);
   for (std::uint32_t t = 0; t < t_count; ++t) {
+    const auto& tri = mesh.triangles[t];
+    const std::uint32_t a = vertex_slab[tri[0]], b = vertex_slab[tri[1]], c = vertex_slab[tri[2]];
     std::uint32_t count = 0;
-    if (reached(t)) {
-      const auto& tri = mesh.triangles[t];
-      lo[t] = slabOf(std::min({f[tri[0]], f[tri[1]], f[tri[2]]}), spacing);
-      hi[t] = slabOf(std::max({f[tri[0]], f[tri[1]], f[tri[2]]}), spacing);
+    if (a != kUnreachedSlab && b != kUnreachedSlab && c != kUnreachedSlab) {
+      reached_triangle[t] = 1;
+      lo[t] = std::min({a, b, c});
+      hi[t] = std::max({a, b, c});
       count = hi[t] - lo[t] + 1;
     }
     base[t + 1] = base[t] + count;
@@ -273,11 +291,9 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
     const auto a = static_cast<std::uint32_t>(t0);
     const auto b = static_cast<std::uint32_t>(t1);
     if (!reached(a) || !reached(b)) continue;
-    const double fu = f[mesh.edges[e][0]];
-    const double fv = f[mesh.edges[e][1]];
-    for (std::uint32_t s = slabOf(std::min(fu, fv), spacing); s <= slabOf(std::max(fu, fv), spacing); ++s) {
-      pieces.unite(piece(a, s), piece(b, s));
-    }
+    const std::uint32_t su = vertex_slab[mesh.edges[e][0]];
+    const std::uint32_t sv = vertex_slab[mesh.edges[e][1]];
+    for (std::uint32_t s = std::min(su, sv); s <= std::max(su, sv); ++s) pieces.unite(piece(a, s), piece(b, s));
   }
   std::vector<std::uint32_t> region_of_root(base[t_count], LevelGraph::kNoRegion);
   auto regionOf = [&](std::uint32_t t, std::uint32_t slab) {
@@ -293,7 +309,7 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
     if (!reached(t)) continue;
     for (std::uint32_t s = lo[t]; s <= hi[t]; ++s) regionOf(t, s);
     for (const std::uint32_t v : mesh.triangles[t]) {
-      if (graph.vertex_region[v] == LevelGraph::kNoRegion) graph.vertex_region[v] = regionOf(t, slabOf(f[v], spacing));
+      if (graph.vertex_region[v] == LevelGraph::kNoRegion) graph.vertex_region[v] = regionOf(t, vertex_slab[v]);
     }
   }
   for (std::uint32_t v = 0; v < positions.size(); ++v) {
@@ -304,14 +320,18 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
   std::vector<std::uint32_t> crossing_base(mesh.edges.size() + 1, 0);
   std::vector<std::uint32_t> edge_lo(mesh.edges.size(), 0);
   for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
-    const double fu = f[mesh.edges[e][0]];
-    const double fv = f[mesh.edges[e][1]];
+    const std::uint32_t su = vertex_slab[mesh.edges[e][0]];
+    const std::uint32_t sv = vertex_slab[mesh.edges[e][1]];
     std::uint32_t count = 0;
-    if (std::isfinite(fu) && std::isfinite(fv)) {
-      edge_lo[e] = slabOf(std::min(fu, fv), spacing);
-      count = slabOf(std::max(fu, fv), spacing) - edge_lo[e];
+    if (su != kUnreachedSlab && sv != kUnreachedSlab) {
+      edge_lo[e] = std::min(su, sv);
+      count = std::max(su, sv) - edge_lo[e];
     }
     crossing_base[e + 1] = crossing_base[e] + count;
+  }
+  std::vector<std::uint32_t> crossing_edge(crossing_base.back());
+  for (std::uint32_t e = 0; e < mesh.edges.size(); ++e) {
+    for (std::uint32_t c = crossing_base[e]; c < crossing_base[e + 1]; ++c) crossing_edge[c] = e;
   }
   auto crossing = [&](std::uint32_t e, std::uint32_t s) { return crossing_base[e] + s - edge_lo[e] - 1; };
   auto crosses = [&](std::uint32_t e, std::uint32_t s) {
@@ -340,8 +360,7 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
   std::vector<std::uint32_t> uses(crossing_base.back(), 0);
   auto pointOf = [&](LevelContour& contour, std::uint32_t c) {
     if (point_of_crossing[c] == LevelGraph::kNoRegion) {
-      const auto e = static_cast<std::uint32_t>(std::upper_bound(crossing_base.begin(), crossing_base.end(), c) -
-                                                crossing_base.begin() - 1);
+      const std::uint32_t e = crossing_edge[c];
       const std::uint32_t s = c - crossing_base[e] + edge_lo[e] + 1;
       std::uint32_t a = mesh.edges[e][0];
       std::uint32_t b = mesh.edges[e][1];

@@ -64,8 +64,8 @@ Json toJson(const EvaluationResult& r) {
     summary[std::string(baselineMethodName(r.methods[m]))] = {{"mve_max", r.summary[m].mve_max},
                                                               {"mean_mean", r.summary[m].mean_mean}};
   }
-  return {{"pose_source", std::string(poseSourceName(r.pose_source))}, {"frames", std::move(frames)},
-          {"summary", std::move(summary)}};
+  return {{"pose_source", std::string(poseSourceName(r.pose_source))}, {"rig", r.rig_summary}, {"bones", r.bone_count},
+          {"frames", std::move(frames)}, {"summary", std::move(summary)}};
 }
 
 void printTable(std::ostream& out, const EvaluationResult& r) {
