@@ -13,6 +13,8 @@ namespace {
 // A branch leaving a junction is the body going on (no seam joint) when its first ring is the
 // thickest of the junction's branches and at least this fraction of the arriving ring.
 constexpr double kContinuation = 0.6;
+// ... and at the root, when it is at least this many times as thick as the next branch.
+constexpr double kRootContinuation = 1.5;
 
 struct Chain {
   std::vector<std::uint32_t> nodes;  // key node, interior nodes..., key node
@@ -240,12 +242,13 @@ Result<AnimationSkeleton> buildAnimationSkeleton(const CurveSkeleton& cs, const 
     for (const std::uint32_t m : adjacent[j]) {
       if (static_cast<std::int64_t>(m) != from[j]) kids.push_back(m);
     }
-    const double arriving = from[j] >= 0 ? cs.radii[static_cast<std::size_t>(from[j])] : 0.0;
-    const auto thickest = std::max_element(kids.begin(), kids.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return cs.radii[a] < cs.radii[b];
-    });
+    std::sort(kids.begin(), kids.end(), [&](std::uint32_t a, std::uint32_t b) { return cs.radii[a] > cs.radii[b]; });
+    // At the root nothing arrives: the body goes on where one branch is much the thickest (a
+    // pelvis's spine between two legs).
+    const double arriving = from[j] >= 0 ? cs.radii[static_cast<std::size_t>(from[j])]
+                                         : (kids.size() > 1 ? kRootContinuation * cs.radii[kids[1]] / kContinuation : 0.0);
     for (const std::uint32_t c : kids) {
-      const bool continues = j != root && c == *thickest && cs.radii[c] >= kContinuation * arriving;
+      const bool continues = c == kids.front() && arriving > 0.0 && cs.radii[c] >= kContinuation * arriving;
       if (!continues) mark(c, JointReason::kSeam);
     }
   }
