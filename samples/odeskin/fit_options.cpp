@@ -67,7 +67,7 @@ std::string fitUsageProblem(const FitCommandOptions& o) {
   if (o.bones < 0) return "fit: --bones must be >= 0 (0: chosen from the mesh)";
   if (o.bones > 0 && !o.rig.empty() && o.rig != "auto") return "fit: --bones applies to the automatic rig (--rig auto)";
   if (!o.rig.empty() && o.rig != "auto" && o.rig != "curves" && lowerExtension(o.rig) != ".tgf") {
-    return "fit: --rig takes auto, curves or a libigl skeleton (.tgf), got '" + o.rig + "'";
+    return "fit: --rig takes auto or a libigl skeleton (.tgf), or curves, got '" + o.rig + "'";
   }
   if (!o.materials_json.empty() && !o.material.empty()) return "fit: give --material or --materials, not both";
   if (Result<Material> m = parseMaterial(fitMaterialText(o)); !m.ok()) return "fit: --material: " + m.status().message();

@@ -180,7 +180,7 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
       "Examples: odeskin rig cat-00.obj -o cat.tgf --weights cat.dmat --png cat-rig.png\n"
       "          odeskin rig cheburashka.obj -o cheb.tgf --template humanoid --gltf cheb.glb\n"
       "          odeskin rig cylinder.obj poses-2/cylinder-*.obj -o cyl.tgf --template none\n"
-      "          odeskin rig cat-00.obj -o cat.tgf --curves cuts --repeat 20   (timings: medians of 20)");
+      "          odeskin rig cat-00.obj -o cat.tgf --curves cuts --repeat 20   (stage times: median, fastest)");
   cmd->add_option("meshes", o.meshes, "OBJ files: the bind mesh, then optional example poses")->required();
   cmd->add_option("-o,--output", o.output, "The skeleton to write (.tgf)")->required();
   cmd->add_option("--weights", o.weights, "Also write the skinning weights (.dmat, vertices x bones)");
@@ -195,7 +195,7 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
   cmd->add_option("--up", o.up, "The mesh's up axis: x, y, z, -x, -y or -z (default y)");
   cmd->add_option("--compare", o.compare, "A ground-truth skeleton (.tgf): print joint errors and bone counts against it");
   cmd->add_option("--azimuth", o.azimuth_deg, "--png camera angle about the up axis in degrees (default 30)");
-  cmd->add_option("--repeat", o.repeat, "Run the rig N times and print the median time of each stage");
+  cmd->add_option("--repeat", o.repeat, "Run the rig N times and print the median and fastest time of each stage");
   return cmd;
 }
 
