@@ -8,6 +8,7 @@
 
 #include "../curves/iso_curves.hpp"
 #include "../rig/auto_rig.hpp"
+#include "../rig/curve_rig.hpp"
 #include "../rig/distance_weights.hpp"
 #include "../rig/kabsch.hpp"
 
@@ -46,6 +47,9 @@ Status checkExamples(const ExampleSet& ex) {
 // The rig the fit uses: the input's, completed (weights by distance, transforms by Kabsch), or automatic.
 Result<Rig> resolveRig(const ExampleSet& ex, const PipelineOptions& opt, std::string* summary) {
   const std::size_t k_count = ex.poses.size();
+  if ((!ex.rig || opt.force_auto_rig) && opt.curve_rig) {
+    return curveRigForPoses(ex.rest_positions, ex.faces, ex.poses, summary);
+  }
   if (!ex.rig || opt.force_auto_rig) {
     AutoRigOptions auto_options;
     auto_options.bones = opt.auto_bones;

@@ -64,8 +64,8 @@ Json toJson(const EvaluationResult& r) {
     summary[std::string(baselineMethodName(r.methods[m]))] = {{"mve_max", r.summary[m].mve_max},
                                                               {"mean_mean", r.summary[m].mean_mean}};
   }
-  return {{"pose_source", std::string(poseSourceName(r.pose_source))}, {"frames", std::move(frames)},
-          {"summary", std::move(summary)}};
+  return {{"pose_source", std::string(poseSourceName(r.pose_source))}, {"rig", r.rig_summary}, {"bones", r.bone_count},
+          {"frames", std::move(frames)}, {"summary", std::move(summary)}};
 }
 
 void printTable(std::ostream& out, const EvaluationResult& r) {
@@ -128,7 +128,7 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   if (o.terms < 1 || o.terms > kMaxFourierModes) {
     return reportUsage(console, "evaluate: --terms must be in [1, " + std::to_string(kMaxFourierModes) + "]");
   }
-  const bool libigl_rig = !o.rig.empty() && o.rig != "auto";
+  const bool libigl_rig = !o.rig.empty() && o.rig != "auto" && o.rig != "curves";
   if (libigl_rig && o.bind.empty()) return reportUsage(console, "evaluate: --rig SKELETON.tgf needs --bind REST.obj");
   if (!libigl_rig && (!o.bind.empty() || !o.weights.empty())) {
     return reportUsage(console, "evaluate: --bind and --weights apply to --rig SKELETON.tgf");
@@ -156,7 +156,8 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
 
   EvaluationOptions options;
   options.pipeline.modes = o.terms;
-  options.pipeline.force_auto_rig = o.rig == "auto";
+  options.pipeline.force_auto_rig = o.rig == "auto" || o.rig == "curves";
+  options.pipeline.curve_rig = o.rig == "curves";
   options.pipeline.auto_bones = o.bones;
   options.skeleton_fit = o.skeleton_fit == "lbs" ? SkeletonFit::kLbsOptimal : SkeletonFit::kPerBoneRigid;
   if (!o.png_dir.empty()) {

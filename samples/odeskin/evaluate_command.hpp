@@ -22,7 +22,7 @@ struct EvaluateCommandOptions {
   std::filesystem::path json;                 // OUT.json (required)
   std::vector<double> times;                  // one per frame, or empty: uniform in frame index
   int terms = 9;                              // Fourier terms N of the odeskin fit
-  std::string rig;                            // empty or "auto": automatic rig; else a libigl .tgf
+  std::string rig;                            // empty or "auto": automatic rig; "curves": from iso-curves; else a .tgf
   std::filesystem::path bind;                 // rest mesh, with a .tgf rig
   std::filesystem::path weights;              // .dmat, with a .tgf rig
   int bones = 0;                              // automatic rig: bone count, 0 = chosen from the mesh

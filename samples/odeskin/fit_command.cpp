@@ -102,7 +102,8 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
   }
   pipeline.key_tolerance = o.key_tolerance;
   pipeline.pure_fourier = o.pure_fourier;
-  pipeline.force_auto_rig = o.rig == "auto";
+  pipeline.force_auto_rig = o.rig == "auto" || o.rig == "curves";
+  pipeline.curve_rig = o.rig == "curves";
   pipeline.auto_bones = o.bones;
   pipeline.segment_seconds = o.segment_seconds;
 

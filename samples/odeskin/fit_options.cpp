@@ -22,7 +22,7 @@ std::string lowerExtension(const std::filesystem::path& path) {
 std::string fitMaterialText(const FitCommandOptions& o) { return o.material.empty() ? "skin" : o.material; }
 
 FitInputKind fitInputKind(const FitCommandOptions& o, std::string* problem) {
-  const bool libigl_rig = !o.rig.empty() && o.rig != "auto";
+  const bool libigl_rig = !o.rig.empty() && o.rig != "auto" && o.rig != "curves";
   const bool gltf_options = !o.times.empty() || !o.targets.empty() || !o.animation.empty() || !o.mesh.empty();
   std::size_t gltf = 0;
   for (const std::filesystem::path& in : o.inputs) {
@@ -65,9 +65,9 @@ std::string fitUsageProblem(const FitCommandOptions& o) {
   if (!(o.key_tolerance >= 0.0) || !std::isfinite(o.key_tolerance)) return "fit: --key-tolerance must be >= 0";
   if (!(o.segment_seconds > 0.0) || !std::isfinite(o.segment_seconds)) return "fit: --segment-seconds must be positive";
   if (o.bones < 0) return "fit: --bones must be >= 0 (0: chosen from the mesh)";
-  if (o.bones > 0 && !o.rig.empty() && o.rig != "auto") return "fit: --bones applies to the automatic rig";
-  if (!o.rig.empty() && o.rig != "auto" && lowerExtension(o.rig) != ".tgf") {
-    return "fit: --rig takes auto or a libigl skeleton (.tgf), got '" + o.rig + "'";
+  if (o.bones > 0 && !o.rig.empty() && o.rig != "auto") return "fit: --bones applies to the automatic rig (--rig auto)";
+  if (!o.rig.empty() && o.rig != "auto" && o.rig != "curves" && lowerExtension(o.rig) != ".tgf") {
+    return "fit: --rig takes auto or a libigl skeleton (.tgf), or curves, got '" + o.rig + "'";
   }
   if (!o.materials_json.empty() && !o.material.empty()) return "fit: give --material or --materials, not both";
   if (Result<Material> m = parseMaterial(fitMaterialText(o)); !m.ok()) return "fit: --material: " + m.status().message();

@@ -15,7 +15,8 @@ struct FitCommandOptions {
   std::vector<std::filesystem::path> inputs;       // OBJ poses, or one .gltf/.glb
   std::filesystem::path output;                    // the .odsk to write
   std::string rig;                                 // empty: the input's rig, else automatic; "auto": always
-                                                   // automatic; else a libigl .tgf skeleton
+                                                   // automatic (from motion); "curves": always from the
+                                                   // bind mesh's iso-curves; else a libigl .tgf skeleton
   std::filesystem::path bind;                      // rest mesh (.obj); required with a .tgf rig
   std::filesystem::path weights;                   // .dmat, with a .tgf rig
   std::vector<std::filesystem::path> transforms;   // one .Tmat per pose, with a .tgf rig

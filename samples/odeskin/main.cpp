@@ -20,6 +20,7 @@
 #include "progress.hpp"
 #include "render_command.hpp"
 #include "surface_command.hpp"
+#include "rig_command.hpp"
 
 namespace {
 
@@ -56,7 +57,9 @@ CLI::App* addFitCommand(CLI::App& app, odeskin::FitCommandOptions& o, std::strin
       "Example: odeskin fit horse-01.obj horse-03.obj horse-05.obj -o horse.odsk --terms 9 --timings");
   fit->add_option("poses", o.inputs, "Example poses: OBJ files, or one .gltf/.glb")->required();
   fit->add_option("-o,--output", o.output, "The .odsk asset to write")->required();
-  fit->add_option("--rig", o.rig, "auto (derive bones from the poses) or a libigl .tgf skeleton; default: the input's rig, else auto");
+  fit->add_option("--rig", o.rig,
+                  "auto (derive bones from the poses' motion), curves (from the bind mesh's iso-curves, `odeskin rig`)\n"
+                  "or a libigl .tgf skeleton; default: the input's rig, else auto");
   fit->add_option("--bind", o.bind, "Rest mesh (.obj) of the OBJ poses; default: the first pose");
   fit->add_option("--weights", o.weights, "Skinning weights (.dmat) for --rig SKELETON.tgf");
   fit->add_option("--transforms", o.transforms, "One .Tmat per pose for --rig SKELETON.tgf")->delimiter(',');
@@ -126,7 +129,9 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
       ->delimiter(',');
   cmd->add_option("--terms", o.terms, "Fourier terms N per curve of the odeskin fit (default 9)")
       ->check(CLI::Range(1, odeskin::kMaxFourierModes));
-  cmd->add_option("--rig", o.rig, "auto (default: bones derived from the keys) or a libigl .tgf skeleton");
+  cmd->add_option("--rig", o.rig,
+                  "auto (default: bones derived from the keys' motion), curves (from the first key's iso-curves)\n"
+                  "or a libigl .tgf skeleton");
   cmd->add_option("--bind", o.bind, "Rest mesh (.obj) for --rig SKELETON.tgf");
   cmd->add_option("--weights", o.weights, "Skinning weights (.dmat) for --rig SKELETON.tgf");
   cmd->add_option("--bones", o.bones, "Automatic rig: bone count (0: chosen from the mesh)");
@@ -185,6 +190,36 @@ CLI::App* addSurfaceCommand(CLI::App& app, odeskin::SurfaceCommandOptions& o) {
   cmd->add_option("--backend", o.backend, "cpu (double-precision reference) or vulkan (compute shader, float)")
       ->check(CLI::IsMember({"cpu", "vulkan"}));
   cmd->add_flag("--validation", o.validation, "vulkan: enable the Khronos validation layer; fail on any message");
+  return cmd;
+}
+
+CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("rig", "Derive a skeleton and weights from a mesh's iso-parametric curves (thesis ch. 5)");
+  cmd->footer(
+      "The first MESH is the bind mesh; further OBJ meshes of the same vertices are example poses: where a\n"
+      "limb bends in any of them a joint goes (the larger bend wins where poses disagree). Joints: where limbs\n"
+      "leave the body, at branch points and free ends, where the curve skeleton turns by more than --angle,\n"
+      "and the template's (elbows, knees, spine; --template auto picks by the number of feet). Writes libigl\n"
+      "files: the skeleton (.tgf), distance weights (.dmat, V x B); --gltf a skinned .glb; --png a picture.\n"
+      "Examples: odeskin rig cat-00.obj -o cat.tgf --weights cat.dmat --png cat-rig.png\n"
+      "          odeskin rig cheburashka.obj -o cheb.tgf --template humanoid --gltf cheb.glb\n"
+      "          odeskin rig cylinder.obj poses-2/cylinder-*.obj -o cyl.tgf --template none\n"
+      "          odeskin rig cat-00.obj -o cat.tgf --curves cuts --repeat 20   (stage times: median, fastest)");
+  cmd->add_option("meshes", o.meshes, "OBJ files: the bind mesh, then optional example poses")->required();
+  cmd->add_option("-o,--output", o.output, "The skeleton to write (.tgf)")->required();
+  cmd->add_option("--weights", o.weights, "Also write the skinning weights (.dmat, vertices x bones)");
+  cmd->add_option("--template", o.template_kind, "auto, humanoid, quadruped or none (default auto)")
+      ->check(CLI::IsMember({"auto", "humanoid", "quadruped", "none"}));
+  cmd->add_option("--gltf", o.gltf, "Also write the mesh with its skin and joints as a .glb");
+  cmd->add_option("--png", o.png, "Also draw the curves and the skeleton over the mesh (Vulkan; lavapipe works)");
+  cmd->add_option("--curves", o.curves, "levels (geodesic rings, default) or cuts (odeskin's plane-cut curve identification\n"
+                  "run on the parts the rings find)")
+      ->check(CLI::IsMember({"cuts", "levels"}));
+  cmd->add_option("--angle", o.angle_deg, "Turn in degrees that makes a joint (default 20)");
+  cmd->add_option("--up", o.up, "The mesh's up axis: x, y, z, -x, -y or -z (default y)");
+  cmd->add_option("--compare", o.compare, "A ground-truth skeleton (.tgf): print joint errors and bone counts against it");
+  cmd->add_option("--azimuth", o.azimuth_deg, "--png camera angle about the up axis in degrees (default 30)");
+  cmd->add_option("--repeat", o.repeat, "Run the rig N times and print the median and fastest time of each stage");
   return cmd;
 }
 
@@ -312,6 +347,9 @@ int main(int argc, char** argv) {
   odeskin::BenchCommandOptions bench_options;
   CLI::App* bench_cmd = odeskin::addBenchCommand(app, bench_options);
 
+  odeskin::RigCommandOptions rig_options;
+  CLI::App* rig_cmd = addRigCommand(app, rig_options);
+
   odeskin::BlendCommandOptions blend_options;
   double blend_alpha = 0.0, blend_beta = 0.0, blend_gamma = 0.0;
   int blend_spline = 0;
@@ -367,6 +405,10 @@ int main(int argc, char** argv) {
   }
   if (bench_cmd->parsed()) return odeskin::runBenchCommand(bench_options, console, device);
   if (evaluate_cmd->parsed()) return odeskin::runEvaluateCommand(evaluate_options, console, device);
+  if (rig_cmd->parsed()) {
+    rig_options.device = device;
+    return odeskin::runRigCommand(rig_options, console);
+  }
   if (blend_cmd->parsed()) {
     if (blend_cmd->get_option("--alpha")->count() > 0) blend_options.alpha = blend_alpha;
     if (blend_cmd->get_option("--beta")->count() > 0) blend_options.beta = blend_beta;

@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: MIT
+#include "gltf_rig_writer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "gltf_baked_writer.hpp"
+
+namespace odeskin {
+namespace {
+
+constexpr std::size_t kSlots = 4;
+
+template <class T>
+int addView(tinygltf::Model& m, const std::vector<T>& values, int target) {
+  std::vector<unsigned char>& data = m.buffers[0].data;
+  while (data.size() % 4 != 0) data.push_back(0);
+  tinygltf::BufferView v;
+  v.buffer = 0;
+  v.byteOffset = data.size();
+  v.byteLength = values.size() * sizeof(T);
+  if (target != 0) v.target = target;
+  const auto* begin = reinterpret_cast<const unsigned char*>(values.data());
+  data.insert(data.end(), begin, begin + v.byteLength);
+  m.bufferViews.push_back(v);
+  return static_cast<int>(m.bufferViews.size() - 1);
+}
+
+int addAccessor(tinygltf::Model& m, int view, int component, int type, std::size_t count) {
+  tinygltf::Accessor a;
+  a.bufferView = view;
+  a.componentType = component;
+  a.type = type;
+  a.count = count;
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size() - 1);
+}
+
+std::vector<double> toDoubles(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces, const Rig& rig,
+                   const std::string& generator) {
+  const std::size_t v_count = positions.size();
+  const std::size_t bones = rig.skeleton.boneCount();
+  ODESKIN_TRY(validateRig(Rig{rig.skeleton, rig.influences, {}}, v_count, 0));
+  if (bones == 0 || bones > 65536) return invalidArgument(path.string() + ": a glTF skin needs 1 to 65536 bones, got " + std::to_string(bones));
+  if (rig.influences.vertexCount() != v_count) return invalidArgument(path.string() + ": the rig has no weights for the mesh");
+  std::vector<std::uint32_t> triangles;
+  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+    for (std::uint32_t k = faces.face_offsets[f] + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
+      for (const std::uint32_t v : {faces.indices[faces.face_offsets[f]], faces.indices[k], faces.indices[k + 1]}) {
+        if (v >= v_count) return invalidArgument(path.string() + ": face " + std::to_string(f) + " uses vertex " + std::to_string(v));
+        triangles.push_back(v);
+      }
+    }
+  }
+  std::vector<float> xyz;
+  std::vector<float> weights(kSlots * v_count, 0.0f);
+  std::vector<std::uint16_t> joints(kSlots * v_count, 0);
+  for (std::size_t i = 0; i < v_count; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(positions[i][k])) return invalidArgument(path.string() + ": vertex " + std::to_string(i) + " is not finite");
+      xyz.push_back(static_cast<float>(positions[i][k]));
+    }
+    std::vector<std::pair<double, std::uint32_t>> row;
+    for (std::uint32_t k = rig.influences.offsets[i]; k < rig.influences.offsets[i + 1]; ++k) {
+      row.push_back({rig.influences.weights[k], rig.influences.bones[k]});
+    }
+    std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    row.resize(std::min(row.size(), kSlots));
+    float sum = 0.0f;
+    for (const auto& [w, b] : row) sum += static_cast<float>(w);
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      weights[kSlots * i + k] = static_cast<float>(row[k].first) / sum;
+      joints[kSlots * i + k] = static_cast<std::uint16_t>(row[k].second);
+    }
+  }
+
+  tinygltf::Model m;
+  m.asset.version = "2.0";
+  m.asset.generator = generator;
+  m.buffers.emplace_back();
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  primitive.indices = addAccessor(m, addView(m, triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
+  const int position = addAccessor(m, addView(m, xyz, TINYGLTF_TARGET_ARRAY_BUFFER), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                   TINYGLTF_TYPE_VEC3, v_count);
+  m.accessors[static_cast<std::size_t>(position)].minValues.assign(3, std::numeric_limits<double>::infinity());
+  m.accessors[static_cast<std::size_t>(position)].maxValues.assign(3, -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    auto& a = m.accessors[static_cast<std::size_t>(position)];
+    a.minValues[i % 3] = std::min(a.minValues[i % 3], static_cast<double>(xyz[i]));
+    a.maxValues[i % 3] = std::max(a.maxValues[i % 3], static_cast<double>(xyz[i]));
+  }
+  primitive.attributes["POSITION"] = position;
+  primitive.attributes["WEIGHTS_0"] = addAccessor(m, addView(m, weights, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                                  TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, v_count);
+  primitive.attributes["JOINTS_0"] = addAccessor(m, addView(m, joints, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, v_count);
+  tinygltf::Mesh mesh;
+  mesh.name = "mesh";
+  mesh.primitives.push_back(primitive);
+  m.meshes.push_back(mesh);
+
+  // Node 0: the skinned mesh; nodes 1..B: the bones at their heads; then the end nodes.
+  tinygltf::Node mesh_node;
+  mesh_node.name = "mesh";
+  mesh_node.mesh = 0;
+  mesh_node.skin = 0;
+  m.nodes.push_back(mesh_node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  std::vector<float> inverse_binds;
+  std::vector<char> has_child(bones, 0);
+  for (std::size_t b = 0; b < bones; ++b) {
+    if (rig.skeleton.parents[b] >= 0) has_child[static_cast<std::size_t>(rig.skeleton.parents[b])] = 1;
+  }
+  for (std::size_t b = 0; b < bones; ++b) {
+    const std::int32_t p = rig.skeleton.parents[b];
+    tinygltf::Node node;
+    node.name = rig.skeleton.names.size() == bones && !rig.skeleton.names[b].empty() ? rig.skeleton.names[b] : "bone" + std::to_string(b);
+    const Vec3 offset = rig.skeleton.heads[b] - (p >= 0 ? rig.skeleton.heads[static_cast<std::size_t>(p)] : Vec3(0.0));
+    node.translation = toDoubles(offset);
+    m.nodes.push_back(node);
+    // Column-major 4 x 4: translate(-head).
+    const Vec3& h = rig.skeleton.heads[b];
+    inverse_binds.insert(inverse_binds.end(), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, static_cast<float>(-h.x),
+                                               static_cast<float>(-h.y), static_cast<float>(-h.z), 1});
+  }
+  for (std::size_t b = 0; b < bones; ++b) {
+    const std::int32_t p = rig.skeleton.parents[b];
+    if (p >= 0) {
+      m.nodes[static_cast<std::size_t>(p) + 1].children.push_back(static_cast<int>(b + 1));
+    } else {
+      scene.nodes.push_back(static_cast<int>(b + 1));
+    }
+    if (!has_child[b]) {
+      tinygltf::Node end;
+      end.name = m.nodes[b + 1].name + "_end";
+      end.translation = toDoubles(rig.skeleton.tails[b] - rig.skeleton.heads[b]);
+      m.nodes.push_back(end);
+      m.nodes[b + 1].children.push_back(static_cast<int>(m.nodes.size() - 1));
+    }
+  }
+  tinygltf::Skin skin;
+  skin.name = "skin";
+  for (std::size_t b = 0; b < bones; ++b) skin.joints.push_back(static_cast<int>(b + 1));
+  skin.inverseBindMatrices = addAccessor(m, addView(m, inverse_binds, 0), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, bones);
+  m.skins.push_back(skin);
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+  m.buffers[0].data.resize((m.buffers[0].data.size() + 3) / 4 * 4, 0);
+  return writeGlbAtomically(path, m);
+}
+
+}  // namespace odeskin

@@ -1,0 +1,437 @@
+// SPDX-License-Identifier: MIT
+#include "curve_skeleton_levels.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numeric>
+#include <functional>
+
+#include <glm/geometric.hpp>
+
+namespace odeskin {
+namespace {
+
+struct DisjointSets {
+  std::vector<std::uint32_t> parent;
+  explicit DisjointSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// The slab of a value (values are >= 0 and finite here).
+std::uint32_t slabOf(double value, double spacing) { return static_cast<std::uint32_t>(std::floor(value / spacing)); }
+
+}  // namespace
+
+MeshTopology meshTopology(std::span<const Vec3> positions, const FaceList& faces) {
+  MeshTopology mesh;
+  const std::size_t v_count = positions.size();
+  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+    const std::uint32_t begin = faces.face_offsets[f];
+    const std::uint32_t end = faces.face_offsets[f + 1];
+    for (std::uint32_t k = begin + 1; k + 1 < end; ++k) {
+      mesh.triangles.push_back({faces.indices[begin], faces.indices[k], faces.indices[k + 1]});
+    }
+  }
+  // Half-edges bucketed by their smaller vertex (a counting sort), then matched within a bucket.
+  const std::size_t h_count = 3 * mesh.triangles.size();
+  std::vector<std::uint32_t> bucket(v_count + 1, 0);
+  for (const auto& t : mesh.triangles) {
+    for (std::uint32_t k = 0; k < 3; ++k) ++bucket[std::min(t[k], t[(k + 1) % 3]) + 1];
+  }
+  for (std::size_t v = 0; v < v_count; ++v) bucket[v + 1] += bucket[v];
+  std::vector<std::uint32_t> half(h_count);  // 3 t + k
+  {
+    std::vector<std::uint32_t> fill(bucket.begin(), bucket.end() - 1);
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        half[fill[std::min(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])]++] = 3 * t + k;
+      }
+    }
+  }
+  auto other = [&](std::uint32_t h) {
+    const auto& t = mesh.triangles[h / 3];
+    return std::max(t[h % 3], t[(h % 3 + 1) % 3]);
+  };
+  mesh.triangle_edges.resize(mesh.triangles.size());
+  for (std::uint32_t v = 0; v < v_count; ++v) {
+    // A bucket holds the few half-edges of one vertex: order them by their other end.
+    std::sort(half.begin() + bucket[v], half.begin() + bucket[v + 1], [&](std::uint32_t x, std::uint32_t y) {
+      return other(x) != other(y) ? other(x) < other(y) : x < y;
+    });
+    for (std::uint32_t i = bucket[v]; i < bucket[v + 1];) {
+      const auto e = static_cast<std::uint32_t>(mesh.edges.size());
+      const std::uint32_t w = other(half[i]);
+      mesh.edges.push_back({v, w});
+      mesh.edge_triangles.push_back({static_cast<std::int32_t>(half[i] / 3), -1});
+      std::uint32_t j = i;
+      for (; j < bucket[v + 1] && other(half[j]) == w; ++j) {
+        mesh.triangle_edges[half[j] / 3][half[j] % 3] = e;
+        if (j == i + 1) mesh.edge_triangles.back()[1] = static_cast<std::int32_t>(half[j] / 3);
+      }
+      i = j;
+    }
+  }
+  mesh.edge_lengths.resize(mesh.edges.size());
+  mesh.vertex_offsets.assign(v_count + 1, 0);
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    mesh.edge_lengths[e] = glm::length(positions[mesh.edges[e][1]] - positions[mesh.edges[e][0]]);
+    ++mesh.vertex_offsets[mesh.edges[e][0] + 1];
+    ++mesh.vertex_offsets[mesh.edges[e][1] + 1];
+  }
+  for (std::size_t v = 0; v < v_count; ++v) mesh.vertex_offsets[v + 1] += mesh.vertex_offsets[v];
+  mesh.vertex_edges.resize(2 * mesh.edges.size());
+  std::vector<std::uint32_t> fill(mesh.vertex_offsets.begin(), mesh.vertex_offsets.end() - 1);
+  for (std::uint32_t e = 0; e < mesh.edges.size(); ++e) {
+    mesh.vertex_edges[fill[mesh.edges[e][0]]++] = e;
+    mesh.vertex_edges[fill[mesh.edges[e][1]]++] = e;
+  }
+  mesh.vertex_triangle_offsets.assign(v_count + 1, 0);
+  for (const auto& t : mesh.triangles) {
+    for (const std::uint32_t v : t) ++mesh.vertex_triangle_offsets[v + 1];
+  }
+  for (std::size_t v = 0; v < v_count; ++v) mesh.vertex_triangle_offsets[v + 1] += mesh.vertex_triangle_offsets[v];
+  mesh.vertex_triangles.resize(3 * mesh.triangles.size());
+  fill.assign(mesh.vertex_triangle_offsets.begin(), mesh.vertex_triangle_offsets.end() - 1);
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (const std::uint32_t v : mesh.triangles[t]) mesh.vertex_triangles[fill[v]++] = t;
+  }
+  mesh.boundary_vertex.assign(v_count, 0);
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    if (mesh.edge_triangles[e][1] < 0) mesh.boundary_vertex[mesh.edges[e][0]] = mesh.boundary_vertex[mesh.edges[e][1]] = 1;
+  }
+  return mesh;
+}
+
+namespace {
+
+// The planar front through A (at ta) and B (at tb) reaching C, if its characteristic through C
+// crosses the edge AB (upwind); +infinity otherwise.
+double triangleUpdate(const Vec3& a, const Vec3& b, const Vec3& c, double ta, double tb) {
+  const Vec3 ab = b - a;
+  const double length = glm::length(ab);
+  if (!(length > 0.0)) return kUnreached;
+  const Vec3 ex = ab / length;
+  const Vec3 ac = c - a;
+  const double xc = glm::dot(ac, ex);
+  const double yc = glm::length(ac - xc * ex);
+  const double d = tb - ta;
+  if (!(yc > 0.0) || std::abs(d) >= length) return kUnreached;
+  const double gx = d / length;
+  const double gy = std::sqrt(1.0 - gx * gx);
+  const double foot = xc - yc / gy * gx;
+  if (foot < 0.0 || foot > length) return kUnreached;
+  const double t = ta + gx * xc + gy * yc;
+  return t >= std::max(ta, tb) ? t : kUnreached;
+}
+
+}  // namespace
+
+std::vector<double> surfaceDistance(const MeshTopology& mesh, std::span<const Vec3> positions,
+                                    std::span<const std::uint32_t> sources, std::span<const double> initial) {
+  const std::size_t v_count = mesh.vertex_offsets.size() - 1;
+  std::vector<double> distance(v_count, kUnreached);
+  std::vector<char> fixed(v_count, 0);
+  // An untidy priority queue (Yatziv, Bartesaghi & Sapiro 2006): buckets kBucketEdges of a mean
+  // edge wide, each popped in any order. Vertices within a bucket are fixed out of order by less
+  // than its width, an error far below the level spacing (2 edges), for a queue without a heap.
+  constexpr double kBucketEdges = 0.05;
+  double mean_edge = 0.0;
+  for (const double l : mesh.edge_lengths) mean_edge += l;
+  mean_edge = mesh.edge_lengths.empty() ? 1.0 : mean_edge / static_cast<double>(mesh.edge_lengths.size());
+  const double width = mean_edge > 0.0 ? kBucketEdges * mean_edge : 1.0;
+  std::vector<std::vector<std::uint32_t>> buckets;
+  std::size_t current = 0;
+  auto push = [&](std::uint32_t w, double value) {
+    const auto b = static_cast<std::size_t>(value / width);
+    if (b >= buckets.size()) buckets.resize(b + 1 + buckets.size() / 2);
+    buckets[std::max(b, current)].push_back(w);
+  };
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const std::uint32_t s = sources[i];
+    assert(s < v_count);
+    const double d0 = initial.empty() ? 0.0 : initial[i];
+    if (d0 < distance[s]) distance[s] = d0;
+  }
+  for (const std::uint32_t s : sources) push(s, distance[s]);
+  auto offer = [&](std::uint32_t w, double candidate) {
+    if (candidate < distance[w]) {
+      distance[w] = candidate;
+      push(w, candidate);
+    }
+  };
+  while (true) {
+    while (current < buckets.size() && buckets[current].empty()) ++current;
+    if (current == buckets.size()) break;
+    const std::uint32_t u = buckets[current].back();
+    buckets[current].pop_back();
+    if (fixed[u]) continue;
+    const double d = distance[u];
+    fixed[u] = 1;
+    // Each unfixed corner c of a triangle at u: the edge step from u, or the planar front through
+    // u and the triangle's third corner o when o is fixed too; one offer per (triangle, corner).
+    for (std::uint32_t k = mesh.vertex_triangle_offsets[u]; k < mesh.vertex_triangle_offsets[u + 1]; ++k) {
+      const auto& t = mesh.triangles[mesh.vertex_triangles[k]];
+      const int at = t[0] == u ? 0 : (t[1] == u ? 1 : 2);
+      for (int step = 1; step <= 2; ++step) {
+        const std::uint32_t c = t[static_cast<std::size_t>((at + step) % 3)];
+        if (fixed[c]) continue;
+        const std::uint32_t o = t[static_cast<std::size_t>((at + 3 - step) % 3)];
+        double candidate = d + glm::length(positions[c] - positions[u]);
+        if (fixed[o]) candidate = std::min(candidate, triangleUpdate(positions[u], positions[o], positions[c], d, distance[o]));
+        offer(c, candidate);
+      }
+    }
+    // Edges without a triangle at u (a wire edge of a non-manifold fan) still carry the front.
+    if (mesh.vertex_triangle_offsets[u] == mesh.vertex_triangle_offsets[u + 1]) {
+      for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
+        const std::uint32_t e = mesh.vertex_edges[k];
+        const std::uint32_t w = mesh.edges[e][0] == u ? mesh.edges[e][1] : mesh.edges[e][0];
+        if (!fixed[w]) offer(w, d + mesh.edge_lengths[e]);
+      }
+    }
+  }
+  return distance;
+}
+
+std::vector<double> edgeDistance(const MeshTopology& mesh, std::span<const std::uint32_t> sources) {
+  const std::size_t v_count = mesh.vertex_offsets.size() - 1;
+  std::vector<double> distance(v_count, kUnreached);
+  using Entry = std::pair<double, std::uint32_t>;
+  std::vector<Entry> heap;
+  heap.reserve(v_count);
+  for (const std::uint32_t s : sources) {
+    assert(s < v_count);
+    if (distance[s] > 0.0) {
+      distance[s] = 0.0;
+      heap.push_back({0.0, s});
+    }
+  }
+  const auto later = std::greater<Entry>();
+  std::make_heap(heap.begin(), heap.end(), later);
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), later);
+    const auto [d, u] = heap.back();
+    heap.pop_back();
+    if (d > distance[u]) continue;
+    for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
+      const std::uint32_t e = mesh.vertex_edges[k];
+      const std::uint32_t w = mesh.edges[e][0] == u ? mesh.edges[e][1] : mesh.edges[e][0];
+      const double candidate = d + mesh.edge_lengths[e];
+      if (candidate < distance[w]) {
+        distance[w] = candidate;
+        heap.push_back({candidate, w});
+        std::push_heap(heap.begin(), heap.end(), later);
+      }
+    }
+  }
+  return distance;
+}
+
+std::vector<std::int32_t> edgeHops(const MeshTopology& mesh, std::uint32_t source) {
+  const std::size_t v_count = mesh.vertex_offsets.size() - 1;
+  std::vector<std::int32_t> hops(v_count, -1);
+  std::vector<std::uint32_t> queue{source};
+  queue.reserve(v_count);
+  hops[source] = 0;
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const std::uint32_t u = queue[head];
+    for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
+      const std::uint32_t e = mesh.vertex_edges[k];
+      const std::uint32_t w = mesh.edges[e][0] == u ? mesh.edges[e][1] : mesh.edges[e][0];
+      if (hops[w] >= 0) continue;
+      hops[w] = hops[u] + 1;
+      queue.push_back(w);
+    }
+  }
+  return hops;
+}
+
+LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh, std::span<const double> f,
+                      double spacing) {
+  assert(spacing > 0.0);
+  LevelGraph graph;
+  graph.spacing = spacing;
+  const std::size_t t_count = mesh.triangles.size();
+  // Slabs per vertex (kUnreachedSlab where f is infinite), computed once.
+  constexpr std::uint32_t kUnreachedSlab = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> vertex_slab(f.size());
+  for (std::size_t v = 0; v < f.size(); ++v) vertex_slab[v] = std::isfinite(f[v]) ? slabOf(f[v], spacing) : kUnreachedSlab;
+  std::vector<char> reached_triangle(t_count, 0);
+  auto reached = [&](std::uint32_t t) { return reached_triangle[t] != 0; };
+
+  // Pieces: triangle t owns one piece per slab in [lo[t], hi[t]].
+  std::vector<std::uint32_t> lo(t_count, 0), hi(t_count, 0), base(t_count + 1, 0);
+  for (std::uint32_t t = 0; t < t_count; ++t) {
+    const auto& tri = mesh.triangles[t];
+    const std::uint32_t a = vertex_slab[tri[0]], b = vertex_slab[tri[1]], c = vertex_slab[tri[2]];
+    std::uint32_t count = 0;
+    if (a != kUnreachedSlab && b != kUnreachedSlab && c != kUnreachedSlab) {
+      reached_triangle[t] = 1;
+      lo[t] = std::min({a, b, c});
+      hi[t] = std::max({a, b, c});
+      count = hi[t] - lo[t] + 1;
+    }
+    base[t + 1] = base[t] + count;
+  }
+  auto piece = [&](std::uint32_t t, std::uint32_t slab) { return base[t] + slab - lo[t]; };
+  DisjointSets pieces(base[t_count]);
+  // Neighbouring triangles' pieces of a slab meet where their shared edge meets the slab.
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    const auto [t0, t1] = mesh.edge_triangles[e];
+    if (t1 < 0) continue;
+    const auto a = static_cast<std::uint32_t>(t0);
+    const auto b = static_cast<std::uint32_t>(t1);
+    if (!reached(a) || !reached(b)) continue;
+    const std::uint32_t su = vertex_slab[mesh.edges[e][0]];
+    const std::uint32_t sv = vertex_slab[mesh.edges[e][1]];
+    for (std::uint32_t s = std::min(su, sv); s <= std::max(su, sv); ++s) pieces.unite(piece(a, s), piece(b, s));
+  }
+  std::vector<std::uint32_t> region_of_root(base[t_count], LevelGraph::kNoRegion);
+  auto regionOf = [&](std::uint32_t t, std::uint32_t slab) {
+    const std::uint32_t root = pieces.find(piece(t, slab));
+    if (region_of_root[root] == LevelGraph::kNoRegion) {
+      region_of_root[root] = static_cast<std::uint32_t>(graph.regions.size());
+      graph.regions.emplace_back().slab = slab;
+    }
+    return region_of_root[root];
+  };
+  graph.vertex_region.assign(positions.size(), LevelGraph::kNoRegion);
+  for (std::uint32_t t = 0; t < t_count; ++t) {
+    if (!reached(t)) continue;
+    for (std::uint32_t s = lo[t]; s <= hi[t]; ++s) regionOf(t, s);
+    for (const std::uint32_t v : mesh.triangles[t]) {
+      if (graph.vertex_region[v] == LevelGraph::kNoRegion) graph.vertex_region[v] = regionOf(t, vertex_slab[v]);
+    }
+  }
+  for (std::uint32_t v = 0; v < positions.size(); ++v) {
+    if (graph.vertex_region[v] != LevelGraph::kNoRegion) graph.regions[graph.vertex_region[v]].vertices.push_back(v);
+  }
+
+  // Crossings: edge e meets level s (f = s * spacing) for s in (slab(min f), slab(max f)].
+  std::vector<std::uint32_t> crossing_base(mesh.edges.size() + 1, 0);
+  std::vector<std::uint32_t> edge_lo(mesh.edges.size(), 0);
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    const std::uint32_t su = vertex_slab[mesh.edges[e][0]];
+    const std::uint32_t sv = vertex_slab[mesh.edges[e][1]];
+    std::uint32_t count = 0;
+    if (su != kUnreachedSlab && sv != kUnreachedSlab) {
+      edge_lo[e] = std::min(su, sv);
+      count = std::max(su, sv) - edge_lo[e];
+    }
+    crossing_base[e + 1] = crossing_base[e] + count;
+  }
+  std::vector<std::uint32_t> crossing_edge(crossing_base.back());
+  for (std::uint32_t e = 0; e < mesh.edges.size(); ++e) {
+    for (std::uint32_t c = crossing_base[e]; c < crossing_base[e + 1]; ++c) crossing_edge[c] = e;
+  }
+  auto crossing = [&](std::uint32_t e, std::uint32_t s) { return crossing_base[e] + s - edge_lo[e] - 1; };
+  auto crosses = [&](std::uint32_t e, std::uint32_t s) {
+    return s > edge_lo[e] && s <= edge_lo[e] + (crossing_base[e + 1] - crossing_base[e]);
+  };
+  struct Segment {
+    std::uint32_t c0, c1, triangle, level;
+  };
+  std::vector<Segment> segments;
+  DisjointSets links(crossing_base.back());
+  for (std::uint32_t t = 0; t < t_count; ++t) {
+    if (!reached(t)) continue;
+    for (std::uint32_t s = lo[t] + 1; s <= hi[t]; ++s) {
+      std::uint32_t found[2] = {0, 0};
+      int n = 0;
+      for (const std::uint32_t e : mesh.triangle_edges[t]) {
+        if (crosses(e, s) && n < 2) found[n++] = crossing(e, s);
+      }
+      assert(n == 2);
+      links.unite(found[0], found[1]);
+      segments.push_back({found[0], found[1], t, s});
+    }
+  }
+  std::vector<std::uint32_t> contour_of_root(crossing_base.back(), LevelGraph::kNoRegion);
+  std::vector<std::uint32_t> point_of_crossing(crossing_base.back(), LevelGraph::kNoRegion);
+  std::vector<std::uint32_t> uses(crossing_base.back(), 0);
+  auto pointOf = [&](LevelContour& contour, std::uint32_t c) {
+    if (point_of_crossing[c] == LevelGraph::kNoRegion) {
+      const std::uint32_t e = crossing_edge[c];
+      const std::uint32_t s = c - crossing_base[e] + edge_lo[e] + 1;
+      std::uint32_t a = mesh.edges[e][0];
+      std::uint32_t b = mesh.edges[e][1];
+      if (f[a] > f[b]) std::swap(a, b);
+      const double level = spacing * static_cast<double>(s);
+      const double t = f[b] > f[a] ? std::clamp((level - f[a]) / (f[b] - f[a]), 0.0, 1.0) : 0.0;
+      point_of_crossing[c] = static_cast<std::uint32_t>(contour.points.size());
+      contour.points.push_back({a, b, t});
+    }
+    ++uses[c];
+    return point_of_crossing[c];
+  };
+  for (const Segment& seg : segments) {
+    const std::uint32_t root = links.find(seg.c0);
+    if (contour_of_root[root] == LevelGraph::kNoRegion) {
+      contour_of_root[root] = static_cast<std::uint32_t>(graph.contours.size());
+      LevelContour& created = graph.contours.emplace_back();
+      created.level = seg.level;
+      created.lower = regionOf(seg.triangle, seg.level - 1);
+      created.upper = regionOf(seg.triangle, seg.level);
+    }
+    LevelContour& contour = graph.contours[contour_of_root[root]];
+    const std::uint32_t p0 = pointOf(contour, seg.c0);
+    const std::uint32_t p1 = pointOf(contour, seg.c1);
+    contour.segments.push_back({p0, p1});
+  }
+  for (std::size_t c = 0; c < uses.size(); ++c) {
+    if (uses[c] == 1) graph.contours[contour_of_root[links.find(static_cast<std::uint32_t>(c))]].closed = false;
+  }
+  for (std::uint32_t c = 0; c < graph.contours.size(); ++c) {
+    LevelContour& contour = graph.contours[c];
+    contour.centroid = contourCentroid(contour, positions);
+    double length = 0.0;
+    for (const auto& s : contour.segments) {
+      length += glm::length(curvePointPosition(positions, contour.points[s[1]]) -
+                            curvePointPosition(positions, contour.points[s[0]]));
+    }
+    contour.length = length;
+    double radius = 0.0;
+    for (const CurvePoint& p : contour.points) radius += glm::length(curvePointPosition(positions, p) - contour.centroid);
+    contour.radius = contour.points.empty() ? 0.0 : radius / static_cast<double>(contour.points.size());
+    graph.regions[contour.lower].contours.push_back(c);
+    graph.regions[contour.upper].contours.push_back(c);
+  }
+  for (LevelRegion& region : graph.regions) {
+    Vec3 sum(0.0);
+    if (!region.vertices.empty()) {
+      for (const std::uint32_t v : region.vertices) sum += positions[v];
+      region.centroid = sum / static_cast<double>(region.vertices.size());
+    } else if (!region.contours.empty()) {
+      for (const std::uint32_t c : region.contours) sum += graph.contours[c].centroid;
+      region.centroid = sum / static_cast<double>(region.contours.size());
+    }
+  }
+  return graph;
+}
+
+Vec3 contourCentroid(const LevelContour& contour, std::span<const Vec3> positions) {
+  Vec3 sum(0.0);
+  double total = 0.0;
+  for (const auto& s : contour.segments) {
+    const Vec3 a = curvePointPosition(positions, contour.points[s[0]]);
+    const Vec3 b = curvePointPosition(positions, contour.points[s[1]]);
+    const double length = glm::length(b - a);
+    sum += 0.5 * length * (a + b);
+    total += length;
+  }
+  if (total > 0.0) return sum / total;
+  Vec3 mean(0.0);
+  for (const CurvePoint& p : contour.points) mean += curvePointPosition(positions, p);
+  return contour.points.empty() ? mean : mean / static_cast<double>(contour.points.size());
+}
+
+}  // namespace odeskin

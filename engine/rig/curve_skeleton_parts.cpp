@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+#include "curve_skeleton_parts.hpp"
+
+#include <glm/geometric.hpp>
+
+namespace odeskin {
+
+TreeParts treeParts(const LevelGraph& graph, const LevelTree& tree) {
+  TreeParts out;
+  out.contour_part.assign(graph.contours.size(), -1);
+  out.region_part.assign(graph.regions.size(), -1);
+  std::vector<std::uint32_t> order{tree.root};
+  for (std::size_t head = 0; head < order.size(); ++head) {
+    const std::uint32_t r = order[head];
+    const bool branching = r == tree.root || tree.children[r].size() >= 2;
+    for (const std::uint32_t c : tree.children[r]) {
+      std::int32_t part = out.region_part[r];
+      if (branching) {
+        part = static_cast<std::int32_t>(out.parts.size());
+        TreePart p;
+        p.start_region = r;
+        p.parent = out.region_part[r];
+        p.depth = p.parent >= 0 ? out.parts[static_cast<std::size_t>(p.parent)].depth + 1 : 0;
+        out.parts.push_back(p);
+        if (r == tree.root && out.region_part[r] < 0) out.region_part[r] = part;
+      }
+      const auto q = static_cast<std::uint32_t>(tree.child_region[c]);
+      out.contour_part[c] = part;
+      out.region_part[q] = part;
+      out.parts[static_cast<std::size_t>(part)].end_region = static_cast<std::int32_t>(q);
+      order.push_back(q);
+    }
+  }
+  if (out.parts.empty()) {  // a tree of one region: one part
+    out.parts.push_back(TreePart{tree.root, -1, -1, 0});
+    out.region_part[tree.root] = 0;
+  }
+  for (std::uint32_t r = 0; r < graph.regions.size(); ++r) {
+    if (tree.reached[r] && out.region_part[r] < 0) out.region_part[r] = out.region_part[tree.owner[r]];
+  }
+  out.vertex_parts.assign(graph.vertex_region.size(), 0);
+  for (std::size_t v = 0; v < graph.vertex_region.size(); ++v) {
+    const std::uint32_t r = graph.vertex_region[v];
+    if (r != LevelGraph::kNoRegion && out.region_part[r] >= 0) out.vertex_parts[v] = static_cast<std::uint32_t>(out.region_part[r]);
+  }
+  return out;
+}
+
+SkeletonNodeKind regionKind(const LevelTree& tree, std::uint32_t region, bool* has_node) {
+  *has_node = true;
+  if (region == tree.root) return SkeletonNodeKind::kRoot;
+  if (tree.children[region].empty()) return SkeletonNodeKind::kTip;
+  if (tree.children[region].size() >= 2) return SkeletonNodeKind::kJunction;
+  *has_node = false;
+  return SkeletonNodeKind::kCurve;
+}
+
+void addSkeletonNode(CurveSkeleton& s, SkeletonNodeKind kind, std::int32_t parent, std::uint32_t part, double radius,
+                     std::span<const SkeletonAnchor> anchors, std::span<const Vec3> rest) {
+  Vec3 sum(0.0);
+  double total = 0.0;
+  for (const SkeletonAnchor& a : anchors) {
+    sum += a.weight * curvePointPosition(rest, a.point);
+    total += a.weight;
+  }
+  s.positions.push_back(total > 0.0 ? sum / total : sum);
+  s.radii.push_back(radius);
+  s.kinds.push_back(kind);
+  s.parents.push_back(parent);
+  s.parts.push_back(part);
+  s.anchors.insert(s.anchors.end(), anchors.begin(), anchors.end());
+  s.anchor_offsets.push_back(static_cast<std::uint32_t>(s.anchors.size()));
+}
+
+std::vector<SkeletonAnchor> regionAnchors(const LevelGraph& graph, std::uint32_t region) {
+  std::vector<SkeletonAnchor> anchors;
+  for (const std::uint32_t v : graph.regions[region].vertices) anchors.push_back({CurvePoint{v, v, 0.0}, 1.0});
+  return anchors;
+}
+
+std::vector<SkeletonAnchor> tipAnchors(const LevelGraph& graph, std::uint32_t region, const MeshTopology& mesh) {
+  std::vector<std::uint32_t> rim;
+  for (const std::uint32_t v : graph.regions[region].vertices) {
+    if (mesh.boundary_vertex[v]) rim.push_back(v);
+  }
+  if (rim.empty()) return regionAnchors(graph, region);
+  // Along boundary edges to the rest of the loop(s).
+  std::vector<char> seen(mesh.boundary_vertex.size(), 0);
+  for (const std::uint32_t v : rim) seen[v] = 1;
+  for (std::size_t head = 0; head < rim.size(); ++head) {
+    const std::uint32_t u = rim[head];
+    for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
+      const std::uint32_t e = mesh.vertex_edges[k];
+      if (mesh.edge_triangles[e][1] >= 0) continue;
+      const std::uint32_t w = mesh.edges[e][0] == u ? mesh.edges[e][1] : mesh.edges[e][0];
+      if (!seen[w]) {
+        seen[w] = 1;
+        rim.push_back(w);
+      }
+    }
+  }
+  std::vector<SkeletonAnchor> anchors;
+  for (const std::uint32_t v : rim) anchors.push_back({CurvePoint{v, v, 0.0}, 1.0});
+  return anchors;
+}
+
+std::vector<SkeletonAnchor> curveAnchors(std::span<const CurvePoint> points, bool closed, std::span<const Vec3> rest) {
+  // Each segment's length goes half to either end: the anchors' mean is the length-weighted centroid.
+  std::vector<SkeletonAnchor> anchors(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) anchors[i].point = points[i];
+  const std::size_t segments = closed ? points.size() : (points.empty() ? 0 : points.size() - 1);
+  for (std::size_t k = 0; k < segments; ++k) {
+    const std::size_t j = (k + 1) % points.size();
+    const double length = glm::length(curvePointPosition(rest, points[j]) - curvePointPosition(rest, points[k]));
+    anchors[k].weight += 0.5 * length;
+    anchors[j].weight += 0.5 * length;
+  }
+  double total = 0.0;
+  for (const SkeletonAnchor& a : anchors) total += a.weight;
+  if (!(total > 0.0)) {
+    for (SkeletonAnchor& a : anchors) a.weight = 1.0;
+  }
+  return anchors;
+}
+
+IsoCurve orderedContour(const LevelContour& contour, std::uint32_t part) {
+  const std::size_t n = contour.points.size();
+  std::vector<std::array<std::int64_t, 2>> next(n, {-1, -1});
+  for (const auto& s : contour.segments) {
+    for (int side = 0; side < 2; ++side) {
+      auto& slot = next[s[static_cast<std::size_t>(side)]];
+      (slot[0] < 0 ? slot[0] : slot[1]) = s[static_cast<std::size_t>(1 - side)];
+    }
+  }
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (next[i][1] < 0) {
+      start = i;
+      break;
+    }
+  }
+  IsoCurve curve;
+  curve.closed = contour.closed;
+  curve.part = part;
+  std::vector<char> seen(n, 0);
+  std::int64_t previous = -1;
+  for (auto at = static_cast<std::int64_t>(start); at >= 0 && !seen[static_cast<std::size_t>(at)];) {
+    const auto i = static_cast<std::size_t>(at);
+    seen[i] = 1;
+    curve.points.push_back(contour.points[i]);
+    const std::int64_t step = next[i][0] != previous ? next[i][0] : next[i][1];
+    previous = at;
+    at = step;
+  }
+  return curve;
+}
+
+}  // namespace odeskin

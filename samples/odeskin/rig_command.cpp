@@ -1,0 +1,209 @@
+// SPDX-License-Identifier: MIT
+#include "rig_command.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <ostream>
+
+#include <glm/geometric.hpp>
+
+#include "engine/io/gltf_rig_writer.hpp"
+#include "engine/io/libigl_io.hpp"
+#include "engine/io/libigl_writer.hpp"
+#include "engine/io/obj_reader.hpp"
+#include "engine/rig/curve_rig.hpp"
+#include "engine/rig/skeleton_compare.hpp"
+#include "render_session.hpp"
+#include "rig_picture.hpp"
+
+namespace odeskin {
+namespace {
+
+std::string lowerExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+std::string usageProblem(const RigCommandOptions& o) {
+  if (o.meshes.empty()) return "rig: give the mesh (an OBJ file), optionally followed by example poses";
+  for (const std::filesystem::path& m : o.meshes) {
+    if (lowerExtension(m) != ".obj") return "rig: " + m.string() + ": meshes must be OBJ files";
+  }
+  if (o.output.empty()) return "rig: -o SKELETON.tgf is required";
+  if (lowerExtension(o.output) != ".tgf") return "rig: -o " + o.output.string() + ": the skeleton is written as a .tgf file";
+  if (!o.weights.empty() && lowerExtension(o.weights) != ".dmat") {
+    return "rig: --weights " + o.weights.string() + ": the weights are written as a .dmat file";
+  }
+  if (!o.gltf.empty() && lowerExtension(o.gltf) != ".glb") return "rig: --gltf " + o.gltf.string() + ": must be a .glb file";
+  if (!o.png.empty() && lowerExtension(o.png) != ".png") return "rig: --png " + o.png.string() + ": must be a .png file";
+  if (!o.compare.empty() && lowerExtension(o.compare) != ".tgf") {
+    return "rig: --compare " + o.compare.string() + ": give the ground-truth skeleton as a .tgf file";
+  }
+  if (!parseTemplateKind(o.template_kind)) {
+    return "rig: --template " + o.template_kind + ": use auto, humanoid, quadruped or none";
+  }
+  if (o.curves != "cuts" && o.curves != "levels") return "rig: --curves " + o.curves + ": use cuts or levels";
+  if (!(o.angle_deg > 0.0 && o.angle_deg < 180.0)) return "rig: --angle must lie in (0, 180) degrees";
+  if (o.repeat < 1) return "rig: --repeat must be at least 1";
+  if (Result<Vec3> up = parseUpAxis(o.up); !up.ok()) return "rig: " + up.status().message();
+  return {};
+}
+
+double fastest(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); }
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+const char* reasonText(JointReason r) {
+  switch (r) {
+    case JointReason::kRoot: return "root";
+    case JointReason::kJunction: return "junction";
+    case JointReason::kSeam: return "seam";
+    case JointReason::kBend: return "bend";
+    case JointReason::kTemplate: return "template";
+    case JointReason::kTip: return "tip";
+  }
+  return "?";
+}
+
+}  // namespace
+
+int runRigCommand(const RigCommandOptions& o, Console& console) {
+  if (const std::string problem = usageProblem(o); !problem.empty()) return reportUsage(console, problem);
+
+  // The bind mesh, then the example poses (same topology, checked by the sequence reader).
+  std::vector<Vec3> rest;
+  FaceList faces;
+  std::vector<std::vector<Vec3>> poses;
+  if (o.meshes.size() == 1) {
+    Result<ObjMesh> mesh = readObj(o.meshes.front());
+    if (!mesh.ok()) return reportFailure(console, Status(mesh.status().code(), "rig: " + mesh.status().message()));
+    rest = std::move(mesh->positions);
+    faces = std::move(mesh->faces);
+  } else {
+    Result<ExampleSet> set = readObjSequence(o.meshes);
+    if (!set.ok()) return reportFailure(console, Status(set.status().code(), "rig: " + set.status().message()));
+    rest = set->rest_positions;
+    faces = set->faces;
+    poses.assign(set->poses.begin() + 1, set->poses.end());
+  }
+
+  std::optional<Skeleton> truth;
+  if (!o.compare.empty()) {
+    Result<Skeleton> read = readTgf(o.compare);
+    if (!read.ok()) return reportFailure(console, Status(read.status().code(), "rig: --compare: " + read.status().message()));
+    truth = std::move(*read);
+  }
+
+  CurveRigOptions options;
+  options.curves.source = o.curves == "levels" ? CurveSource::kLevels : CurveSource::kPlaneCuts;
+  options.animation.angle_threshold_deg = o.angle_deg;
+  options.animation.template_kind = *parseTemplateKind(o.template_kind);
+  options.animation.up = *parseUpAxis(o.up);
+  options.compute_weights = !o.weights.empty() || !o.gltf.empty();
+  std::vector<double> topology_s, curves_s, skeleton_s, weights_s;
+  Result<CurveRig> rig = invalidArgument("rig: not run");
+  for (int run = 0; run < o.repeat; ++run) {
+    rig = buildCurveRig(rest, faces, poses, options);
+    if (!rig.ok()) return reportFailure(console, Status(rig.status().code(), "rig: " + rig.status().message()));
+    topology_s.push_back(rig->seconds_topology);
+    curves_s.push_back(rig->seconds_curves);
+    skeleton_s.push_back(rig->seconds_skeleton);
+    weights_s.push_back(rig->seconds_weights);
+  }
+  const CurveRig& r = *rig;
+
+  for (const std::filesystem::path* file : {&o.output, &o.weights, &o.gltf, &o.png}) {
+    const std::filesystem::path parent = file->parent_path();
+    if (file->empty() || parent.empty()) continue;
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);
+    if (ec) return reportFailure(console, ioError("rig: " + parent.string() + ": cannot create directory: " + ec.message()));
+  }
+  if (Status s = writeTgf(o.output, r.rig.skeleton); !s.ok()) return reportFailure(console, s);
+  if (!o.weights.empty()) {
+    if (Status s = writeWeightsDmat(o.weights, r.rig.influences, r.rig.skeleton.boneCount()); !s.ok()) {
+      return reportFailure(console, s);
+    }
+  }
+  if (!o.gltf.empty()) {
+    if (Status s = writeRigGlb(o.gltf, rest, faces, r.rig); !s.ok()) return reportFailure(console, s);
+  }
+  if (!o.png.empty()) {
+    RigPictureOptions picture;
+    picture.up = *parseUpAxis(o.up);
+    picture.device = o.device;
+    picture.azimuth_deg = o.azimuth_deg;
+    picture.title = o.meshes.front().filename().string();
+    picture.truth = truth ? &*truth : nullptr;
+    Status s = drawRigPicture(o.png, rest, faces, r.curve_skeleton.curves, r.curve_skeleton.skeleton, r.animation, picture);
+    if (!s.ok()) return reportFailure(console, Status(s.code(), "rig: --png: " + s.message()));
+  }
+  if (console.quiet) return kExitOk;
+
+  std::ostream& out = console.out;
+  const CurveSkeletonResult& cs = r.curve_skeleton;
+  char line[256];
+  std::snprintf(line, sizeof line, "mesh: %zu vertices, %zu faces, %zu example pose%s\n", rest.size(), faces.faceCount(),
+                poses.size(), poses.size() == 1 ? "" : "s");
+  out << line;
+  std::snprintf(line, sizeof line, "curves: %zu (%s), %zu body parts, %zu bumps pruned; curve skeleton: %zu nodes\n",
+                cs.curves.size(), cs.source == CurveSource::kLevels ? "geodesic rings" : "plane cuts", cs.part_count,
+                cs.pruned_branches, cs.skeleton.nodeCount());
+  out << line;
+  if (!cs.note.empty()) out << "note: " << cs.note << "\n";
+  if (cs.unreached_vertices > 0) {
+    out << "note: " << cs.unreached_vertices << " vertices lie in other connected components than the largest; "
+        << "they get weights but no bones of their own\n";
+  }
+  std::size_t by_reason[6] = {0, 0, 0, 0, 0, 0};
+  for (const JointReason reason : r.animation.reasons) ++by_reason[static_cast<std::size_t>(reason)];
+  out << "skeleton: " << r.rig.skeleton.boneCount() << " bones, " << r.animation.jointCount() << " joints (";
+  for (std::size_t k = 0; k < 6; ++k) {
+    out << (k > 0 ? ", " : "") << by_reason[k] << " " << reasonText(static_cast<JointReason>(k));
+  }
+  out << "); template " << templateKindName(r.animation.used) << ": " << r.animation.template_note << "\n";
+  if (o.repeat > 1) {
+    std::snprintf(line, sizeof line,
+                  "time (median / fastest of %d runs): mesh edges %.3f / %.3f ms, curve (vertex) identification %.3f / "
+                  "%.3f ms, skeleton creation %.3f / %.3f ms, weights %.3f / %.3f ms\n",
+                  o.repeat, 1e3 * median(topology_s), 1e3 * fastest(topology_s), 1e3 * median(curves_s),
+                  1e3 * fastest(curves_s), 1e3 * median(skeleton_s), 1e3 * fastest(skeleton_s), 1e3 * median(weights_s),
+                  1e3 * fastest(weights_s));
+  } else {
+    std::snprintf(line, sizeof line,
+                  "time: mesh edges %.3f ms, curve (vertex) identification %.3f ms, skeleton creation %.3f ms, weights "
+                  "%.3f ms\n",
+                  1e3 * topology_s[0], 1e3 * curves_s[0], 1e3 * skeleton_s[0], 1e3 * weights_s[0]);
+  }
+  out << line;
+  if (truth) {
+    Vec3 lo(1e300), hi(-1e300);
+    for (const Vec3& p : rest) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    const SkeletonComparison c = compareSkeletons(*truth, r.rig.skeleton, glm::length(hi - lo));
+    std::snprintf(line, sizeof line,
+                  "compare: %zu bones vs %zu in %s; joints: truth -> nearest ours mean %.2f%% max %.2f%%, ours -> nearest "
+                  "truth mean %.2f%% max %.2f%% of the box diagonal\n",
+                  c.bones, c.truth_bones, o.compare.filename().string().c_str(), 100.0 * c.truth_to_ours_mean,
+                  100.0 * c.truth_to_ours_max, 100.0 * c.ours_to_truth_mean, 100.0 * c.ours_to_truth_max);
+    out << line;
+  }
+  out << "wrote " << o.output.string();
+  if (!o.weights.empty()) out << ", " << o.weights.string();
+  if (!o.gltf.empty()) out << ", " << o.gltf.string();
+  if (!o.png.empty()) out << ", " << o.png.string();
+  out << "\n";
+  return kExitOk;
+}
+
+}  // namespace odeskin

@@ -1,0 +1,203 @@
+// SPDX-License-Identifier: MIT
+#include "engine/rig/curve_skeleton.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "engine/io/obj_reader.hpp"
+#include "engine/rig/curve_skeleton_levels.hpp"
+#include "rig_test_meshes.hpp"
+
+namespace odeskin {
+namespace {
+
+using testing::closedTube;
+using testing::flatGrid;
+
+ObjMesh dataMesh(const std::string& name) {
+  Result<ObjMesh> mesh = readObj(std::string(ODESKIN_DATA_DIR) + "/" + name);
+  if (!mesh.ok()) throw std::runtime_error(mesh.status().toString());
+  return std::move(mesh).value();
+}
+
+std::size_t countKind(const CurveSkeleton& s, SkeletonNodeKind kind) {
+  std::size_t n = 0;
+  for (const SkeletonNodeKind k : s.kinds) n += k == kind ? 1 : 0;
+  return n;
+}
+
+TEST(CurveSkeleton, RejectsBadInput) {
+  const testing::TestMesh tube = closedTube(20, 12, 4.0, 0.5);
+  EXPECT_EQ(buildCurveSkeleton({}, tube.faces).status().code(), StatusCode::kInvalidArgument);
+  std::vector<Vec3> bad = tube.positions;
+  bad[3].y = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(buildCurveSkeleton(bad, tube.faces).status().code(), StatusCode::kInvalidArgument);
+  FaceList out_of_range = tube.faces;
+  out_of_range.indices[5] = static_cast<std::uint32_t>(tube.positions.size());
+  const Status s = buildCurveSkeleton(tube.positions, out_of_range).status();
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("face 1"), std::string::npos) << s.message();
+  CurveSkeletonOptions options;
+  options.level_spacing = -1.0;
+  EXPECT_EQ(buildCurveSkeleton(tube.positions, tube.faces, options).status().code(), StatusCode::kInvalidArgument);
+  options = {};
+  options.prune_fraction = 1.5;
+  EXPECT_EQ(buildCurveSkeleton(tube.positions, tube.faces, options).status().code(), StatusCode::kInvalidArgument);
+}
+
+TEST(CurveSkeleton, TopologyOfACube) {
+  // 8 corners, 6 quads: 12 triangles, 18 edges, each between two triangles.
+  const std::vector<Vec3> corners{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                                  Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+  FaceList quads;
+  quads.indices = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
+  quads.face_offsets = {0, 4, 8, 12, 16, 20, 24};
+  const MeshTopology mesh = meshTopology(corners, quads);
+  EXPECT_EQ(mesh.triangles.size(), 12u);
+  ASSERT_EQ(mesh.edges.size(), 18u);
+  for (const auto& t : mesh.edge_triangles) EXPECT_GE(t[1], 0);
+  for (const char b : mesh.boundary_vertex) EXPECT_EQ(b, 0);
+  EXPECT_EQ(mesh.vertex_offsets.back(), 36u);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const auto& e = mesh.edges[mesh.triangle_edges[t][static_cast<std::size_t>(k)]];
+      const std::uint32_t a = mesh.triangles[t][static_cast<std::size_t>(k)];
+      const std::uint32_t b = mesh.triangles[t][static_cast<std::size_t>((k + 1) % 3)];
+      EXPECT_EQ(e[0], std::min(a, b));
+      EXPECT_EQ(e[1], std::max(a, b));
+    }
+  }
+}
+
+TEST(CurveSkeleton, FastMarchingBeatsEdgePathsOnAGrid) {
+  // Distance from the left column of a grid is exactly x; edge paths get it right too, but from a
+  // corner the diagonal front is where edge paths overshoot (sqrt 2 vs 2 along the other diagonal).
+  const testing::TestMesh grid = flatGrid(20);
+  const MeshTopology mesh = meshTopology(grid.positions, grid.faces);
+  std::vector<std::uint32_t> column;
+  for (std::uint32_t j = 0; j <= 20; ++j) column.push_back(j * 21);
+  const std::vector<double> d = surfaceDistance(mesh, grid.positions, column);
+  for (std::size_t v = 0; v < d.size(); ++v) EXPECT_NEAR(d[v], grid.positions[v].x, 1e-12);
+  const std::uint32_t corner[1] = {0};
+  const std::vector<double> fmm = surfaceDistance(mesh, grid.positions, corner);
+  const std::vector<double> edges = edgeDistance(mesh, corner);
+  double fmm_error = 0.0, edge_error = 0.0;
+  for (std::size_t v = 0; v < d.size(); ++v) {
+    const double exact = glm::length(grid.positions[v]);
+    EXPECT_GE(fmm[v], exact - 1e-9);
+    fmm_error = std::max(fmm_error, fmm[v] - exact);
+    edge_error = std::max(edge_error, edges[v] - exact);
+  }
+  EXPECT_LT(fmm_error, 0.5 * edge_error);
+  const std::vector<std::int32_t> hops = edgeHops(mesh, 0);
+  EXPECT_EQ(hops[20], 20);      // along the bottom row
+  EXPECT_EQ(hops[440], 20);     // the far corner, along the diagonals
+}
+
+TEST(CurveSkeleton, RingsOfATubeAreClosedAndJoinTheirRegions) {
+  const testing::TestMesh tube = closedTube(41, 16, 4.0, 0.5);
+  const MeshTopology mesh = meshTopology(tube.positions, tube.faces);
+  const std::uint32_t start[1] = {static_cast<std::uint32_t>(tube.positions.size() - 2)};  // the x = -0.25 cap
+  const std::vector<double> f = surfaceDistance(mesh, tube.positions, start);
+  const LevelGraph graph = levelGraph(tube.positions, mesh, f, 0.3);
+  ASSERT_GT(graph.contours.size(), 10u);
+  for (const LevelContour& c : graph.contours) {
+    EXPECT_TRUE(c.closed);
+    EXPECT_EQ(graph.regions[c.lower].slab + 1, graph.regions[c.upper].slab);
+    // A ring across the tube: centred on the axis, of the tube's radius (away from the caps).
+    if (c.centroid.x > 0.5 && c.centroid.x < 3.5) {
+      EXPECT_NEAR(c.centroid.y, 0.0, 0.02);
+      EXPECT_NEAR(c.centroid.z, 0.0, 0.02);
+      EXPECT_NEAR(c.radius, 0.5, 0.03);
+    }
+  }
+  // A tube's graph is a chain: every region but the two ends has two contours.
+  std::size_t ends = 0;
+  for (const LevelRegion& r : graph.regions) {
+    EXPECT_LE(r.contours.size(), 2u);
+    ends += r.contours.size() == 1 ? 1 : 0;
+  }
+  EXPECT_EQ(ends, 2u);
+}
+
+TEST(CurveSkeleton, TubeSkeletonRunsAlongItsAxis) {
+  const testing::TestMesh tube = closedTube(41, 16, 4.0, 0.5);
+  for (const CurveSource source : {CurveSource::kLevels, CurveSource::kPlaneCuts}) {
+    CurveSkeletonOptions options;
+    options.source = source;
+    Result<CurveSkeletonResult> r = buildCurveSkeleton(tube.positions, tube.faces, options);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    const CurveSkeleton& s = r->skeleton;
+    EXPECT_EQ(countKind(s, SkeletonNodeKind::kJunction), 0u);
+    EXPECT_EQ(countKind(s, SkeletonNodeKind::kTip), 2u);
+    ASSERT_GT(s.nodeCount(), 10u);
+    double lo = 1e9, hi = -1e9;
+    for (std::size_t n = 0; n < s.nodeCount(); ++n) {
+      EXPECT_LT(std::hypot(s.positions[n].y, s.positions[n].z), 0.05) << "node " << n;
+      EXPECT_LT(s.parents[n], static_cast<std::int32_t>(n));
+      lo = std::min(lo, s.positions[n].x);
+      hi = std::max(hi, s.positions[n].x);
+    }
+    EXPECT_EQ(s.parents[0], -1);
+    EXPECT_LT(lo, 0.2);  // the tips reach into the caps
+    EXPECT_GT(hi, 3.8);
+    EXPECT_FALSE(r->curves.empty());
+    EXPECT_EQ(r->vertex_parts.size(), tube.positions.size());
+  }
+}
+
+TEST(CurveSkeleton, NodesFollowAnyPoseOfTheMesh) {
+  const ObjMesh cat = dataMesh("cat-poses/cat-00.obj");
+  Result<CurveSkeletonResult> r = buildCurveSkeleton(cat.positions, cat.faces);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  const CurveSkeleton& s = r->skeleton;
+  const std::vector<Vec3> same = curveSkeletonPositions(s, cat.positions);
+  std::vector<Vec3> moved = cat.positions;
+  for (Vec3& p : moved) p += Vec3(1.0, -2.0, 3.0);
+  const std::vector<Vec3> shifted = curveSkeletonPositions(s, moved);
+  for (std::size_t n = 0; n < s.nodeCount(); ++n) {
+    EXPECT_NEAR(glm::length(same[n] - s.positions[n]), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(shifted[n] - s.positions[n] - Vec3(1.0, -2.0, 3.0)), 0.0, 1e-12);
+  }
+}
+
+TEST(CurveSkeleton, CatHasFourLegsATailAndAHead) {
+  const ObjMesh cat = dataMesh("cat-poses/cat-00.obj");
+  Result<CurveSkeletonResult> r = buildCurveSkeleton(cat.positions, cat.faces);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  // Six free ends: four paws, the tail and the head (ears and toes are pruned as bumps or join
+  // the head's end).
+  std::size_t ends = 0;
+  std::vector<int> degree(r->skeleton.nodeCount(), 0);
+  for (std::size_t n = 1; n < r->skeleton.nodeCount(); ++n) {
+    ++degree[n];
+    ++degree[static_cast<std::size_t>(r->skeleton.parents[n])];
+  }
+  for (const int d : degree) ends += d == 1 ? 1 : 0;
+  EXPECT_GE(ends, 6u);
+  EXPECT_LE(ends, 8u);
+  EXPECT_GE(countKind(r->skeleton, SkeletonNodeKind::kJunction), 1u);
+  EXPECT_EQ(r->unreached_vertices, 0u);
+}
+
+TEST(CurveSkeleton, OpenEndsEndAtTheRimCentre) {
+  // The cylinder of the data is open at x = +-2: its tips are the rims' centres.
+  const ObjMesh cylinder = dataMesh("cylinder/cylinder.obj");
+  Result<CurveSkeletonResult> r = buildCurveSkeleton(cylinder.positions, cylinder.faces);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  std::vector<double> tips;
+  for (std::size_t n = 0; n < r->skeleton.nodeCount(); ++n) {
+    if (r->skeleton.kinds[n] != SkeletonNodeKind::kTip) continue;
+    tips.push_back(r->skeleton.positions[n].x);
+    EXPECT_LT(std::hypot(r->skeleton.positions[n].y, r->skeleton.positions[n].z), 1e-6);  // the file has 7 digits
+  }
+  ASSERT_EQ(tips.size(), 2u);
+  EXPECT_NEAR(std::abs(tips[0]), 2.0, 1e-6);
+  EXPECT_NEAR(std::abs(tips[1]), 2.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace odeskin
