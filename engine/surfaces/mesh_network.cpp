@@ -32,6 +32,12 @@ Status checkOptions(const MeshNetworkOptions& o) {
   if (!(o.derivative_window > 0.0 && o.derivative_window <= 1.0)) {
     return invalidArgument("derivative window = " + std::to_string(o.derivative_window) + " is outside (0, 1] row heights");
   }
+  if (meshNetworkSampleCount(o) > kMaxMeshNetworkSamples) {
+    return outOfRange(std::to_string(o.rows) + " x " + std::to_string(o.columns) + " patches with " +
+                      std::to_string(o.points_per_column) + " points per column read " +
+                      std::to_string(meshNetworkSampleCount(o)) + " mesh samples, more than " +
+                      std::to_string(kMaxMeshNetworkSamples));
+  }
   return okStatus();
 }
 
@@ -42,6 +48,12 @@ std::vector<double> sideOffsets(double window, std::uint32_t points, double sign
 }
 
 }  // namespace
+
+std::uint64_t meshNetworkSampleCount(const MeshNetworkOptions& o) {
+  const std::uint64_t points = std::uint64_t{o.columns} * o.points_per_column + 1, side = o.derivative_points;
+  const std::uint64_t ends = o.rows >= 1 ? 2 : 0, inner = o.rows >= 1 ? o.rows - 1 : 0;
+  return points * (ends * (1 + side) + inner * (1 + 2 * side));
+}
 
 Result<DerivativeStencil> derivativeStencil(std::vector<double> offsets, std::uint32_t degree) {
   const std::size_t n = offsets.size();

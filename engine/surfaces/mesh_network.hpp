@@ -42,6 +42,10 @@ struct MeshNetworkOptions {
 
 inline constexpr std::uint32_t kMaxMeshNetworkPatches = 1000;      // per direction
 inline constexpr std::uint32_t kMaxMeshNetworkCurvePoints = 100000;
+inline constexpr std::uint64_t kMaxMeshNetworkSamples = 10'000'000;  // barycentric points (36 bytes each)
+
+// The mesh points an extraction reads per pose: every curve point and its derivative samples.
+std::uint64_t meshNetworkSampleCount(const MeshNetworkOptions& options);
 
 // Least-squares weights of step 3: S_u ~ sum first[k] (S(t_k) - S(0)), S_uu ~ sum second[k] (...).
 struct DerivativeStencil {
@@ -55,7 +59,8 @@ Result<DerivativeStencil> derivativeStencil(std::vector<double> offsets, std::ui
 
 class MeshNetwork {
  public:
-  // kInvalidArgument naming the option for options outside their ranges; parameteriseDisk's errors.
+  // kInvalidArgument naming the option for options outside their ranges; kOutOfRange beyond
+  // kMaxMeshNetworkSamples; parameteriseDisk's errors.
   static Result<MeshNetwork> extract(std::span<const Vec3> positions, const FaceList& faces,
                                      const MeshNetworkOptions& options);
 

@@ -89,6 +89,11 @@ std::string usageProblem(const ReconstructCommandOptions& o, MeshNetworkOptions&
   m.derivative_points = static_cast<std::uint32_t>(values[0]);
   m.derivative_degree = static_cast<std::uint32_t>(values[1]);
   m.derivative_window = values[2];
+  if (meshNetworkSampleCount(m) > kMaxMeshNetworkSamples) {
+    return "reconstruct: --rows " + std::to_string(o.rows) + " --cols " + std::to_string(o.columns) + " --points " +
+           std::to_string(o.points) + " would read " + std::to_string(meshNetworkSampleCount(m)) +
+           " mesh samples per pose, more than " + std::to_string(kMaxMeshNetworkSamples);
+  }
   if (!(o.tear_ratio > 1.0) || !std::isfinite(o.tear_ratio)) {
     return "reconstruct: --tear-ratio " + numberText(o.tear_ratio) + " must be a finite number > 1";
   }
@@ -204,6 +209,45 @@ Json reportJson(const ReconstructCommandOptions& o, const MeshNetworkOptions& m,
           {"poses", poses}};
 }
 
+// An OBJ to write: a reconstruction or a filled reference, with the mesh's faces.
+struct ObjOutput {
+  fs::path path;
+  std::vector<Vec3> positions;
+};
+
+// Every output, atomically each; on a failure the files already written are removed again.
+Status writeOutputs(const ReconstructCommandOptions& o, const MeshNetworkOptions& options, const MeshNetwork& m,
+                    const ObjMesh& mesh, const std::vector<ObjOutput>& objs, const ReconstructReport& report) {
+  std::vector<fs::path> written;
+  const auto undo = [&](Status status) {
+    std::error_code ec;
+    for (const fs::path& p : written) fs::remove(p, ec);
+    return status;
+  };
+  for (const fs::path& p : {o.output, o.network, o.json}) {
+    std::error_code ec;
+    if (!p.empty() && p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
+    if (ec) return ioError(p.parent_path().string() + ": cannot create directory: " + ec.message());
+  }
+  for (const ObjOutput& obj : objs) {
+    if (Status s = writeObj(obj.path, obj.positions, mesh.faces, "odeskin reconstruct " + o.mesh.filename().string()); !s.ok()) {
+      return undo(s);
+    }
+    written.push_back(obj.path);
+  }
+  if (!o.network.empty()) {
+    Result<NetworkDescription> description = m.describe(mesh.positions);
+    if (!description.ok()) return undo(Status(description.status().code(), o.mesh.string() + ": " + description.status().message()));
+    if (Status s = writeFileAtomically(o.network, networkJson(*description)); !s.ok()) return undo(s);
+    written.push_back(o.network);
+  }
+  if (!o.json.empty()) {
+    if (Status s = writeFileAtomically(o.json, reportJson(o, options, report).dump(2) + "\n"); !s.ok()) return undo(s);
+    written.push_back(o.json);
+  }
+  return okStatus();
+}
+
 void printSummary(std::ostream& out, const ReconstructCommandOptions& o, const MeshNetwork& m, const ReconstructReport& r) {
   const MeshNetworkOptions& n = m.options();
   out << "reconstruct " << o.mesh.filename().string() << ": " << r.vertices << " vertices, " << r.triangles
@@ -276,11 +320,7 @@ int runReconstructCommand(const ReconstructCommandOptions& o, Console& console, 
   report.size_reduction = static_cast<double>(report.vertices) / static_cast<double>(report.stored_points);
 
   // Everything is computed before anything is written, so a failure leaves no file behind.
-  struct Output {
-    fs::path path;
-    std::vector<Vec3> positions;
-  };
-  std::vector<Output> objs;
+  std::vector<ObjOutput> objs;
   for (std::size_t k = 0; k <= poses.size(); ++k) {
     const fs::path& file = k == 0 ? o.mesh : o.poses[k - 1];
     const std::vector<Vec3>& positions = k == 0 ? mesh->positions : poses[k - 1].positions;
@@ -298,32 +338,8 @@ int runReconstructCommand(const ReconstructCommandOptions& o, Console& console, 
     report.poses.push_back(std::move(pose).value());
   }
 
-  std::vector<fs::path> written;
-  const auto undo = [&](const std::string& message) {
-    std::error_code ec;
-    for (const fs::path& p : written) fs::remove(p, ec);
-    return reportError(console, "reconstruct: " + message, kExitFailure);
-  };
-  for (const fs::path& p : {o.output, o.network, o.json}) {
-    std::error_code ec;
-    if (!p.empty() && p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-    if (ec) return undo(p.parent_path().string() + ": cannot create directory: " + ec.message());
-  }
-  for (const Output& obj : objs) {
-    if (Status s = writeObj(obj.path, obj.positions, mesh->faces, "odeskin reconstruct " + o.mesh.filename().string()); !s.ok()) {
-      return undo(s.message());
-    }
-    written.push_back(obj.path);
-  }
-  if (!o.network.empty()) {
-    Result<NetworkDescription> description = m->describe(mesh->positions);
-    if (!description.ok()) return undo(o.mesh.string() + ": " + description.status().message());
-    if (Status s = writeFileAtomically(o.network, networkJson(*description)); !s.ok()) return undo(s.message());
-    written.push_back(o.network);
-  }
-  if (!o.json.empty()) {
-    if (Status s = writeFileAtomically(o.json, reportJson(o, options, report).dump(2) + "\n"); !s.ok()) return undo(s.message());
-    written.push_back(o.json);
+  if (Status s = writeOutputs(o, options, *m, *mesh, objs, report); !s.ok()) {
+    return reportError(console, "reconstruct: " + s.message(), kExitFailure);
   }
   if (!console.quiet) printSummary(console.out, o, *m, report);
   if (report_out) *report_out = std::move(report);

@@ -159,6 +159,13 @@ TEST(ReconstructCommand, BadOptionsAreUsageErrors) {
   with([&](auto& o) { o.rows = 0; }, "--rows 0 is outside [1, 1000]");
   with([&](auto& o) { o.columns = 1001; }, "--cols 1001");
   with([&](auto& o) { o.points = 0; }, "--points 0");
+  with(
+      [&](auto& o) {
+        o.rows = 1000;
+        o.columns = 1000;
+        o.points = 10;
+      },
+      "mesh samples per pose, more than 10000000");
   with([&](auto& o) { o.shape = "1,3"; }, "--shape '1,3'");
   with([&](auto& o) { o.shape = "1,nan,1"; }, "three finite numbers");
   with([&](auto& o) { o.shape = "1,3,1,"; }, "--shape");

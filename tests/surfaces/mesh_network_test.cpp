@@ -218,6 +218,10 @@ TEST(MeshNetwork, BadMeshesAndOptionsAreRefused) {
   bad = grid(2);
   bad.derivative_points = 2;
   refused(mesh.positions, indices, "derivative points", bad);
+  bad = grid(1000);
+  bad.points_per_column = 50;
+  FaceList f = mesh.faces;
+  EXPECT_EQ(MeshNetwork::extract(mesh.positions, f, bad).status().code(), StatusCode::kOutOfRange);
   std::vector<Vec3> nan = mesh.positions;
   nan[5].y = NAN;
   refused(nan, indices, "vertex 6 is not finite");
