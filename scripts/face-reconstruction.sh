@@ -36,6 +36,10 @@ shapes=("1,0,0" "1,20,0" "1,-20,0" "0.1,3,0.1")
 for s in "${shapes[@]}"; do
   "$odeskin" -q reconstruct "$face/face-00.obj" --shape "$s" --json "$out/shape-$s.json"
 done
+fits=("6,4,1" "6,3,1" "6,4,0.75" "6,4,0.5" "12,3,0.5" "3,3,0.5")
+for f in "${fits[@]}"; do
+  "$odeskin" -q reconstruct "$face/face-00.obj" --derivative-fit "$f" --json "$out/fit-$f.json"
+done
 
 python3 - "$out" <<'PY'
 import json, sys
@@ -74,6 +78,15 @@ for s in ["1,3,1", "1,0,0", "1,20,0", "1,-20,0", "0.1,3,0.1"]:
     j = r if s == "1,3,1" else json.load(open(f"{out}/shape-{s}.json"))
     p = j["poses"][0]
     print(f"| {s.replace(',', ', ')} | {p['mean'] * 100:.4f} % | {p['max'] * 100:.3f} % | {p['mean_surface'] * 100:.4f} % | "
+          f"{p['max_surface'] * 100:.3f} % |")
+
+print("\n**Derivative fit on the neutral face (16 x 16): samples per side, degree, reach in row heights**\n")
+print("| points, degree, window | mean | max | mean to surface | max to surface |")
+print("|---|---:|---:|---:|---:|")
+for f in ["6,3,0.5", "6,4,1", "6,3,1", "6,4,0.75", "6,4,0.5", "12,3,0.5", "3,3,0.5"]:
+    j = r if f == "6,3,0.5" else json.load(open(f"{out}/fit-{f}.json"))
+    p = j["poses"][0]
+    print(f"| {f.replace(',', ', ')} | {p['mean'] * 100:.4f} % | {p['max'] * 100:.3f} % | {p['mean_surface'] * 100:.4f} % | "
           f"{p['max_surface'] * 100:.3f} % |")
 PY
 
