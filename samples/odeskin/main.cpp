@@ -18,6 +18,7 @@
 #include "host/device_info.hpp"
 #include "play_command.hpp"
 #include "progress.hpp"
+#include "reconstruct_command.hpp"
 #include "render_command.hpp"
 #include "surface_command.hpp"
 #include "rig_command.hpp"
@@ -223,6 +224,39 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
   return cmd;
 }
 
+CLI::App* addReconstructCommand(CLI::App& app, odeskin::ReconstructCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("reconstruct", "Rebuild a mesh (a face) from a curve network of C2 patches (thesis 4.7)");
+  cmd->footer(
+      "MESH.obj: one open surface (holes such as a mouth are filled), laid over the unit square by mean-value\n"
+      "coordinates: u along its second principal direction (a face's height), v along the first. rows + 1\n"
+      "curves across it are sampled from the triangles with their u-derivatives (a least-squares fit along u)\n"
+      "and become a rows x cols network of C2 patches (docs/surfaces.md). Reports, for every vertex, the\n"
+      "distance to S at its (u, v) and to the surface, as % of the box's longest side, and the data size.\n"
+      "--poses: poses of the same mesh (same vertices and faces, e.g. expressions): the same samples read on\n"
+      "each pose rebuild it. Vertices on edges stretched more than --tear-ratio times (numbered differently\n"
+      "from MESH) are flagged: left out of the figures and filled in from their neighbours for the samples.\n"
+      "-o OUT.obj: MESH's reconstruction with MESH's faces and vertex order (odeskin render OUT.obj --heat\n"
+      "MESH.obj draws the error); pose P gives OUT-P.obj, and OUT-P-reference.obj if P has flagged vertices.\n"
+      "Examples: odeskin reconstruct face-00.obj -o recon.obj\n"
+      "          odeskin reconstruct face-00.obj --rows 24 --cols 12 --json report.json\n"
+      "          odeskin reconstruct face-00.obj --poses face-01.obj face-02.obj -o out/recon.obj --network net.json");
+  cmd->add_option("mesh", o.mesh, "The mesh (.obj)")->required();
+  cmd->add_option("--poses", o.poses, "Poses of the same mesh (.obj) rebuilt with the same curve network");
+  cmd->add_option("--rows", o.rows, "Patches along u (default 16)")->check(CLI::Range(1, 1000));
+  cmd->add_option("--cols", o.columns, "Patches along v (default 16)")->check(CLI::Range(1, 1000));
+  cmd->add_option("--points", o.points, "Curve points per patch along v (default 2; a curve has cols x points + 1)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--shape", o.shape, "RHO,ETA,LAMBDA of every patch (default 1,3,1)");
+  cmd->add_option("--derivative-fit", o.derivative_fit,
+                  "POINTS,DEGREE,WINDOW: mesh samples per side, polynomial degree and reach in row heights of the\n"
+                  "S_u, S_uu fit (default 6,3,0.5)");
+  cmd->add_option("--tear-ratio", o.tear_ratio, "Flag pose vertices on edges stretched more than this (default 4)");
+  cmd->add_option("-o,--output", o.output, "The reconstruction of MESH (.obj); poses are written beside it");
+  cmd->add_option("--network", o.network, "Also MESH's curve network as a network file (.json) for odeskin surface");
+  cmd->add_option("--json", o.json, "Write the figures here (.json)");
+  return cmd;
+}
+
 struct RenderCliValues {
   double t = 0.0;
   double heat_max = 0.0;
@@ -358,6 +392,9 @@ int main(int argc, char** argv) {
   odeskin::SurfaceCommandOptions surface_options;
   CLI::App* surface_cmd = addSurfaceCommand(app, surface_options);
 
+  odeskin::ReconstructCommandOptions reconstruct_options;
+  CLI::App* reconstruct_cmd = addReconstructCommand(app, reconstruct_options);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -420,5 +457,6 @@ int main(int argc, char** argv) {
     surface_options.device = device;
     return odeskin::runSurfaceCommand(surface_options, console);
   }
+  if (reconstruct_cmd->parsed()) return odeskin::runReconstructCommand(reconstruct_options, console);
   return 2;
 }
