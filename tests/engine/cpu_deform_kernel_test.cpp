@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -20,6 +19,7 @@
 #include "engine/offline/deform_player.hpp"
 #include "engine/offline/procedural_arm.hpp"
 #include "engine/offline/residual_fit.hpp"
+#include "engine/random_packed_data.hpp"
 #include "engine/test_meshes.hpp"
 
 namespace odeskin {
@@ -27,96 +27,19 @@ namespace {
 
 constexpr double kRelativeTolerance = 1e-5;
 
-// Synthetic packed data in the GPU layout (no fit): random curve pairs in either order, w anywhere
-// in [0, 1] (0 and 1 included), 1 to 6 influences per vertex, sparse remainders on a third of the
-// vertices, and affine bones near the identity.
-struct PackedOptions {
-  std::uint32_t vertex_count = 100;
-  std::uint32_t influence_layout = ODESKIN_INFLUENCES_SPARSE;
-  ResidualSpace residual_space = ResidualSpace::kBind;
-  SkinningMode skinning = SkinningMode::kLinear;
-  bool rates = true;
-  std::uint32_t seed = 1;
-};
-
-PackedDeformData randomPacked(const PackedOptions& o) {
-  std::mt19937 rng(o.seed);
-  auto uniform = [&](float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); };
-  auto below = [&](std::uint32_t n) { return std::uniform_int_distribution<std::uint32_t>(0, n - 1)(rng); };
-  PackedDeformData d;
-  d.vertex_count = o.vertex_count;
-  d.modes = 9;
-  d.curve_count = 23;
-  d.material_count = 2;
-  d.bone_count = 7;
-  d.segment_count = 3;
-  d.influence_layout = o.influence_layout;
-  d.residual_space = o.residual_space;
-  d.skinning = o.skinning;
-  for (std::uint32_t i = 0; i < d.vertex_count; ++i) {
-    d.rest_positions.push_back({uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), 0.0f});
-    const std::uint32_t pick = below(8);
-    const float w = pick == 0 ? 0.0f : (pick == 1 ? 1.0f : uniform(0, 1));
-    d.bindings.push_back({below(d.curve_count), below(d.curve_count), w, uniform(0, 0.999f)});
-  }
-  for (std::uint32_t s = 0; s < d.segment_count; ++s) {
-    d.remainder_base.push_back(static_cast<std::uint32_t>(d.remainders.size()));
-    std::uint32_t local = 0;
-    for (std::uint32_t i = 0; i < d.vertex_count; ++i) {
-      gpu::SegmentVertex sv{uniform(-0.05f, 0.05f), uniform(-0.05f, 0.05f), uniform(-0.05f, 0.05f), gpu::kNoRemainder};
-      if (s != 1 && below(3) == 0) {  // segment 1 has no remainder at all
-        sv.remainder_index = local++;
-        d.remainders.push_back({uniform(-0.02f, 0.02f), uniform(-0.02f, 0.02f), uniform(-0.02f, 0.02f), 0.0f});
-      }
-      d.segment_vertices.push_back(sv);
-    }
-  }
-  for (std::uint32_t c = 0; c < d.curve_count; ++c) d.curve_materials.push_back(below(d.material_count));
-  const std::uint32_t m_count = d.coefficientsPerCurve();
-  for (std::uint32_t k = 0; k < d.segment_count * d.curve_count * m_count; ++k) {
-    const std::uint32_t m = k % m_count;
-    const bool zero = (k / m_count) % 3 == 0 && m > 4 && m + 1 < m_count;  // every third curve stops at n = 2
-    const float scale = zero ? 0.0f : 0.1f;
-    d.coefficients.push_back({scale * uniform(-1, 1), scale * uniform(-1, 1), scale * uniform(-1, 1), 0.0f});
-    if (o.rates) d.rates.push_back({scale * uniform(-1, 1), scale * uniform(-1, 1), scale * uniform(-1, 1), 0.0f});
-  }
-  const std::uint32_t max_influences = o.influence_layout == 0 ? 6 : std::min<std::uint32_t>(6, o.influence_layout);
-  if (o.influence_layout == ODESKIN_INFLUENCES_SPARSE) d.influence_offsets.push_back(0);
-  for (std::uint32_t i = 0; i < d.vertex_count; ++i) {
-    const std::uint32_t count = 1 + below(max_influences);
-    std::vector<gpu::Influence> row;
-    float sum = 0.0f;
-    for (std::uint32_t k = 0; k < count; ++k) {
-      row.push_back({below(d.bone_count), uniform(0.05f, 1.0f)});  // repeated bones allowed
-      sum += row.back().weight;
-    }
-    for (gpu::Influence& inf : row) inf.weight /= sum;
-    if (o.influence_layout != ODESKIN_INFLUENCES_SPARSE) row.resize(o.influence_layout, gpu::Influence{0, 0.0f});
-    d.influences.insert(d.influences.end(), row.begin(), row.end());
-    if (o.influence_layout == ODESKIN_INFLUENCES_SPARSE) {
-      d.influence_offsets.push_back(static_cast<std::uint32_t>(d.influences.size()));
-    }
-  }
-  return d;
-}
-
-std::vector<gpu::BoneMatrix> randomAffineBones(std::uint32_t count, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-0.3f, 0.3f);
-  std::vector<gpu::BoneMatrix> bones;
-  for (std::uint32_t b = 0; b < count; ++b) {
-    bones.push_back({{1 + u(rng), u(rng), u(rng), u(rng)}, {u(rng), 1 + u(rng), u(rng), u(rng)},
-                     {u(rng), u(rng), 1 + u(rng), u(rng)}});
-  }
-  return bones;
-}
-
-std::vector<gpu::ModeBasis> randomGpuBasis(std::size_t count, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  std::vector<gpu::ModeBasis> basis;
-  for (std::size_t k = 0; k < count; ++k) basis.push_back({u(rng), u(rng)});
-  return basis;
+// Synthetic packed data in the GPU layout (no fit), larger than the GPU test's: random curve pairs
+// in either order, w anywhere in [0, 1] (0 and 1 included), 1 to 6 influences per vertex, sparse
+// remainders on a third of the vertices except in segment 1, every third curve stopping at n = 2,
+// and affine bones near the identity.
+testing::RandomPackedOptions packedOptions() {
+  testing::RandomPackedOptions o;
+  o.modes = 9;
+  o.curve_count = 23;
+  o.segment_count = 3;
+  o.w_edge_cases = true;
+  o.segment_without_remainders = 1;
+  o.truncate_every_third_curve = true;
+  return o;
 }
 
 double worstError(std::span<const Vec3> expected, std::span<const gpu::Float4> actual, std::size_t* where = nullptr) {
@@ -248,16 +171,16 @@ TEST_P(CpuDeformKernelArchs, MatchesFastPathOnRandomPackedData) {
   for (std::uint32_t layout : {0u, 4u, 8u}) {
     for (SkinningMode skinning : {SkinningMode::kLinear, SkinningMode::kDualQuaternion}) {
       for (bool rates : {true, false}) {
-        PackedOptions o;
+        testing::RandomPackedOptions o = packedOptions();
         o.vertex_count = 537;
         o.influence_layout = layout;
         o.residual_space = layout == 4 ? ResidualSpace::kPosed : ResidualSpace::kBind;
         o.rates = rates;
         o.skinning = skinning;
         o.seed = 11 + layout;
-        const PackedDeformData d = randomPacked(o);
-        const std::vector<gpu::BoneMatrix> bones = randomAffineBones(d.bone_count, 2);
-        const std::vector<gpu::ModeBasis> basis = randomGpuBasis(ODESKIN_BASIS_ENTRIES(d.material_count, d.modes), 3);
+        const PackedDeformData d = testing::randomPackedData(o);
+        const std::vector<gpu::BoneMatrix> bones = testing::randomGpuBones(d.bone_count, 2);
+        const std::vector<gpu::ModeBasis> basis = testing::randomGpuBasis(ODESKIN_BASIS_ENTRIES(d.material_count, d.modes), 3);
         Result<CpuDeformKernel> kernel = CpuDeformKernel::create(d, GetParam());
         ASSERT_TRUE(kernel.ok()) << kernel.status().toString();
         for (std::uint32_t segment = 0; segment < d.segment_count; ++segment) {
@@ -375,13 +298,13 @@ TEST_P(CpuDeformKernelArchs, CallerDualQuaternionsGiveTheSameFrame) {
 // A vertex without weight has no dual-quaternion blend: it takes the LBS result (the origin), as
 // the fast path does, and its neighbours in the block are unaffected.
 TEST_P(CpuDeformKernelArchs, DegenerateDualQuaternionBlendFallsBackToLbs) {
-  PackedOptions o;
+  testing::RandomPackedOptions o = packedOptions();
   o.vertex_count = 40;
   o.influence_layout = 4;
   o.skinning = SkinningMode::kDualQuaternion;
-  PackedDeformData d = randomPacked(o);
+  PackedDeformData d = testing::randomPackedData(o);
   for (std::uint32_t k = 0; k < 4; ++k) d.influences[5 * 4 + k].weight = 0.0f;
-  const std::vector<gpu::BoneMatrix> bones = randomAffineBones(d.bone_count, 2);
+  const std::vector<gpu::BoneMatrix> bones = testing::randomGpuBones(d.bone_count, 2);
   Result<CpuDeformKernel> kernel = CpuDeformKernel::create(d, GetParam());
   ASSERT_TRUE(kernel.ok());
   std::vector<gpu::Float4> fast(d.vertex_count), out(d.vertex_count);
@@ -420,7 +343,7 @@ TEST(CpuDeformKernel, EveryInstructionSetGivesNearlyTheSameFrame) {
 }
 
 TEST(CpuDeformKernel, TheFastestSupportedSetIsTheDefault) {
-  const PackedDeformData d = randomPacked({});
+  const PackedDeformData d = testing::randomPackedData(packedOptions());
   Result<CpuDeformKernel> kernel = CpuDeformKernel::create(d);
   ASSERT_TRUE(kernel.ok());
   if (std::getenv("ODESKIN_CPU_KERNEL_ARCH") == nullptr) {
@@ -477,7 +400,7 @@ TEST(CpuDeformKernel, PerFrameInputsAreValidated) {
 }
 
 TEST(CpuDeformKernel, BadPackedDataIsRejectedAtCreate) {
-  const PackedDeformData good = randomPacked({});
+  const PackedDeformData good = testing::randomPackedData(packedOptions());
   ASSERT_TRUE(CpuDeformKernel::create(good).ok());
   auto expectCode = [&](PackedDeformData d, StatusCode code, const std::string& names) {
     Result<CpuDeformKernel> k = CpuDeformKernel::create(d);

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "engine/kernels/fourier_deform_fast_job.hpp"
+#include "engine/random_packed_data.hpp"
 #include "gpu_test_support.hpp"
 #include "host/gpu_deformer.hpp"
 #include "host/gpu_lbs.hpp"
-#include "random_packed_data.hpp"
 
 namespace odeskin {
 namespace {
@@ -76,8 +76,8 @@ void checkFourierDeformParity(vk::Device& device, SkinningMode skinning) {
     Result<GpuDeformer> gpu = GpuDeformer::create(device, data);
     ASSERT_TRUE(gpu.ok()) << describe(options) << ": " << gpu.status().toString();
     for (std::uint32_t segment = 0; segment < data.segment_count; ++segment) {
-      const auto bones = testing::randomBones(data.bone_count, options.seed * 7 + segment);
-      const auto basis = testing::randomBasis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}),
+      const auto bones = testing::randomGpuBones(data.bone_count, options.seed * 7 + segment);
+      const auto basis = testing::randomGpuBasis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}),
                                               options.seed * 13 + segment);
       std::vector<gpu::Float4> expected(data.vertex_count);
       FourierDeformFastJob job;
@@ -103,7 +103,7 @@ void checkLbsParity(vk::Device& device, SkinningMode skinning) {
     const PackedDeformData data = testing::randomPackedData(options);
     Result<GpuLbs> gpu = GpuLbs::create(device, data);
     ASSERT_TRUE(gpu.ok()) << describe(options) << ": " << gpu.status().toString();
-    const auto bones = testing::randomBones(data.bone_count, options.seed);
+    const auto bones = testing::randomGpuBones(data.bone_count, options.seed);
     std::vector<gpu::Float4> expected(data.vertex_count);
     LbsFastJob job;
     job.data = &data;
@@ -135,7 +135,7 @@ TEST_F(GpuTest, DualQuaternionLbsMatchesFastJob) {
 // The two modes give different positions on these bones, so the parity above tests DQS itself.
 TEST_F(GpuTest, SkinningModeChangesTheGpuOutput) {
   RandomPackedOptions options{1000, 0, ResidualSpace::kBind, true, 7};
-  const auto bones = testing::randomBones(7, 3);
+  const auto bones = testing::randomGpuBones(7, 3);
   std::vector<gpu::Float4> lbs(options.vertex_count), dqs(options.vertex_count);
   for (SkinningMode mode : {SkinningMode::kLinear, SkinningMode::kDualQuaternion}) {
     options.skinning = mode;
@@ -156,9 +156,9 @@ TEST_F(GpuTest, DoubleBufferedFramesKeepTheirInputs) {
   const PackedDeformData data = testing::randomPackedData({1000, 0, ResidualSpace::kBind, true, 3});
   Result<GpuDeformer> gpu = GpuDeformer::create(device(), data);
   ASSERT_TRUE(gpu.ok());
-  const auto basis = testing::randomBasis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}), 5);
+  const auto basis = testing::randomGpuBasis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}), 5);
   std::vector<std::vector<gpu::BoneMatrix>> frames;
-  for (std::uint32_t k = 0; k < 5; ++k) frames.push_back(testing::randomBones(data.bone_count, 100 + k));
+  for (std::uint32_t k = 0; k < 5; ++k) frames.push_back(testing::randomGpuBones(data.bone_count, 100 + k));
   for (const auto& bones : frames) ASSERT_TRUE(gpu->submit(GpuDeformFrame{1, bones, basis}).ok());
   ASSERT_TRUE(gpu->wait().ok());
   std::vector<gpu::Float4> expected(data.vertex_count);
@@ -184,8 +184,8 @@ TEST_F(GpuTest, DeformerValidatesLikeTheCpuJob) {
   const PackedDeformData data = testing::randomPackedData({65, 4, ResidualSpace::kPosed, false, 4});
   Result<GpuDeformer> gpu = GpuDeformer::create(device(), data);
   ASSERT_TRUE(gpu.ok());
-  const auto bones = testing::randomBones(data.bone_count, 1);
-  const auto basis = testing::randomBasis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}), 2);
+  const auto bones = testing::randomGpuBones(data.bone_count, 1);
+  const auto basis = testing::randomGpuBasis(ODESKIN_BASIS_ENTRIES(std::size_t{data.material_count}, std::size_t{data.modes}), 2);
   EXPECT_EQ(gpu->run({data.segment_count, bones, basis}).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(gpu->run({0, std::span(bones).first(3), basis}).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(gpu->run({0, bones, std::span(basis).first(1)}).code(), StatusCode::kInvalidArgument);
