@@ -4,18 +4,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 
 #include <tiny_gltf.h>
 
 #include "../io/gltf_baked_writer.hpp"
+#include "../io/gltf_buffer_builder.hpp"
 
 namespace odeskin {
 namespace {
 
 constexpr std::size_t kMaxBufferBytes = std::size_t{1} << 31;
 
-// One buffer; every view is 4-byte aligned (glTF requires it of vertex attributes and matrices).
+// One model with one buffer (gltf_buffer_builder.hpp aligns every view to 4 bytes).
 class ModelBuilder {
  public:
   tinygltf::Model model;
@@ -24,45 +24,16 @@ class ModelBuilder {
 
   template <class T>
   int view(const std::vector<T>& values, int target) {
-    std::vector<unsigned char>& data = model.buffers[0].data;
-    while (data.size() % 4 != 0) data.push_back(0);
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = data.size();
-    v.byteLength = values.size() * sizeof(T);
-    if (target != 0) v.target = target;
-    const auto* begin = reinterpret_cast<const unsigned char*>(values.data());
-    data.insert(data.end(), begin, begin + v.byteLength);
-    model.bufferViews.push_back(v);
-    return static_cast<int>(model.bufferViews.size() - 1);
+    return gltf::appendView(model, values, target);
   }
 
   int accessor(int view, int component_type, int type, std::size_t count) {
-    tinygltf::Accessor a;
-    a.bufferView = view;
-    a.componentType = component_type;
-    a.type = type;
-    a.count = count;
-    model.accessors.push_back(a);
-    return static_cast<int>(model.accessors.size() - 1);
+    return gltf::appendAccessor(model, view, component_type, type, count);
   }
 
   // Float accessor over new data, with min/max per component when asked (POSITION, times).
   int floats(const std::vector<float>& values, int type, int components, int target, bool bounds) {
-    const int index = accessor(view(values, target), TINYGLTF_COMPONENT_TYPE_FLOAT, type,
-                               values.size() / static_cast<std::size_t>(components));
-    if (bounds) setBounds(model.accessors[static_cast<std::size_t>(index)], values, components, false);
-    return index;
-  }
-
-  static void setBounds(tinygltf::Accessor& a, const std::vector<float>& values, int components, bool with_zero) {
-    const auto n = static_cast<std::size_t>(components);
-    a.minValues.assign(n, with_zero ? 0.0 : std::numeric_limits<double>::infinity());
-    a.maxValues.assign(n, with_zero ? 0.0 : -std::numeric_limits<double>::infinity());
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      a.minValues[i % n] = std::min(a.minValues[i % n], static_cast<double>(values[i]));
-      a.maxValues[i % n] = std::max(a.maxValues[i % n], static_cast<double>(values[i]));
-    }
+    return gltf::appendFloatAccessor(model, values, type, components, target, bounds);
   }
 };
 
@@ -167,7 +138,7 @@ Result<int> targetAccessor(ModelBuilder& b, const ExportMesh& mesh, const Sparse
   a.sparse.indices.byteOffset = 0;
   a.sparse.values.bufferView = b.view(values, 0);
   a.sparse.values.byteOffset = 0;
-  ModelBuilder::setBounds(a, values, 3, indices.size() < count);  // min/max after substitution
+  gltf::setBounds(a, values, 3, indices.size() < count);  // min/max after substitution
   b.model.accessors.push_back(a);
   return static_cast<int>(b.model.accessors.size() - 1);
 }

@@ -1,61 +1,16 @@
 // SPDX-License-Identifier: MIT
 #include "gltf_baked_writer.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <string>
 
 #include <tiny_gltf.h>
 
+#include "gltf_buffer_builder.hpp"
+
 namespace odeskin {
 namespace {
-
-// Appends `bytes` to buffer 0 as a new buffer view (4-byte aligned); returns the view's index.
-int addView(tinygltf::Model& m, const void* bytes, std::size_t size, int target) {
-  std::vector<unsigned char>& data = m.buffers[0].data;
-  while (data.size() % 4 != 0) data.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = data.size();
-  view.byteLength = size;
-  if (target != 0) view.target = target;
-  const auto* begin = static_cast<const unsigned char*>(bytes);
-  data.insert(data.end(), begin, begin + size);
-  m.bufferViews.push_back(view);
-  return static_cast<int>(m.bufferViews.size() - 1);
-}
-
-int addVec3Accessor(tinygltf::Model& m, const std::vector<float>& xyz) {
-  tinygltf::Accessor a;
-  a.bufferView = addView(m, xyz.data(), xyz.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
-  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  a.type = TINYGLTF_TYPE_VEC3;
-  a.count = xyz.size() / 3;
-  a.minValues.assign(3, std::numeric_limits<double>::infinity());
-  a.maxValues.assign(3, -std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < xyz.size(); ++i) {
-    a.minValues[i % 3] = std::min(a.minValues[i % 3], static_cast<double>(xyz[i]));
-    a.maxValues[i % 3] = std::max(a.maxValues[i % 3], static_cast<double>(xyz[i]));
-  }
-  m.accessors.push_back(a);
-  return static_cast<int>(m.accessors.size() - 1);
-}
-
-int addScalarAccessor(tinygltf::Model& m, const std::vector<float>& values, bool bounds) {
-  tinygltf::Accessor a;
-  a.bufferView = addView(m, values.data(), values.size() * sizeof(float), 0);
-  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  a.type = TINYGLTF_TYPE_SCALAR;
-  a.count = values.size();
-  if (bounds) {
-    a.minValues = {static_cast<double>(*std::min_element(values.begin(), values.end()))};
-    a.maxValues = {static_cast<double>(*std::max_element(values.begin(), values.end()))};
-  }
-  m.accessors.push_back(a);
-  return static_cast<int>(m.accessors.size() - 1);
-}
 
 Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds) {
   if (frames.empty()) return invalidArgument("baked glTF: no frames");
@@ -89,24 +44,11 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   m.asset.generator = options.generator;
   m.buffers.emplace_back();
 
-  std::vector<std::uint32_t> triangles;
-  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
-    const std::uint32_t begin = faces.face_offsets[f];
-    for (std::uint32_t k = begin + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
-      triangles.insert(triangles.end(), {faces.indices[begin], faces.indices[k], faces.indices[k + 1]});
-    }
-  }
-  tinygltf::Accessor indices;
-  indices.bufferView =
-      addView(m, triangles.data(), triangles.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  indices.type = TINYGLTF_TYPE_SCALAR;
-  indices.count = triangles.size();
-  m.accessors.push_back(indices);
-
+  const std::vector<std::uint32_t> triangles = gltf::fanTriangles(faces);
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  primitive.indices = 0;
+  primitive.indices = gltf::appendAccessor(m, gltf::appendView(m, triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
   std::vector<float> xyz;
   auto flatten = [&](std::size_t frame) {
     xyz.clear();
@@ -114,7 +56,7 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
       const Vec3 d = frame == 0 ? frames[0][i] : frames[frame][i] - frames[0][i];
       xyz.insert(xyz.end(), {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)});
     }
-    return addVec3Accessor(m, xyz);
+    return gltf::appendFloatAccessor(m, xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
   };
   primitive.attributes["POSITION"] = flatten(0);
   for (std::size_t f = 1; f < frames.size(); ++f) primitive.targets.push_back({{"POSITION", flatten(f)}});
@@ -139,8 +81,8 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
     std::vector<float> weights(frames.size() * targets, 0.0f);
     for (std::size_t f = 1; f < frames.size(); ++f) weights[f * targets + (f - 1)] = 1.0f;
     tinygltf::AnimationSampler sampler;
-    sampler.input = addScalarAccessor(m, times, true);
-    sampler.output = addScalarAccessor(m, weights, false);
+    sampler.input = gltf::appendFloatAccessor(m, times, TINYGLTF_TYPE_SCALAR, 1, 0, true);
+    sampler.output = gltf::appendFloatAccessor(m, weights, TINYGLTF_TYPE_SCALAR, 1, 0, false);
     sampler.interpolation = options.linear ? "LINEAR" : "STEP";
     tinygltf::AnimationChannel channel;
     channel.sampler = 0;

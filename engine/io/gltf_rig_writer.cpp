@@ -3,42 +3,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include <tiny_gltf.h>
 
 #include "gltf_baked_writer.hpp"
+#include "gltf_buffer_builder.hpp"
 
 namespace odeskin {
 namespace {
 
 constexpr std::size_t kSlots = 4;
-
-template <class T>
-int addView(tinygltf::Model& m, const std::vector<T>& values, int target) {
-  std::vector<unsigned char>& data = m.buffers[0].data;
-  while (data.size() % 4 != 0) data.push_back(0);
-  tinygltf::BufferView v;
-  v.buffer = 0;
-  v.byteOffset = data.size();
-  v.byteLength = values.size() * sizeof(T);
-  if (target != 0) v.target = target;
-  const auto* begin = reinterpret_cast<const unsigned char*>(values.data());
-  data.insert(data.end(), begin, begin + v.byteLength);
-  m.bufferViews.push_back(v);
-  return static_cast<int>(m.bufferViews.size() - 1);
-}
-
-int addAccessor(tinygltf::Model& m, int view, int component, int type, std::size_t count) {
-  tinygltf::Accessor a;
-  a.bufferView = view;
-  a.componentType = component;
-  a.type = type;
-  a.count = count;
-  m.accessors.push_back(a);
-  return static_cast<int>(m.accessors.size() - 1);
-}
 
 std::vector<double> toDoubles(const Vec3& v) { return {v.x, v.y, v.z}; }
 
@@ -88,21 +63,13 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
   m.buffers.emplace_back();
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  primitive.indices = addAccessor(m, addView(m, triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+  primitive.indices = gltf::appendAccessor(m, gltf::appendView(m, triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
-  const int position = addAccessor(m, addView(m, xyz, TINYGLTF_TARGET_ARRAY_BUFFER), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                   TINYGLTF_TYPE_VEC3, v_count);
-  m.accessors[static_cast<std::size_t>(position)].minValues.assign(3, std::numeric_limits<double>::infinity());
-  m.accessors[static_cast<std::size_t>(position)].maxValues.assign(3, -std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < xyz.size(); ++i) {
-    auto& a = m.accessors[static_cast<std::size_t>(position)];
-    a.minValues[i % 3] = std::min(a.minValues[i % 3], static_cast<double>(xyz[i]));
-    a.maxValues[i % 3] = std::max(a.maxValues[i % 3], static_cast<double>(xyz[i]));
-  }
-  primitive.attributes["POSITION"] = position;
-  primitive.attributes["WEIGHTS_0"] = addAccessor(m, addView(m, weights, TINYGLTF_TARGET_ARRAY_BUFFER),
+  primitive.attributes["POSITION"] =
+      gltf::appendFloatAccessor(m, xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  primitive.attributes["WEIGHTS_0"] = gltf::appendAccessor(m, gltf::appendView(m, weights, TINYGLTF_TARGET_ARRAY_BUFFER),
                                                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, v_count);
-  primitive.attributes["JOINTS_0"] = addAccessor(m, addView(m, joints, TINYGLTF_TARGET_ARRAY_BUFFER),
+  primitive.attributes["JOINTS_0"] = gltf::appendAccessor(m, gltf::appendView(m, joints, TINYGLTF_TARGET_ARRAY_BUFFER),
                                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, v_count);
   tinygltf::Mesh mesh;
   mesh.name = "mesh";
@@ -152,7 +119,7 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
   tinygltf::Skin skin;
   skin.name = "skin";
   for (std::size_t b = 0; b < bones; ++b) skin.joints.push_back(static_cast<int>(b + 1));
-  skin.inverseBindMatrices = addAccessor(m, addView(m, inverse_binds, 0), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, bones);
+  skin.inverseBindMatrices = gltf::appendAccessor(m, gltf::appendView(m, inverse_binds, 0), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, bones);
   m.skins.push_back(skin);
   m.scenes.push_back(scene);
   m.defaultScene = 0;

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+#include "gltf_buffer_builder.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace odeskin::gltf {
+
+int appendView(tinygltf::Model& m, const void* bytes, std::size_t size, int target) {
+  std::vector<unsigned char>& data = m.buffers[0].data;
+  while (data.size() % 4 != 0) data.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteLength = size;
+  if (target != 0) view.target = target;
+  const auto* begin = static_cast<const unsigned char*>(bytes);
+  data.insert(data.end(), begin, begin + size);
+  m.bufferViews.push_back(view);
+  return static_cast<int>(m.bufferViews.size() - 1);
+}
+
+int appendAccessor(tinygltf::Model& m, int view, int component_type, int type, std::size_t count) {
+  tinygltf::Accessor a;
+  a.bufferView = view;
+  a.componentType = component_type;
+  a.type = type;
+  a.count = count;
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size() - 1);
+}
+
+void setBounds(tinygltf::Accessor& a, std::span<const float> values, int components, bool with_zero) {
+  const auto n = static_cast<std::size_t>(components);
+  a.minValues.assign(n, with_zero ? 0.0 : std::numeric_limits<double>::infinity());
+  a.maxValues.assign(n, with_zero ? 0.0 : -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    a.minValues[i % n] = std::min(a.minValues[i % n], static_cast<double>(values[i]));
+    a.maxValues[i % n] = std::max(a.maxValues[i % n], static_cast<double>(values[i]));
+  }
+}
+
+int appendFloatAccessor(tinygltf::Model& m, const std::vector<float>& values, int type, int components, int target,
+                        bool bounds) {
+  const int index = appendAccessor(m, appendView(m, values, target), TINYGLTF_COMPONENT_TYPE_FLOAT, type,
+                                   values.size() / static_cast<std::size_t>(components));
+  if (bounds) setBounds(m.accessors[static_cast<std::size_t>(index)], values, components, false);
+  return index;
+}
+
+std::vector<std::uint32_t> fanTriangles(const FaceList& faces) {
+  std::vector<std::uint32_t> triangles;
+  triangles.reserve(faces.faceCount() * 6);
+  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+    const std::uint32_t begin = faces.face_offsets[f];
+    for (std::uint32_t k = begin + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
+      triangles.insert(triangles.end(), {faces.indices[begin], faces.indices[k], faces.indices[k + 1]});
+    }
+  }
+  return triangles;
+}
+
+}  // namespace odeskin::gltf

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// Writing glTF data into one model's buffer 0 (internal to the glTF writers: the baked, rig,
+// surface and export GLBs). Every view is 4-byte aligned, which glTF requires of vertex attributes
+// and matrices, so views of any element type can follow each other in the one buffer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "../core/types.hpp"
+
+namespace odeskin::gltf {
+
+// Appends `size` bytes to buffer 0 (which must exist) as a new view; target 0 leaves the view's
+// target unset. Returns the view's index.
+int appendView(tinygltf::Model& m, const void* bytes, std::size_t size, int target);
+
+template <class T>
+int appendView(tinygltf::Model& m, const std::vector<T>& values, int target) {
+  return appendView(m, values.data(), values.size() * sizeof(T), target);
+}
+
+// An accessor over a whole view; returns its index.
+int appendAccessor(tinygltf::Model& m, int view, int component_type, int type, std::size_t count);
+
+// Per-component min/max of interleaved `values` (`components` per element); with_zero starts both
+// at 0 (a sparse accessor's unsubstituted elements are zero).
+void setBounds(tinygltf::Accessor& a, std::span<const float> values, int components, bool with_zero);
+
+// A float accessor over a new view of `values`, with min/max per component when asked (POSITION
+// and animation inputs need them). Returns the accessor's index.
+int appendFloatAccessor(tinygltf::Model& m, const std::vector<float>& values, int type, int components, int target,
+                        bool bounds);
+
+// The polygons as triangle fans (v0, vk, vk+1), the way every odeskin GLB triangulates.
+std::vector<std::uint32_t> fanTriangles(const FaceList& faces);
+
+}  // namespace odeskin::gltf
