@@ -39,16 +39,12 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
                      const BakedGlbOptions& options) {
   ODESKIN_TRY(checkInput(faces, frames, seconds));
-  tinygltf::Model m;
-  m.asset.version = "2.0";
-  m.asset.generator = options.generator;
-  m.buffers.emplace_back();
+  tinygltf::Model m = gltf::newModel(options.generator);
 
   const std::vector<std::uint32_t> triangles = gltf::fanTriangles(faces);
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  primitive.indices = gltf::appendAccessor(m, gltf::appendView(m, triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
+  primitive.indices = gltf::appendTriangleIndices(m, triangles);
   std::vector<float> xyz;
   auto flatten = [&](std::size_t frame) {
     xyz.clear();
@@ -65,14 +61,7 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   mesh.primitives.push_back(primitive);
   mesh.weights.assign(frames.size() - 1, 0.0);
   m.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  node.name = "odeskin";
-  m.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes = {0};
-  m.scenes.push_back(scene);
-  m.defaultScene = 0;
+  gltf::addSingleMeshScene(m, "odeskin");
 
   if (frames.size() > 1) {
     // Key f weights target f-1 by 1 (frame 0: none); STEP holds it, LINEAR fades into the next.

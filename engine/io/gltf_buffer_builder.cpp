@@ -6,6 +6,14 @@
 
 namespace odeskin::gltf {
 
+tinygltf::Model newModel(const std::string& generator) {
+  tinygltf::Model m;
+  m.asset.version = "2.0";
+  m.asset.generator = generator;
+  m.buffers.emplace_back();
+  return m;
+}
+
 int appendView(tinygltf::Model& m, const void* bytes, std::size_t size, int target) {
   std::vector<unsigned char>& data = m.buffers[0].data;
   while (data.size() % 4 != 0) data.push_back(0);
@@ -46,6 +54,22 @@ int appendFloatAccessor(tinygltf::Model& m, const std::vector<float>& values, in
                                    values.size() / static_cast<std::size_t>(components));
   if (bounds) setBounds(m.accessors[static_cast<std::size_t>(index)], values, components, false);
   return index;
+}
+
+int appendTriangleIndices(tinygltf::Model& m, const std::vector<std::uint32_t>& triangles) {
+  return appendAccessor(m, appendView(m, triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
+}
+
+void addSingleMeshScene(tinygltf::Model& m, const std::string& name) {
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.name = name;
+  m.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes = {0};
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
 }
 
 std::vector<std::uint32_t> fanTriangles(const FaceList& faces) {

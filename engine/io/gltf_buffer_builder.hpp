@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -14,6 +15,9 @@
 #include "../core/types.hpp"
 
 namespace odeskin::gltf {
+
+// A glTF 2.0 model with one empty buffer, ready for appendView.
+tinygltf::Model newModel(const std::string& generator);
 
 // Appends `size` bytes to buffer 0 (which must exist) as a new view; target 0 leaves the view's
 // target unset. Returns the view's index.
@@ -35,6 +39,12 @@ void setBounds(tinygltf::Accessor& a, std::span<const float> values, int compone
 // and animation inputs need them). Returns the accessor's index.
 int appendFloatAccessor(tinygltf::Model& m, const std::vector<float>& values, int type, int components, int target,
                         bool bounds);
+
+// An UNSIGNED_INT index accessor over a new ELEMENT_ARRAY_BUFFER view of `triangles`.
+int appendTriangleIndices(tinygltf::Model& m, const std::vector<std::uint32_t>& triangles);
+
+// Node 0 showing mesh 0 under `name`, and scene 0 (the default) holding just that node.
+void addSingleMeshScene(tinygltf::Model& m, const std::string& name);
 
 // The polygons as triangle fans (v0, vk, vk+1), the way every odeskin GLB triangulates.
 std::vector<std::uint32_t> fanTriangles(const FaceList& faces);

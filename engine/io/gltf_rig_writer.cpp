@@ -57,14 +57,10 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
     }
   }
 
-  tinygltf::Model m;
-  m.asset.version = "2.0";
-  m.asset.generator = generator;
-  m.buffers.emplace_back();
+  tinygltf::Model m = gltf::newModel(generator);
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  primitive.indices = gltf::appendAccessor(m, gltf::appendView(m, triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
+  primitive.indices = gltf::appendTriangleIndices(m, triangles);
   primitive.attributes["POSITION"] =
       gltf::appendFloatAccessor(m, xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
   primitive.attributes["WEIGHTS_0"] = gltf::appendAccessor(m, gltf::appendView(m, weights, TINYGLTF_TARGET_ARRAY_BUFFER),

@@ -34,28 +34,17 @@ Status writeSurfaceGlb(const std::filesystem::path& path, const SurfaceMesh& mes
     }
   }
   const std::vector<std::uint32_t> triangles = gltf::fanTriangles(mesh.faces);
-  tinygltf::Model m;
-  m.asset.version = "2.0";
-  m.asset.generator = generator;
-  m.buffers.emplace_back();
+  tinygltf::Model m = gltf::newModel(generator);
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  primitive.indices = gltf::appendAccessor(m, gltf::appendView(m, triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
+  primitive.indices = gltf::appendTriangleIndices(m, triangles);
   primitive.attributes["POSITION"] = addVec3(m, mesh.positions, true);
   primitive.attributes["NORMAL"] = addVec3(m, normals, false);
   tinygltf::Mesh gltf_mesh;
   gltf_mesh.name = "odeskin surface";
   gltf_mesh.primitives.push_back(primitive);
   m.meshes.push_back(gltf_mesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  node.name = "odeskin surface";
-  m.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes = {0};
-  m.scenes.push_back(scene);
-  m.defaultScene = 0;
+  gltf::addSingleMeshScene(m, "odeskin surface");
   return writeGlbAtomically(path, m);
 }
 
