@@ -79,6 +79,18 @@ Result<std::vector<InBetween>> inBetweenFrames(std::size_t frame_count, std::spa
   return out;
 }
 
+Result<Rig> perBoneRigidRig(const DeformAsset& asset, const ExampleSet& keys) {
+  Rig rig;
+  rig.skeleton.heads = asset.bone_pivots;
+  rig.skeleton.tails = asset.bone_pivots;
+  rig.skeleton.names.assign(asset.bone_pivots.size(), std::string());
+  rig.skeleton.parents =
+      asset.bone_parents.empty() ? std::vector<std::int32_t>(asset.bone_pivots.size(), -1) : asset.bone_parents;
+  rig.influences = asset.influences;
+  ODESKIN_ASSIGN_OR_RETURN(rig.key_poses, fitRigidBoneTransforms(keys.rest_positions, keys.poses, rig.influences, rig.skeleton));
+  return rig;
+}
+
 Result<KeyFit> fitEvaluationKeys(const ExampleSet& frames, std::span<const std::uint32_t> keys,
                                  const EvaluationOptions& options) {
   if (keys.size() < 2) return invalidArgument("evaluate: " + std::to_string(keys.size()) + " key(s); at least 2 are needed");
@@ -118,15 +130,7 @@ Result<KeyFit> fitEvaluationKeys(const ExampleSet& frames, std::span<const std::
   if (options.skeleton_fit == SkeletonFit::kPerBoneRigid) {
     // Keep the fitted rig's bones and weights; refit the keys' transforms rigidly and fit again, so
     // that the residual is measured against the same kind of skeleton the in-betweens get.
-    const DeformAsset& a = fit.asset;
-    Rig rig;
-    rig.skeleton.heads = a.bone_pivots;
-    rig.skeleton.tails = a.bone_pivots;
-    rig.skeleton.names.assign(a.bone_pivots.size(), std::string());
-    rig.skeleton.parents = a.bone_parents.empty() ? std::vector<std::int32_t>(a.bone_pivots.size(), -1) : a.bone_parents;
-    rig.influences = a.influences;
-    ODESKIN_ASSIGN_OR_RETURN(rig.key_poses,
-                             fitRigidBoneTransforms(key_set.rest_positions, key_set.poses, rig.influences, rig.skeleton));
+    ODESKIN_ASSIGN_OR_RETURN(Rig rig, perBoneRigidRig(fit.asset, key_set));
     const std::string first_rig = fit.rig_summary;
     key_set.rig = std::move(rig);
     PipelineOptions rigid = options.pipeline;

@@ -107,6 +107,12 @@ struct KeyFit {
 Result<KeyFit> fitEvaluationKeys(const ExampleSet& frames, std::span<const std::uint32_t> keys,
                                  const EvaluationOptions& options = {});
 
+// The rig of a fitted asset (its bone pivots as heads and tails, parents, influences) with the
+// transforms of `keys`' poses refitted per bone rigidly (fitRigidBoneTransforms), as
+// EvaluationOptions::skeleton_fit kPerBoneRigid hands it to the second fit. Errors: those of
+// fitRigidBoneTransforms.
+Result<Rig> perBoneRigidRig(const DeformAsset& asset, const ExampleSet& keys);
+
 // `frames`: F ground-truth frames of one mesh (poses, F x V, with pose_labels naming their files;
 // faces as read). Fits the keys (bind = the first key; options.pipeline), builds each method
 // (makeBaseline) and scores it at every in-between frame under `source`. Errors: those of

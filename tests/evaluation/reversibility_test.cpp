@@ -23,12 +23,17 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/offline/residual_fit.hpp"
 #include "engine/offline/time_basis.hpp"
+#include "engine/evaluation/evaluation.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
-#include "engine/rig/kabsch.hpp"
+#include "evaluation/pose_difference.hpp"
 #include "pipeline/dataset_fixtures.hpp"
 
 namespace odeskin {
 namespace {
+
+using testing::Difference;
+using testing::difference;
+using testing::play;
 
 struct Mirror {
   std::vector<std::vector<Vec3>> frames;  // horse frames 1..5
@@ -54,21 +59,12 @@ Mirror makeMirror() {
   Result<PipelineResult> automatic = runFitPipeline(*keys, PipelineOptions{});
   EXPECT_TRUE(automatic.ok()) << automatic.status().toString();
   if (!automatic.ok()) return m;
-  const DeformAsset& a = automatic->asset;
-  Rig rig;
-  rig.skeleton.heads = a.bone_pivots;
-  rig.skeleton.tails = a.bone_pivots;
-  rig.skeleton.names.assign(a.bone_pivots.size(), std::string());
-  rig.skeleton.parents = a.bone_parents.empty() ? std::vector<std::int32_t>(a.bone_pivots.size(), -1) : a.bone_parents;
-  rig.influences = a.influences;
-  Result<std::vector<std::vector<RigidTransform>>> transforms =
-      fitRigidBoneTransforms(keys->rest_positions, keys->poses, rig.influences, rig.skeleton);
-  EXPECT_TRUE(transforms.ok()) << transforms.status().toString();
-  if (!transforms.ok()) return m;
-  rig.key_poses = *transforms;
+  Result<Rig> rig = perBoneRigidRig(automatic->asset, *keys);
+  EXPECT_TRUE(rig.ok()) << rig.status().toString();
+  if (!rig.ok()) return m;
 
   ExampleSet forward = *keys;
-  forward.rig = rig;
+  forward.rig = std::move(*rig);
   ExampleSet reverse = forward;
   std::reverse(reverse.poses.begin(), reverse.poses.end());
   std::reverse(reverse.pose_labels.begin(), reverse.pose_labels.end());
@@ -85,28 +81,6 @@ Mirror makeMirror() {
   }
   m.box = longestBoxSide(m.frames[0]);
   return m;
-}
-
-struct Difference {
-  double max = 0.0;   // / Lbox
-  double mean = 0.0;  // / Lbox
-};
-
-Difference difference(std::span<const Vec3> a, std::span<const Vec3> b, double box) {
-  Difference d;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const double e = glm::length(a[i] - b[i]) / box;
-    d.max = std::max(d.max, e);
-    d.mean += e / static_cast<double>(a.size());
-  }
-  return d;
-}
-
-std::vector<Vec3> play(OdeskinBaseline& method, double tau, std::span<const BoneTransform> bones) {
-  std::vector<Vec3> out(method.vertexCount());
-  const Status st = method.evaluate({0, tau, bones}, out);
-  EXPECT_TRUE(st.ok()) << st.toString();
-  return out;
 }
 
 struct Pair {
@@ -157,8 +131,8 @@ TEST_F(Reversibility, StaticPlaysBackwardsAsItsMirror) {
   for (std::size_t frame = 1; frame <= 3; ++frame) {
     const double tau = 0.25 * static_cast<double>(frame);
     const std::vector<BoneTransform> bones = truthBones(frame);
-    const Difference truth = difference(play(p.forward, tau, bones), play(p.reverse, 1.0 - tau, bones), mirror_->box);
-    const Difference keys = difference(play(p.forward, tau, {}), play(p.reverse, 1.0 - tau, {}), mirror_->box);
+    const Difference truth = difference(play(p.forward, 0, tau, bones), play(p.reverse, 0, 1.0 - tau, bones), mirror_->box);
+    const Difference keys = difference(play(p.forward, 0, tau, {}), play(p.reverse, 0, 1.0 - tau, {}), mirror_->box);
     std::printf("[ measured ] static, tau %.2f: |A->B(tau) - B->A(1 - tau)| max %.2e (truth skeleton), %.2e (key "
                 "path) of the box\n",
                 tau, truth.max, keys.max);
@@ -183,10 +157,10 @@ TEST_F(Reversibility, DynamicIsNotMirrored) {
     const double tau = 0.25 * static_cast<double>(frame);
     const std::vector<BoneTransform> bones = truthBones(frame);
     const Difference mirror =
-        difference(play(dynamic.forward, tau, bones), play(dynamic.reverse, 1.0 - tau, bones), mirror_->box);
+        difference(play(dynamic.forward, 0, tau, bones), play(dynamic.reverse, 0, 1.0 - tau, bones), mirror_->box);
     // The static variant's motion over the whole segment with the same skeleton: the scale of the
     // asymmetry.
-    const Difference change = difference(play(still.forward, 1.0, bones), play(still.forward, 0.0, bones), mirror_->box);
+    const Difference change = difference(play(still.forward, 0, 1.0, bones), play(still.forward, 0, 0.0, bones), mirror_->box);
     const double c = 1.0 - basis->at(tau).gamma - basis->at(1.0 - tau).gamma;
     std::printf("[ measured ] dynamic, tau %.2f: |A->B(tau) - B->A(1 - tau)| max %.3f %%, mean %.3f %% of the box; "
                 "the segment's change max %.3f %%, mean %.3f %%; c(tau) = 1 - gamma(tau) - gamma(1 - tau) = %.3f\n",
@@ -211,12 +185,12 @@ TEST_F(Reversibility, DynamicAsymmetryIsTheLagOfBothEnds) {
     const double tau = 0.25 * static_cast<double>(frame);
     const std::vector<BoneTransform> bones = truthBones(frame);
     const double c = 1.0 - basis->at(tau).gamma - basis->at(1.0 - tau).gamma;
-    const std::vector<Vec3> dynamic_forward = play(dynamic.forward, tau, bones);
-    const std::vector<Vec3> dynamic_reverse = play(dynamic.reverse, 1.0 - tau, bones);
-    const std::vector<Vec3> static_forward = play(still.forward, tau, bones);
-    const std::vector<Vec3> static_reverse = play(still.reverse, 1.0 - tau, bones);
-    const std::vector<Vec3> end = play(still.forward, 1.0, bones);
-    const std::vector<Vec3> start = play(still.forward, 0.0, bones);
+    const std::vector<Vec3> dynamic_forward = play(dynamic.forward, 0, tau, bones);
+    const std::vector<Vec3> dynamic_reverse = play(dynamic.reverse, 0, 1.0 - tau, bones);
+    const std::vector<Vec3> static_forward = play(still.forward, 0, tau, bones);
+    const std::vector<Vec3> static_reverse = play(still.reverse, 0, 1.0 - tau, bones);
+    const std::vector<Vec3> end = play(still.forward, 0, 1.0, bones);
+    const std::vector<Vec3> start = play(still.forward, 0, 0.0, bones);
     double worst = 0.0, series_error = 0.0;
     for (std::size_t i = 0; i < end.size(); ++i) {
       const Vec3 dynamic_asymmetry = dynamic_reverse[i] - dynamic_forward[i];

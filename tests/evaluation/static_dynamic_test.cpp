@@ -23,10 +23,15 @@
 #include "engine/offline/deform_player.hpp"
 #include "engine/offline/residual_fit.hpp"
 #include "engine/offline/time_basis.hpp"
+#include "evaluation/pose_difference.hpp"
 #include "pipeline/dataset_fixtures.hpp"
 
 namespace odeskin {
 namespace {
+
+using testing::Difference;
+using testing::difference;
+using testing::play;
 
 ExampleSet horse(int first, int last) {
   std::vector<std::filesystem::path> paths;
@@ -40,28 +45,6 @@ std::unique_ptr<Baseline> build(BaselineMethod method, const KeyFit& kf) {
   Result<std::unique_ptr<Baseline>> b = makeBaseline(method, kf.key_set.poses, kf.fit.asset);
   EXPECT_TRUE(b.ok()) << b.status().toString();
   return b.ok() ? std::move(*b) : nullptr;
-}
-
-std::vector<Vec3> play(Baseline& method, std::uint32_t segment, double tau, std::span<const BoneTransform> bones) {
-  std::vector<Vec3> out(method.vertexCount());
-  const Status st = method.evaluate({segment, tau, bones}, out);
-  EXPECT_TRUE(st.ok()) << st.toString();
-  return out;
-}
-
-struct Difference {
-  double max = 0.0;   // / Lbox
-  double mean = 0.0;  // / Lbox
-};
-
-Difference difference(std::span<const Vec3> a, std::span<const Vec3> b, double box) {
-  Difference d;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const double e = glm::length(a[i] - b[i]) / box;
-    d.max = std::max(d.max, e);
-    d.mean += e / static_cast<double>(a.size());
-  }
-  return d;
 }
 
 double gammaAt(double tau) {
