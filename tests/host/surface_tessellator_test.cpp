@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/offline/residual_fit.hpp"
 #include "engine/surfaces/network_json.hpp"
 #include "engine/surfaces/tessellation.hpp"
 #include "host/gpu_test_support.hpp"
@@ -46,15 +47,6 @@ Network singlePatch(const Ode6Shape& shape) {
   Result<Network> n = Network::build(d);
   EXPECT_TRUE(n.ok()) << n.status().toString();
   return std::move(n).value();
-}
-
-double longestBoxSide(const std::vector<Vec3>& p) {
-  Vec3 lo(INFINITY), hi(-INFINITY);
-  for (const Vec3& x : p) {
-    lo = glm::min(lo, x);
-    hi = glm::max(hi, x);
-  }
-  return std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
 }
 
 class SurfaceTessellatorTest : public testing::GpuTest {

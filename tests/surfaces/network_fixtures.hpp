@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "engine/surfaces/network.hpp"
 
@@ -104,5 +105,20 @@ inline NetworkDescription sweptNetwork(const SweptSurface& s, const std::vector<
 
 // One shape per row from four regimes: B (the thesis's), A, F (quintic Hermite), I.
 inline std::vector<Ode6Shape> mixedRowShapes() { return {{1, 3, 1}, {1, -5, 4}, {1, 0, 0}, {1, 1, 1}}; }
+
+// The three layouts every network test covers: a 3 x 4 tube closed in v, an open 3 x 3 sheet and a
+// 4 x 3 torus closed in u.
+inline std::vector<SweptSurface> sweptLayouts() {
+  SweptSurface tube;
+  SweptSurface sheet;
+  sheet.closed_v = false;
+  sheet.columns = 3;
+  sheet.points = 9;
+  SweptSurface torus;
+  torus.closed_u = true;
+  torus.rows = 4;
+  torus.columns = 3;
+  return {tube, sheet, torus};
+}
 
 }  // namespace odeskin::testing

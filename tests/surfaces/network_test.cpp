@@ -15,20 +15,8 @@ namespace {
 
 using testing::SweptSurface;
 using testing::mixedRowShapes;
+using testing::sweptLayouts;
 using testing::sweptNetwork;
-
-std::vector<SweptSurface> layouts() {
-  SweptSurface tube;  // 3 x 4, closed in v
-  SweptSurface sheet;
-  sheet.closed_v = false;
-  sheet.columns = 3;
-  sheet.points = 9;
-  SweptSurface torus;
-  torus.closed_u = true;
-  torus.rows = 4;
-  torus.columns = 3;
-  return {tube, sheet, torus};
-}
 
 Network build(const NetworkDescription& d) {
   std::vector<std::string> warnings;
@@ -53,7 +41,7 @@ struct Jumps {
 };
 
 TEST(Network, C2AcrossSharedUBoundaries) {
-  for (const SweptSurface& s : layouts()) {
+  for (const SweptSurface& s : sweptLayouts()) {
     const Network n = build(sweptNetwork(s, mixedRowShapes()));
     Jumps jumps;
     const std::uint32_t interfaces = s.closed_u ? n.rows() : n.rows() - 1;
@@ -76,7 +64,7 @@ TEST(Network, C2AcrossSharedUBoundaries) {
 }
 
 TEST(Network, C2AcrossSharedVEdges) {
-  for (const SweptSurface& s : layouts()) {
+  for (const SweptSurface& s : sweptLayouts()) {
     const Network n = build(sweptNetwork(s, mixedRowShapes()));
     Jumps jumps;
     const std::uint32_t edges = s.closed_v ? n.columns() : n.columns() - 1;
@@ -99,7 +87,7 @@ TEST(Network, C2AcrossSharedVEdges) {
 }
 
 TEST(Network, PatchObjectsAgreeWithTheNetwork) {
-  const Network n = build(sweptNetwork(layouts()[0], mixedRowShapes()));
+  const Network n = build(sweptNetwork(sweptLayouts()[0], mixedRowShapes()));
   for (std::uint32_t r = 0; r < n.rows(); ++r) {
     Result<Patch> patch = n.patch(r, 2);
     ASSERT_TRUE(patch.ok());
@@ -118,7 +106,7 @@ TEST(Network, PatchObjectsAgreeWithTheNetwork) {
 
 // The thesis's Fig 4.1(b): (1, 3, 1) next to (0.1, 3, 0.1) in v.
 NetworkDescription fig41b() {
-  NetworkDescription d = sweptNetwork(layouts()[0], {{1, 3, 1}});
+  NetworkDescription d = sweptNetwork(sweptLayouts()[0], {{1, 3, 1}});
   d.shapes[2] = {0.1, 3.0, 0.1};
   return d;
 }
@@ -147,7 +135,7 @@ TEST(Network, RefusesVPairingsThatCannotBeC2) {
 }
 
 TEST(Network, EqualRatiosShareCardinalFunctions) {
-  NetworkDescription d = sweptNetwork(layouts()[0], {{1, 3, 1}});
+  NetworkDescription d = sweptNetwork(sweptLayouts()[0], {{1, 3, 1}});
   d.shapes[1] = {0.1, 0.3, 0.1};  // eta/rho = 2.9999999999999996
   d.shapes[3] = {-2, -6, -2};
   const Network n = build(d);
@@ -157,7 +145,7 @@ TEST(Network, EqualRatiosShareCardinalFunctions) {
 }
 
 TEST(Network, RejectsBadDescriptions) {
-  const NetworkDescription good = sweptNetwork(layouts()[0], mixedRowShapes());
+  const NetworkDescription good = sweptNetwork(sweptLayouts()[0], mixedRowShapes());
   auto expectInvalid = [](NetworkDescription d, const std::string& part) {
     Result<Network> n = Network::build(std::move(d));
     ASSERT_FALSE(n.ok()) << part;
@@ -203,7 +191,7 @@ TEST(Network, RejectsBadDescriptions) {
 }
 
 TEST(Network, EditsReportTheChangedPatches) {
-  Network n = build(sweptNetwork(layouts()[0], mixedRowShapes()));  // 3 rows x 4 columns, 4 boundaries
+  Network n = build(sweptNetwork(sweptLayouts()[0], mixedRowShapes()));  // 3 rows x 4 columns, 4 boundaries
   Result<std::vector<std::uint32_t>> row = n.setRowShape(1, {1, 4, 2});
   ASSERT_TRUE(row.ok());
   EXPECT_EQ(*row, (std::vector<std::uint32_t>{4, 5, 6, 7}));

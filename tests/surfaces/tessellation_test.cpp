@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/offline/residual_fit.hpp"
 #include "engine/surfaces/tessellation.hpp"
 #include "engine/surfaces/tessellation_cache.hpp"
 #include "surfaces/network_fixtures.hpp"
@@ -17,34 +18,13 @@ namespace {
 
 using testing::SweptSurface;
 using testing::mixedRowShapes;
+using testing::sweptLayouts;
 using testing::sweptNetwork;
 
 Network build(const SweptSurface& s) {
   Result<Network> n = Network::build(sweptNetwork(s, mixedRowShapes()));
   EXPECT_TRUE(n.ok()) << n.status().toString();
   return std::move(n).value();
-}
-
-std::vector<SweptSurface> layouts() {
-  SweptSurface tube;
-  SweptSurface sheet;
-  sheet.closed_v = false;
-  sheet.columns = 3;
-  sheet.points = 9;
-  SweptSurface torus;
-  torus.closed_u = true;
-  torus.rows = 4;
-  torus.columns = 3;
-  return {tube, sheet, torus};
-}
-
-double longestBoxSide(const std::vector<Vec3>& p) {
-  Vec3 lo(INFINITY), hi(-INFINITY);
-  for (const Vec3& x : p) {
-    lo = glm::min(lo, x);
-    hi = glm::max(hi, x);
-  }
-  return std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
 }
 
 // Pairs of distinct vertices closer than `tolerance` (spatial hash with cells of that size).
@@ -74,7 +54,7 @@ std::size_t nearDuplicates(const std::vector<Vec3>& p, double tolerance) {
 }
 
 TEST(Tessellation, GridSizesAndOwnership) {
-  const Network tube = build(layouts()[0]);
+  const Network tube = build(sweptLayouts()[0]);
   Result<TessellationGrid> grid = tessellationGrid(tube, {5, 7});
   ASSERT_TRUE(grid.ok());
   EXPECT_EQ(grid->gridRows(), 3u * 4u + 1u);
@@ -88,7 +68,7 @@ TEST(Tessellation, GridSizesAndOwnership) {
 }
 
 TEST(Tessellation, WatertightWeldedMesh) {
-  for (const SweptSurface& s : layouts()) {
+  for (const SweptSurface& s : sweptLayouts()) {
     const Network n = build(s);
     Result<SurfaceMesh> mesh = tessellateNetwork(n, {9, 11});
     ASSERT_TRUE(mesh.ok());
@@ -125,7 +105,7 @@ TEST(Tessellation, WatertightWeldedMesh) {
 TEST(Tessellation, SeamsBetweenPatchesAreWelded) {
   // Without welding, the two patches at a seam would each have a vertex there; with it the mesh has
   // exactly the grid's vertex count and every seam vertex is used by quads of both patches.
-  const Network n = build(layouts()[0]);
+  const Network n = build(sweptLayouts()[0]);
   Result<SurfaceMesh> mesh = tessellateNetwork(n, {5, 5});
   ASSERT_TRUE(mesh.ok());
   std::vector<int> uses(mesh->positions.size(), 0);
@@ -137,7 +117,7 @@ TEST(Tessellation, SeamsBetweenPatchesAreWelded) {
 }
 
 TEST(Tessellation, NormalsPointAlongSuCrossSv) {
-  const Network n = build(layouts()[0]);
+  const Network n = build(sweptLayouts()[0]);
   Result<SurfaceMesh> mesh = tessellateNetwork(n, {17, 17});
   ASSERT_TRUE(mesh.ok());
   const std::vector<Vec3> normals = vertexNormals(*mesh);
@@ -162,7 +142,7 @@ void expectSameMesh(const SurfaceMesh& a, const SurfaceMesh& b) {
 }
 
 TEST(TessellationCache, EditsReevaluateOnlyTheAffectedPatches) {
-  for (const SweptSurface& s : layouts()) {
+  for (const SweptSurface& s : sweptLayouts()) {
     Result<NetworkTessellation> t = NetworkTessellation::create(build(s), {7, 9});
     ASSERT_TRUE(t.ok());
     const std::uint32_t columns = t->network().columns();
@@ -221,7 +201,7 @@ TEST(TessellationCache, HundredPatchNetworkAfterOneChange) {
 }
 
 TEST(TessellationCache, WarnedPairingKeepsEachPatchsOwnFunctions) {
-  NetworkDescription d = sweptNetwork(layouts()[0], {{1, 3, 1}});
+  NetworkDescription d = sweptNetwork(sweptLayouts()[0], {{1, 3, 1}});
   d.continuity = ContinuityPolicy::kWarn;
   Result<Network> n = Network::build(d);
   ASSERT_TRUE(n.ok());
