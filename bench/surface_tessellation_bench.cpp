@@ -21,6 +21,7 @@
 #include "engine/surfaces/tessellation_cache.hpp"
 #include "host/device.hpp"
 #include "host/surface_tessellator.hpp"
+#include "engine/offline/residual_fit.hpp"
 
 namespace odeskin {
 namespace {
@@ -75,15 +76,6 @@ NetworkDescription sheet(std::uint32_t rows, std::uint32_t columns, ContinuityPo
   }
   d.shapes.assign(std::size_t{rows} * columns, Ode6Shape{1.0, 3.0, 1.0});
   return d;
-}
-
-double longestBoxSide(const std::vector<Vec3>& p) {
-  Vec3 lo(INFINITY), hi(-INFINITY);
-  for (const Vec3& x : p) {
-    lo = glm::min(lo, x);
-    hi = glm::max(hi, x);
-  }
-  return std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
 }
 
 bool sameMesh(const SurfaceMesh& a, const SurfaceMesh& b) {

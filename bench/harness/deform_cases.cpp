@@ -12,6 +12,7 @@
 #include "engine/kernels/cpu_deform_kernel.hpp"
 #include "engine/kernels/lbs_job.hpp"
 #include "engine/offline/deform_player.hpp"
+#include "engine/offline/residual_fit.hpp"
 #include "frame_timer.hpp"
 #include "host/gpu_deformer.hpp"
 #include "host/gpu_lbs.hpp"
@@ -22,16 +23,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-double longestBoxSide(std::span<const Vec3> points) {
-  Vec3 lo(INFINITY), hi(-INFINITY);
-  for (const Vec3& p : points) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  const Vec3 d = hi - lo;
-  return std::max({d.x, d.y, d.z, 1e-300});
-}
 
 // Worst |actual - expected| / box; NaN counts as infinitely wrong.
 double worstError(std::span<const Vec3> expected, std::span<const gpu::Float4> actual, double box) {
