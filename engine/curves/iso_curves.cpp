@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "../mesh/adjacency.hpp"
+#include "../mesh/face_fans.hpp"
 #include "../mesh/poly_mesh.hpp"
 #include "curve_orientation.hpp"
 #include "edge_loops.hpp"
@@ -82,7 +84,17 @@ Result<CurveSet> buildIsoCurves(std::span<const Vec3> rest, const FaceList& face
                                 const Influences& influences, const CurveOptions& options) {
   ODESKIN_TRY(checkInput(rest, faces, skeleton, influences, options));
   if (faces.faceCount() == 0) return degenerate("iso-curves: the mesh has no faces to cut");
-  ODESKIN_ASSIGN_OR_RETURN(PolyMesh mesh, buildPolyMesh(rest, faces, "iso-curves"));
+  // OpenMesh's half-edge mesh costs more than the rest of the work with it: a plainly manifold mesh
+  // (which OpenMesh accepts) skips it unless its quads are walked; any other gets OpenMesh's verdict.
+  std::optional<PolyMesh> mesh;
+  auto polyMesh = [&]() -> Status {
+    if (mesh) return okStatus();
+    ODESKIN_ASSIGN_OR_RETURN(PolyMesh built, buildPolyMesh(rest, faces, "iso-curves"));
+    mesh = std::move(built);
+    return okStatus();
+  };
+  const std::optional<std::vector<std::vector<std::uint32_t>>> simple_loops = simpleManifoldBoundaryLoops(faces, rest.size());
+  if (!simple_loops) ODESKIN_TRY(polyMesh());
   const VertexAdjacency adjacency = vertexAdjacency(faces, rest.size());
   const double mean_edge = meanEdgeLength(rest, adjacency);
   if (!(mean_edge > 0.0)) return degenerate("iso-curves: every edge of the mesh has length 0");
@@ -95,11 +107,14 @@ Result<CurveSet> buildIsoCurves(std::span<const Vec3> rest, const FaceList& face
   CurveLayout layout;
   const bool loops = options.method == CurveMethod::kEdgeLoops ||
                      (options.method == CurveMethod::kAuto && quadFraction(faces) >= kQuadDominant);
-  if (loops) layout = edgeLoopCurves(rest, mesh, seg, min_points);
+  if (loops) {
+    ODESKIN_TRY(polyMesh());
+    layout = edgeLoopCurves(rest, *mesh, seg, min_points);
+  }
   if (!loops || (options.method == CurveMethod::kAuto && layout.curves.empty())) {
     const CutMesh cut_mesh = buildCutMesh(faces, rest.size());
     layout = planeCutCurves(rest, cut_mesh, adjacency, seg, {spacing, options.snap_threshold, min_points});
-    addBoundaryLoops(rest, boundaryLoops(mesh), seg, spacing, min_points, layout);
+    addBoundaryLoops(rest, simple_loops ? *simple_loops : boundaryLoops(*mesh), seg, spacing, min_points, layout);
   }
   orientCurves(rest, seg, layout);
   compactCurves(layout);

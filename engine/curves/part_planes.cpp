@@ -44,7 +44,7 @@ class PartPlanner {
  public:
   PartPlanner(std::span<const Vec3> rest, const CutMesh& mesh, const VertexAdjacency& adjacency,
               const Segmentation& seg, const PlaneCutOptions& options)
-      : rest_(rest), adjacency_(adjacency), seg_(seg), options_(options),
+      : rest_(rest), mesh_(mesh), adjacency_(adjacency), seg_(seg), options_(options),
         cutter_(mesh, rest, options.snap_threshold), seam_probes_(seg.seams.size()),
         mark_(rest.size(), -1) {}
 
@@ -66,8 +66,8 @@ class PartPlanner {
   }
 
  private:
-  std::optional<Probe> probe(std::span<const std::uint32_t> triangles, const Plane& plane, std::uint32_t part) {
-    std::optional<PlaneCut> cut = cutter_.bestChain(triangles, plane, owned_);
+  std::optional<Probe> probe(const CutRegion& region, const Plane& plane, std::uint32_t part) {
+    std::optional<PlaneCut> cut = cutter_.bestChain(region, plane, owned_);
     // A plane that meets only the margin around the part has left the part.
     if (!cut || cut->owned == 0) return std::nullopt;
     Probe out{plane, cut->centroid, -1};
@@ -113,10 +113,10 @@ class PartPlanner {
     const std::function<bool(std::uint32_t)> saved = owned_;
     if (!seam_probes_[s]) {
       const std::vector<std::uint32_t> band = grow(seam.vertices, kSeamBandRings, seam.parts[0], seam.parts[1]);
-      const std::vector<std::uint32_t> triangles = cutter_.trianglesTouching(band);
+      const CutRegion band_region(mesh_, rest_, cutter_.trianglesTouching(band), options_.region_tree_triangles);
       const Plane plane{seam.centroid, seam.normal};
       owned_ = {};
-      std::optional<Probe> cut = probe(triangles, plane, part);
+      std::optional<Probe> cut = probe(band_region, plane, part);
       Probe p = cut ? *cut : Probe{plane, seam.centroid, -1};
       // A cut that wandered off the seam (a very uneven seam) still marks its curve, but the
       // planes around it are placed from the seam itself.
@@ -135,12 +135,12 @@ class PartPlanner {
 
   // Centroid following (thesis 6.3.1): each plane sits one spacing past the previous cut's
   // centroid, its normal turned toward the step between the last two centroids.
-  void march(const Probe& from, Vec3 dir, std::span<const std::uint32_t> triangles, std::uint32_t part,
+  void march(const Probe& from, Vec3 dir, const CutRegion& region, std::uint32_t part,
              std::vector<Probe>& out) {
     Vec3 prev = from.centre;
     const std::size_t steps = maxSteps(seg_.parts[part]);
     for (std::size_t step = 0; step < steps; ++step) {
-      std::optional<Probe> next = probe(triangles, {prev + options_.spacing * dir, dir}, part);
+      std::optional<Probe> next = probe(region, {prev + options_.spacing * dir, dir}, part);
       if (!next) return;
       out.push_back(*next);
       dir = turnToward(dir, next->centre - prev, kMaxTurn);
@@ -149,7 +149,7 @@ class PartPlanner {
   }
 
   // Dichotomy refinement (thesis 6.3.1) between two planes whose normals point from a to b.
-  void dichotomy(const Probe& a, const Probe& b, std::span<const std::uint32_t> triangles, std::uint32_t part,
+  void dichotomy(const Probe& a, const Probe& b, const CutRegion& region, std::uint32_t part,
                  std::vector<Probe>& out) {
     const Vec3 gap = b.centre - a.centre;
     const double len = glm::length(gap);
@@ -158,22 +158,22 @@ class PartPlanner {
     if (!(glm::length(n) > 1e-9) || glm::dot(n, gap) <= 0.0) n = gap;
     n = glm::normalize(n);
     const Vec3 m = 0.5 * (a.centre + b.centre);
-    std::optional<Probe> cut = probe(triangles, {m, n}, part);
+    std::optional<Probe> cut = probe(region, {m, n}, part);
     Probe mid = cut ? *cut : Probe{{m, n}, m, -1};
     // Each half is then at most 3/4 of this gap, so the recursion ends.
     if (glm::length(mid.centre - m) > 0.25 * len) mid.centre = m;
-    dichotomy(a, mid, triangles, part, out);
+    dichotomy(a, mid, region, part, out);
     out.push_back(mid);
-    dichotomy(mid, b, triangles, part, out);
+    dichotomy(mid, b, region, part, out);
   }
 
   // Probes from `a` (normal along the flow) marching backwards, then a .. b by dichotomy, then
   // marching on past b.
   // (b == nullptr: march both ways from a alone.)
-  void spanAndExtend(const Probe& a, const Probe* b, std::span<const std::uint32_t> triangles, std::uint32_t part,
+  void spanAndExtend(const Probe& a, const Probe* b, const CutRegion& region, std::uint32_t part,
                      std::vector<Probe>& out) {
     std::vector<Probe> before;
-    march(a, -a.plane.normal, triangles, part, before);
+    march(a, -a.plane.normal, region, part, before);
     for (auto it = before.rbegin(); it != before.rend(); ++it) {
       Probe p = *it;
       p.plane.normal = -p.plane.normal;
@@ -181,21 +181,21 @@ class PartPlanner {
     }
     out.push_back(a);
     if (b) {
-      dichotomy(a, *b, triangles, part, out);
+      dichotomy(a, *b, region, part, out);
       out.push_back(*b);
     }
     const Probe& last = b ? *b : a;
-    march(last, last.plane.normal, triangles, part, out);
+    march(last, last.plane.normal, region, part, out);
   }
 
-  Probe planeProbe(std::span<const std::uint32_t> triangles, const Plane& plane, std::uint32_t part) {
-    std::optional<Probe> p = probe(triangles, plane, part);
+  Probe planeProbe(const CutRegion& region, const Plane& plane, std::uint32_t part) {
+    std::optional<Probe> p = probe(region, plane, part);
     return p ? *p : Probe{plane, plane.origin, -1};
   }
 
   // More than two seams: split them in two groups along the axis (1-D two-means on the
   // projections of their centroids); false when the groups are less than a spacing apart.
-  bool clusterSeams(const Part& part, Probe& a, Probe& b, std::span<const std::uint32_t> triangles, std::uint32_t p) {
+  bool clusterSeams(const Part& part, Probe& a, Probe& b, const CutRegion& region, std::uint32_t p) {
     std::vector<std::pair<double, Vec3>> at;
     for (std::uint32_t s : part.seams) at.push_back({glm::dot(seg_.seams[s].centroid, part.axis), seg_.seams[s].centroid});
     std::sort(at.begin(), at.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
@@ -221,8 +221,8 @@ class PartPlanner {
     ca /= static_cast<double>(best_split);
     cb /= static_cast<double>(at.size() - best_split);
     if (glm::dot(cb - ca, part.axis) < options_.spacing) return false;
-    a = planeProbe(triangles, {ca, part.axis}, p);
-    b = planeProbe(triangles, {cb, part.axis}, p);
+    a = planeProbe(region, {ca, part.axis}, p);
+    b = planeProbe(region, {cb, part.axis}, p);
     return true;
   }
 
@@ -233,13 +233,14 @@ class PartPlanner {
     // Cuts may run a little past the part's own faces (a margin of kPartMarginRings edges), so a
     // ring closes where a neighbour's patch reaches thinly around the limb; among the chains the
     // one with the most points on the part's own edges wins.
-    const std::vector<std::uint32_t> triangles = cutter_.trianglesTouching(grow(part.vertices, kPartMarginRings));
-    if (triangles.empty()) return out;
+    const CutRegion region(mesh_, rest_, cutter_.trianglesTouching(grow(part.vertices, kPartMarginRings)),
+                           options_.region_tree_triangles);
+    if (region.triangles().empty()) return out;
     owned_ = [this, p](std::uint32_t v) { return seg_.vertex_part[v] == p; };
     if (part.seams.size() == 1) {
       const Probe a = seamProbe(part.seams[0], p);
       out.push_back(a);
-      march(a, a.plane.normal, triangles, p, out);
+      march(a, a.plane.normal, region, p, out);
       return out;
     }
     if (part.seams.size() == 2) {
@@ -250,32 +251,33 @@ class PartPlanner {
       if (glm::length(gap) >= options_.spacing && glm::dot(a.plane.normal, gap) > 0.0 &&
           glm::dot(b.plane.normal, gap) > 0.0) {
         out.push_back(a);
-        dichotomy(a, b, triangles, p, out);
+        dichotomy(a, b, region, p, out);
         out.push_back(b);
         return out;
       }
     }
     Probe a, b;
-    if (part.seams.size() >= 2 && clusterSeams(part, a, b, triangles, p)) {
-      spanAndExtend(a, &b, triangles, p, out);
+    if (part.seams.size() >= 2 && clusterSeams(part, a, b, region, p)) {
+      spanAndExtend(a, &b, region, p, out);
       return out;
     }
     // No seam, or seams all at one place: march both ways from the middle, across the bone; a
     // bone that points along no extent of its patch (a flat patch seen edge on) cuts nothing,
     // and the patch's longest principal axis is tried instead.
-    const Probe middle = planeProbe(triangles, {part.centroid, part.axis}, p);
-    spanAndExtend(middle, nullptr, triangles, p, out);
+    const Probe middle = planeProbe(region, {part.centroid, part.axis}, p);
+    spanAndExtend(middle, nullptr, region, p, out);
     if (std::none_of(out.begin(), out.end(), [](const Probe& probe) { return probe.curve >= 0; })) {
       std::vector<Vec3> points;
       for (std::uint32_t v : part.vertices) points.push_back(rest_[v]);
       const Vec3 axis = principalAxes(points).axes[2];
       out.clear();
-      spanAndExtend(planeProbe(triangles, {part.centroid, axis}, p), nullptr, triangles, p, out);
+      spanAndExtend(planeProbe(region, {part.centroid, axis}, p), nullptr, region, p, out);
     }
     return out;
   }
 
   std::span<const Vec3> rest_;
+  const CutMesh& mesh_;
   const VertexAdjacency& adjacency_;
   const Segmentation& seg_;
   PlaneCutOptions options_;

@@ -28,6 +28,45 @@ struct CutMesh {
 // `faces` must be valid, manifold and consistently oriented (buildPolyMesh accepted them).
 CutMesh buildCutMesh(const FaceList& faces, std::size_t vertex_count);
 
+// A patch of the cut mesh that many planes are cut with (a body part and its margin): its
+// triangles and a bounding-box tree over them, so that finding the triangles a plane crosses
+// costs about their number and the tree's depth, not the patch's size (a part is cut ~ extent /
+// spacing times, which grows as the mesh is refined).
+class CutRegion {
+ public:
+  // Below this many triangles a scan of the whole region per plane costs less than building the
+  // tree (parts are cut ~10 times on meshes of ~10^4 vertices).
+  static constexpr std::size_t kTreeTriangles = 2048;
+
+  CutRegion() = default;
+  // `triangles`: indices into mesh.triangles (any order, no repeats). A tree is built when there
+  // are at least `tree_triangles` (the same cuts either way: tests set 0 or SIZE_MAX).
+  CutRegion(const CutMesh& mesh, std::span<const Vec3> positions, std::vector<std::uint32_t> triangles,
+            std::size_t tree_triangles = kTreeTriangles);
+
+  std::span<const std::uint32_t> triangles() const { return triangles_; }  // ascending
+  bool contains(std::uint32_t triangle) const;
+  // Whether the region has a tree (large regions); small ones are scanned whole.
+  bool indexed() const { return !nodes_.empty(); }
+  // Appends to `out` the region's triangles whose bounding boxes the plane may meet: every triangle
+  // with corners on both sides of it, and some others near it (in tree order; all of them,
+  // ascending, when the region is not indexed).
+  void nearPlane(const Plane& plane, std::vector<std::uint32_t>& out) const;
+
+ private:
+  struct Node {
+    Vec3 lo{0.0}, hi{0.0};
+    std::uint32_t first = 0, count = 0;  // a leaf's range of order_ (count > 0)
+    std::uint32_t right = 0;             // an inner node's second child (the first follows it)
+  };
+  std::uint32_t build(std::span<const Vec3> lo, std::span<const Vec3> hi, std::span<const Vec3> centre,
+                      std::uint32_t first, std::uint32_t last);
+
+  std::vector<std::uint32_t> triangles_;  // ascending
+  std::vector<std::uint32_t> order_;      // the triangles in tree order
+  std::vector<Node> nodes_;
+};
+
 struct PlaneCut {
   std::vector<CurvePoint> points;  // snapped, no two consecutive equal (nor last == first when closed)
   bool closed = false;
@@ -52,6 +91,9 @@ class PlaneCutter {
   // leaves `triangles` or the mesh. nullopt when the plane crosses none of the triangles.
   std::optional<PlaneCut> bestChain(std::span<const std::uint32_t> triangles, const Plane& plane,
                                     const std::function<bool(std::uint32_t)>& owned = {});
+  // The same on a prepared region (the same chain as bestChain(region.triangles(), ...)).
+  std::optional<PlaneCut> bestChain(const CutRegion& region, const Plane& plane,
+                                    const std::function<bool(std::uint32_t)>& owned = {});
 
  private:
   struct DirectedEdge {
@@ -67,6 +109,7 @@ class PlaneCutter {
   double snap_;
   std::vector<std::uint32_t> member_;
   std::vector<std::uint32_t> visited_;
+  std::vector<std::uint32_t> candidates_;
   std::uint32_t epoch_ = 0;
 };
 
