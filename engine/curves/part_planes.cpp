@@ -16,6 +16,8 @@ namespace {
 // Centroid following turns the plane at most this much per step, so consecutive planes do not
 // cross inside a limb of radius up to ~3 spacings.
 constexpr double kMaxTurn = 20.0 * std::numbers::pi / 180.0;
+// A march ends once its direction is more than 90 degrees from where it started.
+constexpr double kMaxFlowTurnCos = 0.0;
 // Dichotomy stops once two cuts are closer than this many spacings (final gaps 0.625 .. 1.25).
 constexpr double kDichotomyStop = 1.25;
 // Seam band: vertices within this many edges of a seam, on either side, carry the seam's cut.
@@ -138,6 +140,7 @@ class PartPlanner {
   void march(const Probe& from, Vec3 dir, const CutRegion& region, std::uint32_t part,
              std::vector<Probe>& out) {
     Vec3 prev = from.centre;
+    const Vec3 start = dir;
     const std::size_t steps = maxSteps(seg_.parts[part]);
     for (std::size_t step = 0; step < steps; ++step) {
       std::optional<Probe> next = probe(region, {prev + options_.spacing * dir, dir}, part);
@@ -145,6 +148,10 @@ class PartPlanner {
       out.push_back(*next);
       dir = turnToward(dir, next->centre - prev, kMaxTurn);
       prev = next->centre;
+      // A flow does not turn back: following the centroids of open arcs (a torso's cuts between
+      // the legs) would otherwise circle the part until the step limit, which grows with the
+      // mesh's resolution, laying crossing planes.
+      if (glm::dot(dir, start) < kMaxFlowTurnCos) return;
     }
   }
 
