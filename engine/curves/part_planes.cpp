@@ -115,7 +115,7 @@ class PartPlanner {
     const std::function<bool(std::uint32_t)> saved = owned_;
     if (!seam_probes_[s]) {
       const std::vector<std::uint32_t> band = grow(seam.vertices, kSeamBandRings, seam.parts[0], seam.parts[1]);
-      const CutRegion band_region(mesh_, rest_, cutter_.trianglesTouching(band), options_.region_tree_triangles);
+      const CutRegion band_region(mesh_, rest_, cutter_.trianglesTouching(band), options_.region_scans_before_tree);
       const Plane plane{seam.centroid, seam.normal};
       owned_ = {};
       std::optional<Probe> cut = probe(band_region, plane, part);
@@ -241,7 +241,7 @@ class PartPlanner {
     // ring closes where a neighbour's patch reaches thinly around the limb; among the chains the
     // one with the most points on the part's own edges wins.
     const CutRegion region(mesh_, rest_, cutter_.trianglesTouching(grow(part.vertices, kPartMarginRings)),
-                           options_.region_tree_triangles);
+                           options_.region_scans_before_tree);
     if (region.triangles().empty()) return out;
     owned_ = [this, p](std::uint32_t v) { return seg_.vertex_part[v] == p; };
     if (part.seams.size() == 1) {

@@ -69,16 +69,20 @@ constexpr double kPlaneSlack = 1e-9;
 }  // namespace
 
 CutRegion::CutRegion(const CutMesh& mesh, std::span<const Vec3> positions, std::vector<std::uint32_t> triangles,
-                     std::size_t tree_triangles)
-    : triangles_(std::move(triangles)) {
-  std::sort(triangles_.begin(), triangles_.end());
+                     std::size_t scans_before_tree)
+    : mesh_(&mesh), positions_(positions), triangles_(std::move(triangles)), scans_before_tree_(scans_before_tree) {
+  if (!std::is_sorted(triangles_.begin(), triangles_.end())) std::sort(triangles_.begin(), triangles_.end());
+  if (scans_before_tree_ == 0) buildTree();
+}
+
+void CutRegion::buildTree() const {
   const std::size_t count = triangles_.size();
-  if (count == 0 || count < tree_triangles) return;
+  if (count == 0 || !nodes_.empty()) return;
   std::vector<Vec3> lo(count), hi(count), centre(count);
   for (std::size_t k = 0; k < count; ++k) {
-    const auto& tri = mesh.triangles[triangles_[k]];
-    lo[k] = glm::min(glm::min(positions[tri[0]], positions[tri[1]]), positions[tri[2]]);
-    hi[k] = glm::max(glm::max(positions[tri[0]], positions[tri[1]]), positions[tri[2]]);
+    const auto& tri = mesh_->triangles[triangles_[k]];
+    lo[k] = glm::min(glm::min(positions_[tri[0]], positions_[tri[1]]), positions_[tri[2]]);
+    hi[k] = glm::max(glm::max(positions_[tri[0]], positions_[tri[1]]), positions_[tri[2]]);
     centre[k] = 0.5 * (lo[k] + hi[k]);
   }
   order_.resize(count);
@@ -89,7 +93,7 @@ CutRegion::CutRegion(const CutMesh& mesh, std::span<const Vec3> positions, std::
 }
 
 std::uint32_t CutRegion::build(std::span<const Vec3> lo, std::span<const Vec3> hi, std::span<const Vec3> centre,
-                               std::uint32_t first, std::uint32_t last) {
+                               std::uint32_t first, std::uint32_t last) const {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();
   if (last - first <= kLeafTriangles) {
@@ -128,10 +132,13 @@ bool CutRegion::contains(std::uint32_t triangle) const {
 }
 
 void CutRegion::nearPlane(const Plane& plane, std::vector<std::uint32_t>& out) const {
-  if (nodes_.empty()) {
+  if (nodes_.empty() && scans_ < scans_before_tree_) {
+    ++scans_;
     out.insert(out.end(), triangles_.begin(), triangles_.end());
     return;
   }
+  buildTree();
+  if (nodes_.empty()) return;  // no triangles
   const Vec3 n_abs = glm::abs(plane.normal);
   std::uint32_t stack[64];
   int top = 0;

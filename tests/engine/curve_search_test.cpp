@@ -120,9 +120,9 @@ TEST(CurveSearch, PlaneCutsAndBindingsMatchTheScans) {
     const double spacing = 3.0 * meanEdge(d.rest, adjacency);
     const Segmentation seg = segmentParts(d.rest, adjacency, d.skeleton, d.influences, 16, 4);
     const CutMesh mesh = buildCutMesh(d.faces, d.rest.size());
-    // Every region with a tree, none with one, and the default (large regions only).
+    // Every region with a tree from the start, none with one, and the default (after a few cuts).
     CurveLayout layouts[3];
-    const std::size_t thresholds[3] = {0, std::numeric_limits<std::size_t>::max(), CutRegion::kTreeTriangles};
+    const std::size_t thresholds[3] = {0, std::numeric_limits<std::size_t>::max(), CutRegion::kScansBeforeTree};
     for (int k = 0; k < 3; ++k) {
       layouts[k] = planeCutCurves(d.rest, mesh, adjacency, seg, {spacing, 0.25, 8, thresholds[k]});
       addBoundaryLoops(d.rest, boundaryLoopsOfFaces(d.faces, d.rest.size()), seg, spacing, 8, layouts[k]);
