@@ -26,6 +26,8 @@ constexpr double kMaxParameterMismatch = 0.1;
 // Vertices per cluster of the pair search, and the relative slack of its bounds.
 constexpr std::uint32_t kClusterVertices = 32;
 constexpr double kBoundSlack = 1e-9;
+// Curves with at most this many segments are scanned rather than searched through their tree.
+constexpr std::size_t kScanSegments = 128;
 
 bool inSequence(const std::vector<Station>& seq, std::uint32_t curve) {
   return std::any_of(seq.begin(), seq.end(), [&](const Station& s) { return s.curve == curve; });
@@ -75,6 +77,8 @@ struct Segment {
   Vec3 step{0.0};
   double len2 = 0.0;
   double v0 = 0.0, v1 = 0.0;
+  Vec3 mid{0.0};      // p0 + step / 2
+  double half = 0.0;  // |step| / 2: the segment lies within `half` of `mid`
 };
 
 std::vector<Segment> curveSegments(const std::vector<Vec3>& pos, const CurveDraft& curve) {
@@ -88,6 +92,8 @@ std::vector<Segment> curveSegments(const std::vector<Vec3>& pos, const CurveDraf
     g.len2 = glm::dot(g.step, g.step);
     g.v0 = curve.v[j];
     g.v1 = j + 1 == n ? 1.0 : curve.v[j + 1];
+    g.mid = g.p0 + 0.5 * g.step;
+    g.half = 0.5 * std::sqrt(g.len2);
   }
   return out;
 }
@@ -334,9 +340,33 @@ class Binder {
     }
     if (!seeds) return wrapParameter(layout_.curves[curve], hitParameter(segments, trees_[curve].nearest(segments, q)));
     std::uint32_t& seed = (*seeds)[curve];
-    const SegmentHit hit = trees_[curve].nearest(segments, q, seed);
+    const SegmentHit hit = segments.size() <= kScanSegments ? scanNearest(curve, q, seed) : trees_[curve].nearest(segments, q, seed);
     if (hit.j < segments.size()) seed = static_cast<std::uint32_t>(hit.j);
     return wrapParameter(layout_.curves[curve], hitParameter(segments, hit));
+  }
+
+  // A short curve's nearest segment by a scan that starts from `seed` and rejects, without the
+  // exact test, every segment whose midpoint is further than sqrt(best) + half + pad: the first of
+  // equally near segments, as the tree finds it.
+  SegmentHit scanNearest(std::uint32_t curve, const Vec3& q, std::size_t seed) const {
+    const std::vector<Segment>& segments = segments_[curve];
+    const double pad = trees_[curve].pad();
+    SegmentHit best;
+    double reach = std::numeric_limits<double>::infinity();
+    auto consider = [&](std::size_t j) {
+      const Segment& g = segments[j];
+      const Vec3 e = q - g.mid;
+      const double bound = reach + g.half;
+      if (glm::dot(e, e) > bound * bound) return;
+      const SegmentHit hit = segmentHit(g, j, q);
+      if (hit.dist2 < best.dist2 || (hit.dist2 == best.dist2 && j < best.j)) {
+        best = hit;
+        reach = std::sqrt(best.dist2) + pad;
+      }
+    };
+    if (seed < segments.size()) consider(seed);
+    for (std::size_t j = 0; j < segments.size(); ++j) consider(j);
+    return best;
   }
 
   CurveBinding alone(std::uint32_t curve, const Plane& plane, const Vec3& x, SeedCache* seeds = nullptr) const {
