@@ -23,8 +23,11 @@ constexpr double kAlignedCos = 0.82;
 constexpr double kMinAhead = 0.1;
 // A vertex blends two curves only if its parameters on them differ by at most this.
 constexpr double kMaxParameterMismatch = 0.1;
-// Vertices per cluster of the pair search, and the relative slack of its bounds.
+// Vertices per cluster of the pair search, and the relative slack of its bounds; parts with at most
+// kPairsWithoutClusters pairs of planes are not clustered but cut in chunks of kChunkVertices.
 constexpr std::uint32_t kClusterVertices = 32;
+constexpr long kPairsWithoutClusters = 16;
+constexpr std::uint32_t kChunkVertices = 256;
 constexpr double kBoundSlack = 1e-9;
 // Curves with at most this many segments are scanned rather than searched through their tree.
 constexpr std::size_t kScanSegments = 128;
@@ -118,27 +121,37 @@ double hitParameter(const std::vector<Segment>& segments, const SegmentHit& hit)
   return g.v0 + hit.s * (g.v1 - g.v0);
 }
 
+// Far more than the rounding of any distance between points of a curve's segments: 1e-9 of their
+// largest coordinate. Distance bounds are loosened by it, so that a bound never excludes a segment
+// the exact test would find as near.
+double roundingPad(const std::vector<Segment>& segments) {
+  double extent = 0.0;
+  for (const Segment& g : segments) {
+    const Vec3 far = glm::max(glm::abs(g.p0), glm::abs(g.p0 + g.step));
+    extent = std::max({extent, far.x, far.y, far.z});
+  }
+  return 1e-9 * extent;
+}
+
 // Nearest-segment queries on one curve: a bounding-box tree over its segments, which finds the
 // segment a scan in index order would (the first of equally near ones) in about log(points) steps
 // instead of one step per point (a curve has ~sqrt(V) points, and every vertex asks twice).
 class SegmentTree {
  public:
+  SegmentTree() = default;  // no segments
   explicit SegmentTree(const std::vector<Segment>& segments) {
     const std::size_t count = segments.size();
     if (count == 0) return;
     std::vector<Vec3> lo(count), hi(count), centre(count);
-    double extent = 0.0;
     for (std::size_t j = 0; j < count; ++j) {
       const Vec3 p1 = segments[j].p0 + segments[j].step;
       lo[j] = glm::min(segments[j].p0, p1);
       hi[j] = glm::max(segments[j].p0, p1);
       centre[j] = 0.5 * (lo[j] + hi[j]);
-      const Vec3 far = glm::max(glm::abs(lo[j]), glm::abs(hi[j]));
-      extent = std::max({extent, far.x, far.y, far.z});
     }
     // Rounding puts a computed point of a segment at most a few ulps of the coordinates outside its
     // box; padding the boxes far beyond that keeps every box distance a lower bound.
-    pad_ = 1e-9 * extent;
+    pad_ = roundingPad(segments);
     order_.resize(count);
     std::iota(order_.begin(), order_.end(), 0u);
     nodes_.reserve(count);
@@ -181,8 +194,6 @@ class SegmentTree {
     }
     return best;
   }
-
-  double pad() const { return pad_; }
 
  private:
   struct Node {
@@ -322,7 +333,10 @@ class Binder {
     for (std::size_t c = 0; c < layout.curves.size(); ++c) {
       for (const CurvePoint& point : layout.curves[c].points) positions_[c].push_back(curvePointPosition(rest, point));
       segments_.push_back(curveSegments(positions_[c], layout.curves[c]));
-      trees_.emplace_back(segments_[c]);
+      pads_.push_back(roundingPad(segments_[c]));
+      // Short curves are scanned (scanNearest) and need no tree.
+      if (segments_[c].size() > kScanSegments) trees_.emplace_back(segments_[c]);
+      else trees_.emplace_back();
     }
   }
 
@@ -338,8 +352,8 @@ class Binder {
       }
       return wrapParameter(layout_.curves[curve], hitParameter(segments, best));
     }
-    if (!seeds) return wrapParameter(layout_.curves[curve], hitParameter(segments, trees_[curve].nearest(segments, q)));
-    std::uint32_t& seed = (*seeds)[curve];
+    std::uint32_t no_seed = std::numeric_limits<std::uint32_t>::max();
+    std::uint32_t& seed = seeds ? (*seeds)[curve] : no_seed;
     const SegmentHit hit = segments.size() <= kScanSegments ? scanNearest(curve, q, seed) : trees_[curve].nearest(segments, q, seed);
     if (hit.j < segments.size()) seed = static_cast<std::uint32_t>(hit.j);
     return wrapParameter(layout_.curves[curve], hitParameter(segments, hit));
@@ -350,7 +364,7 @@ class Binder {
   // equally near segments, as the tree finds it.
   SegmentHit scanNearest(std::uint32_t curve, const Vec3& q, std::size_t seed) const {
     const std::vector<Segment>& segments = segments_[curve];
-    const double pad = trees_[curve].pad();
+    const double pad = pads_[curve];
     SegmentHit best;
     double reach = std::numeric_limits<double>::infinity();
     auto consider = [&](std::size_t j) {
@@ -457,6 +471,7 @@ class Binder {
   bool exhaustive_;
   std::vector<std::vector<Vec3>> positions_;
   std::vector<std::vector<Segment>> segments_;
+  std::vector<double> pads_;
   std::vector<SegmentTree> trees_;
 };
 
@@ -493,6 +508,7 @@ std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexA
   // part's vertices); a pair of planes that cannot enclose any point of a cluster's bounding
   // sphere (each signed distance moves by at most the radius) is not tried for its vertices, so
   // the pair each vertex gets is the one a scan of every pair finds.
+  // Parts with few pairs skip the clustering: every vertex tries all of them.
   std::vector<std::vector<std::uint32_t>> members(seg.parts.size());
   std::vector<std::uint32_t> unconnected;
   for (std::uint32_t i = 0; i < rest.size(); ++i) {
@@ -502,16 +518,23 @@ std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexA
   struct Cluster {
     std::uint32_t part = 0;
     std::uint32_t first = 0, last = 0;  // range of members[part]
+    bool every_pair = false;            // no bounds: try every pair
   };
   std::vector<Cluster> clusters;
   for (std::uint32_t p = 0; p < seg.parts.size(); ++p) {
     std::vector<std::uint32_t>& verts = members[p];
+    if (std::count(pairable[p].begin(), pairable[p].end(), 1) <= kPairsWithoutClusters) {
+      for (std::uint32_t first = 0; first < verts.size(); first += kChunkVertices) {
+        clusters.push_back({p, first, std::min<std::uint32_t>(first + kChunkVertices, static_cast<std::uint32_t>(verts.size())), true});
+      }
+      continue;
+    }
     std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges{{0u, static_cast<std::uint32_t>(verts.size())}};
     while (!ranges.empty()) {
       const auto [first, last] = ranges.back();
       ranges.pop_back();
       if (last - first <= kClusterVertices) {
-        if (last > first) clusters.push_back({p, first, last});
+        if (last > first) clusters.push_back({p, first, last, false});
         continue;
       }
       Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
@@ -535,6 +558,16 @@ std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexA
       const Cluster& cluster = clusters[c];
       const std::vector<Station>& seq = ext[cluster.part];
       const std::vector<std::uint32_t>& verts = members[cluster.part];
+      if (cluster.every_pair) {
+        candidates.clear();
+        for (std::uint32_t k = 0; k < pairable[cluster.part].size(); ++k) {
+          if (pairable[cluster.part][k]) candidates.push_back(k);
+        }
+        for (std::uint32_t k = cluster.first; k < cluster.last; ++k) {
+          bindings[verts[k]] = binder.bind(seq, candidates, rest[verts[k]], seeds);
+        }
+        continue;
+      }
       Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
       for (std::uint32_t k = cluster.first; k < cluster.last; ++k) {
         lo = glm::min(lo, rest[verts[k]]);
