@@ -238,7 +238,7 @@ class CurveFitPlan {
 
 // Every curve's series coefficients of one segment (curves in parallel; the first failing curve
 // in index order is the error).
-Status fitSegmentCurves(const FitInput& in, const FitOptions& opt, const std::vector<CurveFitPlan>& plans,
+Status fitSegmentCurves(const FitInput& in, const FitOptions& opt, const std::vector<std::optional<CurveFitPlan>>& plans,
                         const std::vector<Vec3>& delta, DeformSegment& seg, std::size_t* reduced) {
   const std::size_t m_count = coefficientsPerCurve(opt.modes);
   const std::size_t c_count = in.curves.size();
@@ -251,7 +251,7 @@ Status fitSegmentCurves(const FitInput& in, const FitOptions& opt, const std::ve
       // A point on an edge moves with the same edge ratio in every pose (thesis Fig. 6.6).
       values.clear();
       for (const CurvePoint& p : curve.points) values.push_back((1.0 - p.t) * delta[p.a] + p.t * delta[p.b]);
-      Result<FourierFit> fit = plans[c].fit(values);
+      Result<FourierFit> fit = plans[c]->fit(values);
       if (!fit.ok()) {
         failed[c] = Status(fit.status().code(), "curve " + std::to_string(c) + ": " + fit.status().message());
         continue;
@@ -480,9 +480,12 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   rep.seconds_geometric = seconds_since(stage);
   stage = Clock::now();
 
-  std::vector<CurveFitPlan> plans;
-  plans.reserve(in.curves.size());
-  for (const IsoCurve& curve : in.curves) plans.emplace_back(curve.v, opt.modes, curve.closed, opt.adaptive_modes);
+  std::vector<std::optional<CurveFitPlan>> plans(in.curves.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.curves.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c < r.end(); ++c) {
+      plans[c].emplace(in.curves[c].v, opt.modes, in.curves[c].closed, opt.adaptive_modes);
+    }
+  });
   asset.segments.resize(segment_count);
   std::vector<Vec3> delta(v_count);
   for (std::size_t s = 0; s < segment_count; ++s) {
