@@ -9,6 +9,8 @@
 #include <optional>
 
 #include <glm/geometric.hpp>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 namespace odeskin {
 namespace {
@@ -28,7 +30,8 @@ constexpr int kPartMarginRings = 2;
 struct Probe {
   Plane plane;
   Vec3 centre{0.0};
-  std::int32_t curve = -1;
+  std::int32_t curve = -1;  // -1: none
+  std::int32_t seam = -1;   // the seam whose shared curve it is (curve == kSeamCurve)
 };
 
 Vec3 turnToward(const Vec3& dir, const Vec3& target, double max_angle) {
@@ -42,29 +45,53 @@ Vec3 turnToward(const Vec3& dir, const Vec3& target, double max_angle) {
   return glm::normalize(std::cos(max_angle) * dir + std::sin(max_angle) * glm::normalize(perp));
 }
 
+// A part's cut curves in the order they were made, and its probes in flow order; a probe's curve
+// indexes `drafts`, or is kSeamCurve for its seam's shared curve (`seam`).
+constexpr std::int32_t kSeamCurve = -2;
+
+struct PartPlan {
+  std::vector<Probe> probes;
+  std::vector<CurveDraft> drafts;
+};
+
+// A seam's shared cut: the probe (its normal the seam's, from parts[0] into parts[1]) and, when the
+// cut is a curve, that curve (made for the part that asks for it first).
+struct SeamCut {
+  Probe probe;
+  std::optional<CurveDraft> draft;
+};
+
+// Cuts parts and seams; one per thread (its scratch is the cutter's and the marks').
 class PartPlanner {
  public:
   PartPlanner(std::span<const Vec3> rest, const CutMesh& mesh, const VertexAdjacency& adjacency,
-              const Segmentation& seg, const PlaneCutOptions& options)
-      : rest_(rest), mesh_(mesh), adjacency_(adjacency), seg_(seg), options_(options),
-        cutter_(mesh, rest, options.snap_threshold), seam_probes_(seg.seams.size()),
-        mark_(rest.size(), -1) {}
+              const Segmentation& seg, const PlaneCutOptions& options, const std::vector<SeamCut>& seam_cuts)
+      : rest_(rest), mesh_(mesh), adjacency_(adjacency), seg_(seg), options_(options), seam_cuts_(seam_cuts),
+        cutter_(mesh, rest, options.snap_threshold), mark_(rest.size(), -1) {}
 
-  CurveLayout run() {
-    layout_.sequences.resize(seg_.parts.size());
-    for (std::uint32_t p : seg_.order) {
-      for (const Probe& probe : partProbes(p)) {
-        if (probe.curve < 0) continue;
-        // Snapping moves points off the cutting plane; what the curve's fitted series describes
-        // is where its points are on average, so bindings measure from the plane through the
-        // curve's centroid.
-        Plane plane = probe.plane;
-        const Vec3 centroid = layout_.curves[static_cast<std::size_t>(probe.curve)].centroid;
-        plane.origin += glm::dot(centroid - plane.origin, plane.normal) * plane.normal;
-        layout_.sequences[p].push_back({static_cast<std::uint32_t>(probe.curve), plane});
-      }
-    }
-    return std::move(layout_);
+  // The seam's cut, its curve (if any) belonging to `part`'s bone.
+  SeamCut seamCut(std::uint32_t s, std::uint32_t part) {
+    const Seam& seam = seg_.seams[s];
+    const std::vector<std::uint32_t> band = grow(seam.vertices, kSeamBandRings, seam.parts[0], seam.parts[1]);
+    const CutRegion band_region(mesh_, rest_, cutter_.trianglesTouching(band), options_.region_scans_before_tree);
+    const Plane plane{seam.centroid, seam.normal};
+    owned_ = {};
+    plan_ = PartPlan{};
+    std::optional<Probe> cut = probe(band_region, plane, part);
+    SeamCut out;
+    out.probe = cut ? *cut : Probe{plane, seam.centroid, -1};
+    out.probe.curve = -1;
+    if (!plan_.drafts.empty()) out.draft = std::move(plan_.drafts.front());
+    // A cut that wandered off the seam (a very uneven seam) still marks its curve, but the
+    // planes around it are placed from the seam itself.
+    if (glm::length(out.probe.centre - seam.centroid) > options_.spacing) out.probe.centre = seam.centroid;
+    return out;
+  }
+
+  PartPlan plan(std::uint32_t p) {
+    plan_ = PartPlan{};
+    plan_.probes = partProbes(p);
+    return std::move(plan_);
   }
 
  private:
@@ -81,8 +108,8 @@ class PartPlanner {
       draft.bone = seg_.parts[part].bone;
       draft.centroid = cut->centroid;
       draft.radius = cut->radius;
-      out.curve = static_cast<std::int32_t>(layout_.curves.size());
-      layout_.curves.push_back(std::move(draft));
+      out.curve = static_cast<std::int32_t>(plan_.drafts.size());
+      plan_.drafts.push_back(std::move(draft));
     }
     return out;
   }
@@ -109,25 +136,15 @@ class PartPlanner {
     return seeds;
   }
 
-  // The seam's cut, made once and shared by both parts; its normal points into `part`.
+  // The seam's cut (made once, before the parts; shared by both); its normal points into `part`.
   Probe seamProbe(std::uint32_t s, std::uint32_t part) {
-    const Seam& seam = seg_.seams[s];
-    const std::function<bool(std::uint32_t)> saved = owned_;
-    if (!seam_probes_[s]) {
-      const std::vector<std::uint32_t> band = grow(seam.vertices, kSeamBandRings, seam.parts[0], seam.parts[1]);
-      const CutRegion band_region(mesh_, rest_, cutter_.trianglesTouching(band), options_.region_scans_before_tree);
-      const Plane plane{seam.centroid, seam.normal};
-      owned_ = {};
-      std::optional<Probe> cut = probe(band_region, plane, part);
-      Probe p = cut ? *cut : Probe{plane, seam.centroid, -1};
-      // A cut that wandered off the seam (a very uneven seam) still marks its curve, but the
-      // planes around it are placed from the seam itself.
-      if (glm::length(p.centre - seam.centroid) > options_.spacing) p.centre = seam.centroid;
-      seam_probes_[s] = p;
-      owned_ = saved;
+    const SeamCut& cut = seam_cuts_[s];
+    Probe p = cut.probe;
+    if (cut.draft) {
+      p.curve = kSeamCurve;
+      p.seam = static_cast<std::int32_t>(s);
     }
-    Probe p = *seam_probes_[s];
-    p.plane.normal = seam.normalInto(part);
+    p.plane.normal = seg_.seams[s].normalInto(part);
     return p;
   }
 
@@ -288,19 +305,80 @@ class PartPlanner {
   const VertexAdjacency& adjacency_;
   const Segmentation& seg_;
   PlaneCutOptions options_;
+  const std::vector<SeamCut>& seam_cuts_;
   PlaneCutter cutter_;
-  CurveLayout layout_;
-  std::vector<std::optional<Probe>> seam_probes_;
+  PartPlan plan_;  // of the part (or seam) being cut
   std::function<bool(std::uint32_t)> owned_;
   std::vector<std::int64_t> mark_;
   std::int64_t mark_epoch_ = 0;
 };
 
+// The seams a part asks for, in order: partProbes takes seam cuts for one or two seams, once it
+// has found faces to cut (a part whose vertices have none stops first).
+std::vector<std::uint32_t> seamsAskedFor(const Segmentation& seg, const CutMesh& mesh, std::uint32_t p) {
+  const Part& part = seg.parts[p];
+  if (part.seams.size() != 1 && part.seams.size() != 2) return {};
+  const bool faces = std::any_of(part.vertices.begin(), part.vertices.end(),
+                                 [&](std::uint32_t v) { return mesh.vertex_offsets[v + 1] > mesh.vertex_offsets[v]; });
+  return faces ? part.seams : std::vector<std::uint32_t>{};
+}
+
+
 }  // namespace
 
 CurveLayout planeCutCurves(std::span<const Vec3> rest, const CutMesh& mesh, const VertexAdjacency& adjacency,
                            const Segmentation& seg, const PlaneCutOptions& options) {
-  return PartPlanner(rest, mesh, adjacency, seg, options).run();
+  // Parts are cut independently, in parallel; seams, shared by two parts, first. Curves are then
+  // numbered as cutting the parts one after another in seg.order numbers them: each part's seam
+  // curves (those not numbered yet), then its own in the order they were cut.
+  std::vector<SeamCut> seam_cuts(seg.seams.size());
+  std::vector<std::int64_t> asker(seg.seams.size(), -1);  // the first part in order to ask
+  for (std::uint32_t p : seg.order) {
+    for (std::uint32_t s : seamsAskedFor(seg, mesh, p)) {
+      if (asker[s] < 0) asker[s] = p;
+    }
+  }
+  std::vector<std::uint32_t> asked;
+  for (std::uint32_t s = 0; s < seg.seams.size(); ++s) {
+    if (asker[s] >= 0) asked.push_back(s);
+  }
+  tbb::enumerable_thread_specific<PartPlanner> planners(
+      [&] { return PartPlanner(rest, mesh, adjacency, seg, options, seam_cuts); });
+  tbb::parallel_for(std::size_t{0}, asked.size(), [&](std::size_t k) {
+    const std::uint32_t s = asked[k];
+    seam_cuts[s] = planners.local().seamCut(s, static_cast<std::uint32_t>(asker[s]));
+  });
+  std::vector<PartPlan> plans(seg.parts.size());
+  tbb::parallel_for(std::size_t{0}, seg.parts.size(), [&](std::size_t p) {
+    plans[p] = planners.local().plan(static_cast<std::uint32_t>(p));
+  });
+
+  CurveLayout layout;
+  layout.sequences.resize(seg.parts.size());
+  std::vector<std::int32_t> seam_curve(seg.seams.size(), -1);
+  for (std::uint32_t p : seg.order) {
+    PartPlan& plan = plans[p];
+    for (std::uint32_t s : seamsAskedFor(seg, mesh, p)) {
+      if (seam_curve[s] >= 0 || !seam_cuts[s].draft) continue;
+      seam_curve[s] = static_cast<std::int32_t>(layout.curves.size());
+      layout.curves.push_back(std::move(*seam_cuts[s].draft));
+    }
+    const auto first = static_cast<std::int32_t>(layout.curves.size());
+    for (CurveDraft& draft : plan.drafts) layout.curves.push_back(std::move(draft));
+    for (const Probe& probe : plan.probes) {
+      if (probe.curve == -1) continue;
+      const std::int32_t curve = probe.curve == kSeamCurve ? seam_curve[static_cast<std::size_t>(probe.seam)]
+                                                            : first + probe.curve;
+      // Snapping moves points off the cutting plane; what the curve's fitted series describes
+      // is where its points are on average, so bindings measure from the plane through the
+      // curve's centroid.
+      Plane plane = probe.plane;
+      const Vec3 centroid = layout.curves[static_cast<std::size_t>(curve)].centroid;
+      plane.origin += glm::dot(centroid - plane.origin, plane.normal) * plane.normal;
+      layout.sequences[p].push_back({static_cast<std::uint32_t>(curve), plane});
+    }
+  }
+  return layout;
 }
 
 void addBoundaryLoops(std::span<const Vec3> rest, const std::vector<std::vector<std::uint32_t>>& loops,
