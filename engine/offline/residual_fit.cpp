@@ -30,9 +30,9 @@ namespace {
 constexpr double kMinSingularValue = 0.25;
 // Vertices per task of the parallel per-vertex loops.
 constexpr std::size_t kVertexGrain = 1024;
-// The vertices' harmonics are kept from the remainders for the playback up to this size (466k
-// vertices at N = 9), and computed twice above it.
-constexpr std::size_t kHarmonicsTableBytes = std::size_t{64} << 20;
+// The vertices' harmonics are kept from the remainders for the playback up to this size (3.7
+// million vertices at N = 9, a third of what such a fit holds anyway), and computed twice above it.
+constexpr std::size_t kHarmonicsTableBytes = std::size_t{512} << 20;
 
 double smallestSingularValue(const glm::dmat3& a) {
   Eigen::MatrixXd m(3, 3);  // dynamic size: GCC 12 misreads the fixed-size SVD as uninitialised
