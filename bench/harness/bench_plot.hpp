@@ -15,4 +15,12 @@ namespace odeskin::bench {
 // records. kInvalidArgument when there is nothing to plot; kIoError naming the path.
 Status writePlot(const std::filesystem::path& path, const BenchReport& report, int terms = 9);
 
+// `odeskin bench --fit-plot OUT.png`: the fitting stages' milliseconds against vertex count, both on
+// log scales, over the fits of the scaling series (the datasets named "... subdivided xL": one
+// mesh refined), one line per stage and their sum without the rig, with a grey line of slope 1
+// (time proportional to vertices) through the first sum and a cross at the thesis's total for its
+// cat (3.66 ms at 7,207 vertices, Table 6.3). kInvalidArgument when the report has no
+// such fits; kIoError naming the path.
+Status writeFitPlot(const std::filesystem::path& path, const BenchReport& report);
+
 }  // namespace odeskin::bench

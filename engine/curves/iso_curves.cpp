@@ -5,9 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
+#include <tbb/parallel_invoke.h>
+
 #include "../mesh/adjacency.hpp"
+#include "../mesh/face_fans.hpp"
 #include "../mesh/poly_mesh.hpp"
 #include "curve_orientation.hpp"
 #include "edge_loops.hpp"
@@ -82,24 +86,53 @@ Result<CurveSet> buildIsoCurves(std::span<const Vec3> rest, const FaceList& face
                                 const Influences& influences, const CurveOptions& options) {
   ODESKIN_TRY(checkInput(rest, faces, skeleton, influences, options));
   if (faces.faceCount() == 0) return degenerate("iso-curves: the mesh has no faces to cut");
-  ODESKIN_ASSIGN_OR_RETURN(PolyMesh mesh, buildPolyMesh(rest, faces, "iso-curves"));
-  const VertexAdjacency adjacency = vertexAdjacency(faces, rest.size());
-  const double mean_edge = meanEdgeLength(rest, adjacency);
-  if (!(mean_edge > 0.0)) return degenerate("iso-curves: every edge of the mesh has length 0");
-  const double spacing = options.spacing > 0.0 ? options.spacing : kDefaultSpacingEdges * mean_edge;
+  // OpenMesh's half-edge mesh costs more than the rest of the work with it: a plainly manifold mesh
+  // (which OpenMesh accepts) skips it unless its quads are walked; any other gets OpenMesh's verdict.
+  std::optional<PolyMesh> mesh;
+  auto polyMesh = [&]() -> Status {
+    if (mesh) return okStatus();
+    ODESKIN_ASSIGN_OR_RETURN(PolyMesh built, buildPolyMesh(rest, faces, "iso-curves"));
+    mesh = std::move(built);
+    return okStatus();
+  };
+  // Indices in range before anything indexes with them (buildPolyMesh names the face otherwise).
+  if (!std::all_of(faces.indices.begin(), faces.indices.end(), [&](std::uint32_t i) { return i < rest.size(); })) {
+    ODESKIN_TRY(polyMesh());
+  }
   const auto min_points = static_cast<std::size_t>(options.min_points);
-
-  // Patches smaller than two curves' worth of points cannot carry a curve of their own.
-  const Segmentation seg = segmentParts(rest, adjacency, skeleton, influences, 2 * min_points,
-                                        std::max<std::size_t>(3, min_points / 2));
-  CurveLayout layout;
   const bool loops = options.method == CurveMethod::kEdgeLoops ||
                      (options.method == CurveMethod::kAuto && quadFraction(faces) >= kQuadDominant);
-  if (loops) layout = edgeLoopCurves(rest, mesh, seg, min_points);
+  // The manifold check, the adjacency and the parts it gives, and the cut mesh need one another
+  // only later: they are made at once.
+  std::optional<std::vector<std::vector<std::uint32_t>>> simple_loops;
+  VertexAdjacency adjacency;
+  double mean_edge = 0.0;
+  Segmentation seg;
+  CutMesh cut_mesh;
+  tbb::parallel_invoke([&] { simple_loops = simpleManifoldBoundaryLoops(faces, rest.size()); },
+                       [&] {
+                         adjacency = vertexAdjacency(faces, rest.size());
+                         mean_edge = meanEdgeLength(rest, adjacency);
+                         // Patches smaller than two curves' worth of points cannot carry a curve of their own.
+                         seg = segmentParts(rest, adjacency, skeleton, influences, 2 * min_points,
+                                            std::max<std::size_t>(3, min_points / 2));
+                       },
+                       [&] {
+                         if (!loops) cut_mesh = buildCutMesh(faces, rest.size());
+                       });
+  if (!simple_loops) ODESKIN_TRY(polyMesh());
+  if (!(mean_edge > 0.0)) return degenerate("iso-curves: every edge of the mesh has length 0");
+  const double spacing = options.spacing > 0.0 ? options.spacing : kDefaultSpacingEdges * mean_edge;
+
+  CurveLayout layout;
+  if (loops) {
+    ODESKIN_TRY(polyMesh());
+    layout = edgeLoopCurves(rest, *mesh, seg, min_points);
+  }
   if (!loops || (options.method == CurveMethod::kAuto && layout.curves.empty())) {
-    const CutMesh cut_mesh = buildCutMesh(faces, rest.size());
+    if (loops) cut_mesh = buildCutMesh(faces, rest.size());
     layout = planeCutCurves(rest, cut_mesh, adjacency, seg, {spacing, options.snap_threshold, min_points});
-    addBoundaryLoops(rest, boundaryLoops(mesh), seg, spacing, min_points, layout);
+    addBoundaryLoops(rest, simple_loops ? *simple_loops : boundaryLoops(*mesh), seg, spacing, min_points, layout);
   }
   orientCurves(rest, seg, layout);
   compactCurves(layout);

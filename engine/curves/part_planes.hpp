@@ -23,6 +23,7 @@ struct PlaneCutOptions {
   double spacing = 0.0;  // > 0, distance between cuts
   double snap_threshold = 0.25;
   std::size_t min_points = 8;
+  std::size_t region_scans_before_tree = CutRegion::kScansBeforeTree;  // see CutRegion (the same cuts either way)
 };
 
 // Curves and per-part station sequences (normals along each part's flow, not yet oriented).

@@ -2,7 +2,8 @@
 #include "plane_cuts.hpp"
 
 #include <algorithm>
-#include <unordered_map>
+#include <limits>
+#include <numeric>
 
 #include <glm/geometric.hpp>
 
@@ -17,6 +18,7 @@ bool samePoint(const CurvePoint& p, const CurvePoint& q) {
 
 CutMesh buildCutMesh(const FaceList& faces, std::size_t vertex_count) {
   CutMesh mesh;
+  mesh.triangles.reserve(faces.indices.size() > 2 * faces.faceCount() ? faces.indices.size() - 2 * faces.faceCount() : 0);
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {
     const std::uint32_t begin = faces.face_offsets[f];
     const std::uint32_t n = faces.face_offsets[f + 1] - begin;
@@ -25,31 +27,138 @@ CutMesh buildCutMesh(const FaceList& faces, std::size_t vertex_count) {
     }
   }
   const std::size_t count = mesh.triangles.size();
-  std::unordered_map<std::uint64_t, std::uint32_t> half_edges;  // (u, v) -> 3 * triangle + k
-  half_edges.reserve(3 * count);
-  auto key = [](std::uint32_t u, std::uint32_t v) { return (static_cast<std::uint64_t>(u) << 32) | v; };
-  for (std::uint32_t t = 0; t < count; ++t) {
-    for (std::uint32_t k = 0; k < 3; ++k) half_edges[key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])] = 3 * t + k;
-  }
-  mesh.neighbours.assign(count, {-1, -1, -1});
-  for (std::uint32_t t = 0; t < count; ++t) {
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      // Consistent orientation: the neighbour runs the shared edge the other way.
-      const auto it = half_edges.find(key(mesh.triangles[t][(k + 1) % 3], mesh.triangles[t][k]));
-      if (it != half_edges.end()) mesh.neighbours[t][k] = static_cast<std::int32_t>(it->second / 3);
-    }
-  }
   mesh.vertex_offsets.assign(vertex_count + 1, 0);
   for (const auto& tri : mesh.triangles) {
     for (std::uint32_t v : tri) ++mesh.vertex_offsets[v + 1];
   }
   for (std::size_t v = 0; v < vertex_count; ++v) mesh.vertex_offsets[v + 1] += mesh.vertex_offsets[v];
   mesh.vertex_triangles.resize(mesh.vertex_offsets.back());
+  // next[j]: the corner after v in the j-th triangle around v.
+  std::vector<std::uint32_t> next(mesh.vertex_triangles.size());
   std::vector<std::uint32_t> fill(mesh.vertex_offsets.begin(), mesh.vertex_offsets.end() - 1);
   for (std::uint32_t t = 0; t < count; ++t) {
-    for (std::uint32_t v : mesh.triangles[t]) mesh.vertex_triangles[fill[v]++] = t;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.triangles[t][k];
+      next[fill[v]] = mesh.triangles[t][(k + 1) % 3];
+      mesh.vertex_triangles[fill[v]++] = t;
+    }
+  }
+  // Consistent orientation: the neighbour across (u, v) is the triangle around v that runs v -> u
+  // (the last one, should a broken mesh have several).
+  mesh.neighbours.assign(count, {-1, -1, -1});
+  for (std::uint32_t t = 0; t < count; ++t) {
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t u = mesh.triangles[t][k];
+      const std::uint32_t v = mesh.triangles[t][(k + 1) % 3];
+      for (std::uint32_t j = mesh.vertex_offsets[v]; j < mesh.vertex_offsets[v + 1]; ++j) {
+        if (next[j] == u) mesh.neighbours[t][k] = static_cast<std::int32_t>(mesh.vertex_triangles[j]);
+      }
+    }
   }
   return mesh;
+}
+
+namespace {
+
+// Triangles per leaf of a region's tree.
+constexpr std::uint32_t kLeafTriangles = 8;
+// A box is skipped only when it clears the plane by more than the rounding of the signed distances
+// measured against it, relative to the distances involved: the exact crossing test decides the rest.
+constexpr double kPlaneSlack = 1e-9;
+
+}  // namespace
+
+CutRegion::CutRegion(const CutMesh& mesh, std::span<const Vec3> positions, std::vector<std::uint32_t> triangles,
+                     std::size_t scans_before_tree)
+    : mesh_(&mesh), positions_(positions), triangles_(std::move(triangles)), scans_before_tree_(scans_before_tree) {
+  if (!std::is_sorted(triangles_.begin(), triangles_.end())) std::sort(triangles_.begin(), triangles_.end());
+  if (scans_before_tree_ == 0) buildTree();
+}
+
+void CutRegion::buildTree() const {
+  const std::size_t count = triangles_.size();
+  if (count == 0 || !nodes_.empty()) return;
+  std::vector<Vec3> lo(count), hi(count), centre(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto& tri = mesh_->triangles[triangles_[k]];
+    lo[k] = glm::min(glm::min(positions_[tri[0]], positions_[tri[1]]), positions_[tri[2]]);
+    hi[k] = glm::max(glm::max(positions_[tri[0]], positions_[tri[1]]), positions_[tri[2]]);
+    centre[k] = 0.5 * (lo[k] + hi[k]);
+  }
+  order_.resize(count);
+  std::iota(order_.begin(), order_.end(), 0u);  // local indices while building
+  nodes_.reserve(2 * (count / kLeafTriangles + 1));
+  build(lo, hi, centre, 0, static_cast<std::uint32_t>(count));
+  for (std::uint32_t& k : order_) k = triangles_[k];
+}
+
+std::uint32_t CutRegion::build(std::span<const Vec3> lo, std::span<const Vec3> hi, std::span<const Vec3> centre,
+                               std::uint32_t first, std::uint32_t last) const {
+  const auto index = static_cast<std::uint32_t>(nodes_.size());
+  nodes_.emplace_back();
+  if (last - first <= kLeafTriangles) {
+    Vec3 box_lo(std::numeric_limits<double>::infinity()), box_hi(-std::numeric_limits<double>::infinity());
+    for (std::uint32_t k = first; k < last; ++k) {
+      box_lo = glm::min(box_lo, lo[order_[k]]);
+      box_hi = glm::max(box_hi, hi[order_[k]]);
+    }
+    nodes_[index].lo = box_lo;
+    nodes_[index].hi = box_hi;
+    nodes_[index].first = first;
+    nodes_[index].count = last - first;
+    return index;
+  }
+  // Median split along the widest spread of the triangles' centres; boxes from the children up.
+  Vec3 c_lo(std::numeric_limits<double>::infinity()), c_hi(-std::numeric_limits<double>::infinity());
+  for (std::uint32_t k = first; k < last; ++k) {
+    c_lo = glm::min(c_lo, centre[order_[k]]);
+    c_hi = glm::max(c_hi, centre[order_[k]]);
+  }
+  const Vec3 spread = c_hi - c_lo;
+  const int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
+  const std::uint32_t middle = first + (last - first) / 2;
+  std::nth_element(order_.begin() + first, order_.begin() + middle, order_.begin() + last,
+                   [&](std::uint32_t a, std::uint32_t b) { return centre[a][axis] < centre[b][axis]; });
+  const std::uint32_t left = build(lo, hi, centre, first, middle);
+  const std::uint32_t right = build(lo, hi, centre, middle, last);
+  nodes_[index].lo = glm::min(nodes_[left].lo, nodes_[right].lo);
+  nodes_[index].hi = glm::max(nodes_[left].hi, nodes_[right].hi);
+  nodes_[index].right = right;
+  return index;
+}
+
+bool CutRegion::contains(std::uint32_t triangle) const {
+  return std::binary_search(triangles_.begin(), triangles_.end(), triangle);
+}
+
+void CutRegion::nearPlane(const Plane& plane, std::vector<std::uint32_t>& out) const {
+  if (nodes_.empty() && scans_ < scans_before_tree_) {
+    ++scans_;
+    out.insert(out.end(), triangles_.begin(), triangles_.end());
+    return;
+  }
+  buildTree();
+  if (nodes_.empty()) return;  // no triangles
+  const Vec3 n_abs = glm::abs(plane.normal);
+  std::uint32_t stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    const Vec3 centre = 0.5 * (node.lo + node.hi);
+    const double reach = glm::dot(n_abs, 0.5 * (node.hi - node.lo));
+    const double distance = glm::dot(plane.normal, centre - plane.origin);
+    const double slack = kPlaneSlack * (reach + glm::length(centre - plane.origin)) +
+                         kPlaneSlack * glm::length(plane.origin);
+    if (distance - reach > slack || distance + reach < -slack) continue;
+    if (node.count > 0) {
+      out.insert(out.end(), order_.begin() + node.first, order_.begin() + node.first + node.count);
+    } else {
+      const auto self = static_cast<std::uint32_t>(&node - nodes_.data());
+      stack[top++] = node.right;
+      stack[top++] = self + 1;
+    }
+  }
 }
 
 PlaneCutter::PlaneCutter(const CutMesh& mesh, std::span<const Vec3> positions, double snap_threshold)
@@ -128,15 +237,24 @@ PlaneCut PlaneCutter::makeCut(const std::vector<DirectedEdge>& edges, bool close
 
 std::optional<PlaneCut> PlaneCutter::bestChain(std::span<const std::uint32_t> triangles, const Plane& plane,
                                                const std::function<bool(std::uint32_t)>& owned) {
+  return bestChain(CutRegion(mesh_, positions_, {triangles.begin(), triangles.end()}), plane, owned);
+}
+
+std::optional<PlaneCut> PlaneCutter::bestChain(const CutRegion& region, const Plane& plane,
+                                               const std::function<bool(std::uint32_t)>& owned) {
   nextEpoch();
-  for (std::uint32_t t : triangles) member_[t] = epoch_;
-  auto inside = [&](std::int32_t t) { return t >= 0 && member_[static_cast<std::size_t>(t)] == epoch_; };
+  // Chains start from the crossed triangles in ascending order, as a scan of the whole region
+  // would meet them (the first of equally good chains wins).
+  candidates_.clear();
+  region.nearPlane(plane, candidates_);
+  if (region.indexed()) std::sort(candidates_.begin(), candidates_.end());
+  auto inside = [&](std::int32_t t) { return t >= 0 && region.contains(static_cast<std::uint32_t>(t)); };
   auto edgeOf = [&](std::uint32_t t, int k) {
     return DirectedEdge{mesh_.triangles[t][static_cast<std::size_t>(k)], mesh_.triangles[t][static_cast<std::size_t>((k + 1) % 3)]};
   };
   std::optional<PlaneCut> best;
   std::vector<DirectedEdge> forward, backward;
-  for (std::uint32_t t0 : triangles) {
+  for (std::uint32_t t0 : candidates_) {
     int entry0 = 0, exit0 = 0;
     if (visited_[t0] == epoch_ || !crossing(t0, plane, entry0, exit0)) continue;
     visited_[t0] = epoch_;

@@ -28,6 +28,52 @@ struct CutMesh {
 // `faces` must be valid, manifold and consistently oriented (buildPolyMesh accepted them).
 CutMesh buildCutMesh(const FaceList& faces, std::size_t vertex_count);
 
+// A patch of the cut mesh that many planes are cut with (a body part and its margin): its
+// triangles, and once it has been cut a few times a bounding-box tree over them, so that finding
+// the triangles a plane crosses costs about their number and the tree's depth, not the patch's
+// size (a part is cut ~ extent / spacing times, which grows as the mesh is refined; parts cut a
+// few times, the usual case at ~10^4 vertices, are scanned and never pay for a tree: the tree
+// comes after kScansBeforeTree scans, a count measured on the cat).
+class CutRegion {
+ public:
+  static constexpr std::size_t kScansBeforeTree = 32;
+
+  CutRegion() = default;
+  // `triangles`: indices into mesh.triangles (any order, no repeats); `mesh` and `positions` must
+  // outlive the region. The tree is built on the query after `scans_before_tree` scans (the same
+  // cuts either way: tests set 0, a tree at once, or SIZE_MAX, never).
+  CutRegion(const CutMesh& mesh, std::span<const Vec3> positions, std::vector<std::uint32_t> triangles,
+            std::size_t scans_before_tree = kScansBeforeTree);
+
+  std::span<const std::uint32_t> triangles() const { return triangles_; }  // ascending
+  bool contains(std::uint32_t triangle) const;
+  // Whether the region has its tree yet.
+  bool indexed() const { return !nodes_.empty(); }
+  // Appends to `out` the region's triangles whose bounding boxes the plane may meet: every triangle
+  // with corners on both sides of it, and some others near it (in tree order; all of them,
+  // ascending, while the region has no tree). Not thread safe (it may build the tree).
+  void nearPlane(const Plane& plane, std::vector<std::uint32_t>& out) const;
+
+ private:
+  void buildTree() const;
+  struct Node {
+    Vec3 lo{0.0}, hi{0.0};
+    std::uint32_t first = 0, count = 0;  // a leaf's range of order_ (count > 0)
+    std::uint32_t right = 0;             // an inner node's second child (the first follows it)
+  };
+  std::uint32_t build(std::span<const Vec3> lo, std::span<const Vec3> hi, std::span<const Vec3> centre,
+                      std::uint32_t first, std::uint32_t last) const;
+
+  const CutMesh* mesh_ = nullptr;
+  std::span<const Vec3> positions_;
+  std::vector<std::uint32_t> triangles_;  // ascending
+  std::size_t scans_before_tree_ = kScansBeforeTree;
+  // The tree, built on demand (a cache: the region's contents never change).
+  mutable std::size_t scans_ = 0;
+  mutable std::vector<std::uint32_t> order_;  // the triangles in tree order
+  mutable std::vector<Node> nodes_;
+};
+
 struct PlaneCut {
   std::vector<CurvePoint> points;  // snapped, no two consecutive equal (nor last == first when closed)
   bool closed = false;
@@ -52,6 +98,9 @@ class PlaneCutter {
   // leaves `triangles` or the mesh. nullopt when the plane crosses none of the triangles.
   std::optional<PlaneCut> bestChain(std::span<const std::uint32_t> triangles, const Plane& plane,
                                     const std::function<bool(std::uint32_t)>& owned = {});
+  // The same on a prepared region (the same chain as bestChain(region.triangles(), ...)).
+  std::optional<PlaneCut> bestChain(const CutRegion& region, const Plane& plane,
+                                    const std::function<bool(std::uint32_t)>& owned = {});
 
  private:
   struct DirectedEdge {
@@ -67,6 +116,7 @@ class PlaneCutter {
   double snap_;
   std::vector<std::uint32_t> member_;
   std::vector<std::uint32_t> visited_;
+  std::vector<std::uint32_t> candidates_;
   std::uint32_t epoch_ = 0;
 };
 

@@ -5,10 +5,13 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <queue>
 
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace odeskin {
 namespace {
@@ -20,6 +23,14 @@ constexpr double kAlignedCos = 0.82;
 constexpr double kMinAhead = 0.1;
 // A vertex blends two curves only if its parameters on them differ by at most this.
 constexpr double kMaxParameterMismatch = 0.1;
+// Vertices per cluster of the pair search, and the relative slack of its bounds; parts with at most
+// kPairsWithoutClusters pairs of planes are not clustered but cut in chunks of kChunkVertices.
+constexpr std::uint32_t kClusterVertices = 32;
+constexpr long kPairsWithoutClusters = 16;
+constexpr std::uint32_t kChunkVertices = 256;
+constexpr double kBoundSlack = 1e-9;
+// Curves with at most this many segments are scanned rather than searched through their tree.
+constexpr std::size_t kScanSegments = 128;
 
 bool inSequence(const std::vector<Station>& seq, std::uint32_t curve) {
   return std::any_of(seq.begin(), seq.end(), [&](const Station& s) { return s.curve == curve; });
@@ -62,29 +73,204 @@ std::vector<Station> extendedSequence(std::uint32_t p, const Segmentation& seg, 
   return out;
 }
 
-// v of the point of the curve nearest to x moved onto `plane` along its normal.
-double parameterAt(const std::vector<Vec3>& pos, const CurveDraft& curve, const Plane& plane, const Vec3& x) {
-  const Vec3 q = x - glm::dot(x - plane.origin, plane.normal) * plane.normal;
+// Segment j of a curve (from point j to the next, the last of a closed curve back to the first),
+// with what the nearest-point search reads precomputed.
+struct Segment {
+  Vec3 p0{0.0};
+  Vec3 step{0.0};
+  double len2 = 0.0;
+  double v0 = 0.0, v1 = 0.0;
+  Vec3 mid{0.0};      // p0 + step / 2
+  double half = 0.0;  // |step| / 2: the segment lies within `half` of `mid`
+};
+
+std::vector<Segment> curveSegments(const std::vector<Vec3>& pos, const CurveDraft& curve) {
   const std::size_t n = pos.size();
-  double best = std::numeric_limits<double>::infinity();
-  double v = 0.0;
-  for (std::size_t j = 0; j + (curve.closed ? 0 : 1) < n; ++j) {
-    const Vec3& p0 = pos[j];
-    const Vec3 seg = pos[(j + 1) % n] - p0;
-    const double v0 = curve.v[j];
-    const double v1 = j + 1 == n ? 1.0 : curve.v[j + 1];
-    const double len2 = glm::dot(seg, seg);
-    const double s = len2 > 0.0 ? std::clamp(glm::dot(q - p0, seg) / len2, 0.0, 1.0) : 0.0;
-    const Vec3 d = p0 + s * seg - q;
-    const double dist2 = glm::dot(d, d);
-    if (dist2 < best) {
-      best = dist2;
-      v = v0 + s * (v1 - v0);
-    }
+  const std::size_t count = curve.closed ? n : (n > 0 ? n - 1 : 0);
+  std::vector<Segment> out(count);
+  for (std::size_t j = 0; j < count; ++j) {
+    Segment& g = out[j];
+    g.p0 = pos[j];
+    g.step = pos[(j + 1) % n] - g.p0;
+    g.len2 = glm::dot(g.step, g.step);
+    g.v0 = curve.v[j];
+    g.v1 = j + 1 == n ? 1.0 : curve.v[j + 1];
+    g.mid = g.p0 + 0.5 * g.step;
+    g.half = 0.5 * std::sqrt(g.len2);
   }
+  return out;
+}
+
+// The point of a segment nearest to q: its squared distance and where it is on the segment.
+struct SegmentHit {
+  double dist2 = std::numeric_limits<double>::infinity();
+  double s = 0.0;
+  std::size_t j = std::numeric_limits<std::size_t>::max();  // none
+};
+
+SegmentHit segmentHit(const Segment& g, std::size_t j, const Vec3& q) {
+  const double s = g.len2 > 0.0 ? std::clamp(glm::dot(q - g.p0, g.step) / g.len2, 0.0, 1.0) : 0.0;
+  const Vec3 d = g.p0 + s * g.step - q;
+  return {glm::dot(d, d), s, j};
+}
+
+// v at a hit (0 for none).
+double hitParameter(const std::vector<Segment>& segments, const SegmentHit& hit) {
+  if (hit.j >= segments.size()) return 0.0;
+  const Segment& g = segments[hit.j];
+  return g.v0 + hit.s * (g.v1 - g.v0);
+}
+
+// Far more than the rounding of any distance between points of a curve's segments: 1e-9 of their
+// largest coordinate. Distance bounds are loosened by it, so that a bound never excludes a segment
+// the exact test would find as near.
+double roundingPad(const std::vector<Segment>& segments) {
+  double extent = 0.0;
+  for (const Segment& g : segments) {
+    const Vec3 far = glm::max(glm::abs(g.p0), glm::abs(g.p0 + g.step));
+    extent = std::max({extent, far.x, far.y, far.z});
+  }
+  return 1e-9 * extent;
+}
+
+// Nearest-segment queries on one curve: a bounding-box tree over its segments, which finds the
+// segment a scan in index order would (the first of equally near ones) in about log(points) steps
+// instead of one step per point (a curve has ~sqrt(V) points, and every vertex asks twice).
+class SegmentTree {
+ public:
+  SegmentTree() = default;  // no segments
+  explicit SegmentTree(const std::vector<Segment>& segments) {
+    const std::size_t count = segments.size();
+    if (count == 0) return;
+    std::vector<Vec3> lo(count), hi(count), centre(count);
+    for (std::size_t j = 0; j < count; ++j) {
+      const Vec3 p1 = segments[j].p0 + segments[j].step;
+      lo[j] = glm::min(segments[j].p0, p1);
+      hi[j] = glm::max(segments[j].p0, p1);
+      centre[j] = 0.5 * (lo[j] + hi[j]);
+    }
+    // Rounding puts a computed point of a segment at most a few ulps of the coordinates outside its
+    // box; padding the boxes far beyond that keeps every box distance a lower bound.
+    pad_ = roundingPad(segments);
+    order_.resize(count);
+    std::iota(order_.begin(), order_.end(), 0u);
+    nodes_.reserve(count);
+    build(lo, hi, centre, 0, static_cast<std::uint32_t>(count));
+  }
+
+  // The segment a scan in index order finds nearest to q (the first of equally near ones); no
+  // segment (j out of range) for a curve without segments.
+  // `seed`: a segment to try first (any index; one near q makes the search prune at once).
+  SegmentHit nearest(const std::vector<Segment>& segments, const Vec3& q,
+                     std::size_t seed = std::numeric_limits<std::size_t>::max()) const {
+    SegmentHit best;
+    if (nodes_.empty()) return best;
+    if (seed < segments.size()) best = segmentHit(segments[seed], seed, q);
+    struct Entry {
+      std::uint32_t node;
+      double distance2;
+    };
+    Entry stack[64];
+    int top = 0;
+    stack[top++] = {0, boxDistance2(nodes_[0], q)};
+    while (top > 0) {
+      const Entry entry = stack[--top];
+      if (entry.distance2 > best.dist2 * (1.0 + 1e-12)) continue;
+      const Node& node = nodes_[entry.node];
+      if (node.count > 0) {
+        for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+          const std::size_t j = order_[k];
+          const SegmentHit hit = segmentHit(segments[j], j, q);
+          const bool found = best.j != std::numeric_limits<std::size_t>::max();
+          if (hit.dist2 < best.dist2 || (found && hit.dist2 == best.dist2 && j < best.j)) best = hit;
+        }
+        continue;
+      }
+      // Nearer child last, so that it is searched first.
+      const Entry first{entry.node + 1, boxDistance2(nodes_[entry.node + 1], q)};
+      const Entry second{node.right, boxDistance2(nodes_[node.right], q)};
+      stack[top++] = first.distance2 < second.distance2 ? second : first;
+      stack[top++] = first.distance2 < second.distance2 ? first : second;
+    }
+    return best;
+  }
+
+ private:
+  struct Node {
+    Vec3 lo{0.0}, hi{0.0};
+    std::uint32_t first = 0, count = 0;  // leaf: range of order_
+    std::uint32_t right = 0;             // inner: second child (the first follows the node)
+  };
+  static constexpr std::uint32_t kLeafSegments = 4;
+
+  double boxDistance2(const Node& node, const Vec3& q) const {
+    const Vec3 below = glm::max(node.lo - pad_ - q, Vec3(0.0));
+    const Vec3 above = glm::max(q - node.hi - pad_, Vec3(0.0));
+    const Vec3 d = below + above;
+    return glm::dot(d, d);
+  }
+
+  std::uint32_t build(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi, const std::vector<Vec3>& centre,
+                      std::uint32_t first, std::uint32_t last) {
+    const auto index = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.emplace_back();
+    Vec3 box_lo(std::numeric_limits<double>::infinity()), box_hi(-std::numeric_limits<double>::infinity());
+    Vec3 c_lo = box_lo, c_hi = box_hi;
+    for (std::uint32_t k = first; k < last; ++k) {
+      box_lo = glm::min(box_lo, lo[order_[k]]);
+      box_hi = glm::max(box_hi, hi[order_[k]]);
+      c_lo = glm::min(c_lo, centre[order_[k]]);
+      c_hi = glm::max(c_hi, centre[order_[k]]);
+    }
+    nodes_[index].lo = box_lo;
+    nodes_[index].hi = box_hi;
+    if (last - first <= kLeafSegments) {
+      nodes_[index].first = first;
+      nodes_[index].count = last - first;
+      return index;
+    }
+    const Vec3 spread = c_hi - c_lo;
+    const int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
+    const std::uint32_t middle = first + (last - first) / 2;
+    std::nth_element(order_.begin() + first, order_.begin() + middle, order_.begin() + last,
+                     [&](std::uint32_t a, std::uint32_t b) { return centre[a][axis] < centre[b][axis]; });
+    build(lo, hi, centre, first, middle);
+    nodes_[index].right = build(lo, hi, centre, middle, last);
+    return index;
+  }
+
+  double pad_ = 0.0;
+  std::vector<std::uint32_t> order_;
+  std::vector<Node> nodes_;
+};
+
+// x moved onto `plane` along its normal.
+Vec3 projectOnto(const Plane& plane, const Vec3& x) { return x - glm::dot(x - plane.origin, plane.normal) * plane.normal; }
+
+// v as a parameter of the (closed or open) curve.
+double wrapParameter(const CurveDraft& curve, double v) {
   if (curve.closed && v >= 1.0) v -= 1.0;
   return std::clamp(v, 0.0, 1.0);
 }
+
+// Vertices near one another have their nearest segments near one another: the nearest segment of
+// the previous query on a curve seeds the next query's search (any seed gives the same answer).
+class SeedCache {
+ public:
+  std::uint32_t& operator[](std::uint32_t curve) {
+    for (auto& [c, j] : slots_) {
+      if (c == curve) return j;
+    }
+    next_ = (next_ + 1) % kSlots;
+    slots_[next_] = {curve, std::numeric_limits<std::uint32_t>::max()};
+    return slots_[next_].second;
+  }
+
+ private:
+  static constexpr std::size_t kSlots = 8;
+  std::pair<std::uint32_t, std::uint32_t> slots_[kSlots] = {};
+  std::size_t next_ = 0;
+};
 
 double blendParameters(double va, double vb, double w, bool closed) {
   if (!closed) return std::clamp((1.0 - w) * va + w * vb, 0.0, 1.0);
@@ -97,18 +283,29 @@ double blendParameters(double va, double vb, double w, bool closed) {
 
 // The part whose curves each vertex uses: its own if it has any, else the first part with curves
 // reached along mesh edges (-1 where none is).
+// `all_sources`: queue every source, as the plain algorithm does (the reference search).
 std::vector<std::int32_t> bindingParts(std::span<const Vec3> rest, const VertexAdjacency& adjacency,
-                                       const Segmentation& seg, const std::vector<std::vector<Station>>& ext) {
+                                       const Segmentation& seg, const std::vector<std::vector<Station>>& ext,
+                                       bool all_sources) {
   const std::size_t count = rest.size();
   std::vector<std::int32_t> label(count, -1);
   std::vector<double> dist(count, std::numeric_limits<double>::infinity());
   using Item = std::pair<double, std::uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  // Vertices of curved parts are sources at distance 0. Only those next to a vertex of a part
+  // without curves can relax anything (all others' neighbours are sources too), so only they are
+  // queued; they leave the queue in the same order as when every source was queued.
   for (std::uint32_t i = 0; i < count; ++i) {
     if (ext[seg.vertex_part[i]].empty()) continue;
     label[i] = static_cast<std::int32_t>(seg.vertex_part[i]);
     dist[i] = 0.0;
-    queue.push({0.0, i});
+  }
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (label[i] < 0) continue;
+    const auto of = adjacency.of(i);
+    if (all_sources || std::any_of(of.begin(), of.end(), [&](std::uint32_t j) { return label[j] < 0; })) {
+      queue.push({0.0, i});
+    }
   }
   while (!queue.empty()) {
     const auto [d, i] = queue.top();
@@ -128,15 +325,66 @@ std::vector<std::int32_t> bindingParts(std::span<const Vec3> rest, const VertexA
 
 class Binder {
  public:
-  Binder(std::span<const Vec3> rest, const CurveLayout& layout, double spacing)
-      : layout_(layout), spacing_(spacing), positions_(layout.curves.size()) {
+  // `exhaustive`: every parameter by a scan of the whole curve.
+  Binder(std::span<const Vec3> rest, const CurveLayout& layout, double spacing, bool exhaustive)
+      : layout_(layout), spacing_(spacing), exhaustive_(exhaustive), positions_(layout.curves.size()) {
+    segments_.reserve(layout.curves.size());
+    trees_.reserve(layout.curves.size());
     for (std::size_t c = 0; c < layout.curves.size(); ++c) {
       for (const CurvePoint& point : layout.curves[c].points) positions_[c].push_back(curvePointPosition(rest, point));
+      segments_.push_back(curveSegments(positions_[c], layout.curves[c]));
+      pads_.push_back(roundingPad(segments_[c]));
+      // Short curves are scanned (scanNearest) and need no tree.
+      if (segments_[c].size() > kScanSegments) trees_.emplace_back(segments_[c]);
+      else trees_.emplace_back();
     }
   }
 
-  CurveBinding alone(std::uint32_t curve, const Plane& plane, const Vec3& x) const {
-    return {curve, curve, 0.0, parameterAt(positions_[curve], layout_.curves[curve], plane, x)};
+  // v of the point of the curve nearest to x moved onto `plane` along its normal.
+  double parameter(std::uint32_t curve, const Plane& plane, const Vec3& x, SeedCache* seeds = nullptr) const {
+    const std::vector<Segment>& segments = segments_[curve];
+    const Vec3 q = projectOnto(plane, x);
+    if (exhaustive_) {
+      SegmentHit best;
+      for (std::size_t j = 0; j < segments.size(); ++j) {
+        const SegmentHit hit = segmentHit(segments[j], j, q);
+        if (hit.dist2 < best.dist2) best = hit;
+      }
+      return wrapParameter(layout_.curves[curve], hitParameter(segments, best));
+    }
+    std::uint32_t no_seed = std::numeric_limits<std::uint32_t>::max();
+    std::uint32_t& seed = seeds ? (*seeds)[curve] : no_seed;
+    const SegmentHit hit = segments.size() <= kScanSegments ? scanNearest(curve, q, seed) : trees_[curve].nearest(segments, q, seed);
+    if (hit.j < segments.size()) seed = static_cast<std::uint32_t>(hit.j);
+    return wrapParameter(layout_.curves[curve], hitParameter(segments, hit));
+  }
+
+  // A short curve's nearest segment by a scan that starts from `seed` and rejects, without the
+  // exact test, every segment whose midpoint is further than sqrt(best) + half + pad: the first of
+  // equally near segments, as the tree finds it.
+  SegmentHit scanNearest(std::uint32_t curve, const Vec3& q, std::size_t seed) const {
+    const std::vector<Segment>& segments = segments_[curve];
+    const double pad = pads_[curve];
+    SegmentHit best;
+    double reach = std::numeric_limits<double>::infinity();
+    auto consider = [&](std::size_t j) {
+      const Segment& g = segments[j];
+      const Vec3 e = q - g.mid;
+      const double bound = reach + g.half;
+      if (glm::dot(e, e) > bound * bound) return;
+      const SegmentHit hit = segmentHit(g, j, q);
+      if (hit.dist2 < best.dist2 || (hit.dist2 == best.dist2 && j < best.j)) {
+        best = hit;
+        reach = std::sqrt(best.dist2) + pad;
+      }
+    };
+    if (seed < segments.size()) consider(seed);
+    for (std::size_t j = 0; j < segments.size(); ++j) consider(j);
+    return best;
+  }
+
+  CurveBinding alone(std::uint32_t curve, const Plane& plane, const Vec3& x, SeedCache* seeds = nullptr) const {
+    return {curve, curve, 0.0, parameter(curve, plane, x, seeds)};
   }
 
   // Not connected to any curved part: the curve with the nearest point, alone.
@@ -155,39 +403,49 @@ class Binder {
     return alone(best_curve, {curve.centroid, curve.orientation}, x);
   }
 
-  CurveBinding bind(const std::vector<Station>& seq, const Vec3& x) {
-    d_.resize(seq.size());
-    for (std::size_t k = 0; k < seq.size(); ++k) d_[k] = glm::dot(seq[k].plane.normal, x - seq[k].plane.origin);
+  // The vertex at x of a part whose extended sequence is `seq`; `candidates` holds, ascending, at
+  // least every pair k (stations k, k+1) that can have x between its planes (see bindVertices).
+  CurveBinding bind(const std::vector<Station>& seq, std::span<const std::uint32_t> candidates, const Vec3& x,
+                    SeedCache& seeds) const {
+    auto distance = [&](std::size_t k) { return glm::dot(seq[k].plane.normal, x - seq[k].plane.origin); };
     // The tightest pair of consecutive planes with the vertex between them (rounding must not
     // push a vertex on a plane, a rim or a ring, out of its pair); curves of opposite sense,
     // where two parts' conventions meet, cannot share v and are not paired.
     const double on_plane = 1e-9 * spacing_;
     std::size_t pair = seq.size();
     double best_gap = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k + 1 < seq.size(); ++k) {
-      if (d_[k] < -on_plane || d_[k + 1] > on_plane) continue;
-      if (glm::dot(layout_.curves[seq[k].curve].orientation, layout_.curves[seq[k + 1].curve].orientation) <= 0.0) continue;
-      const double gap = std::max(0.0, d_[k] - d_[k + 1]);
+    double d_pair = 0.0;
+    for (std::uint32_t k : candidates) {
+      const double dk = distance(k);
+      const double dk1 = distance(k + 1);
+      if (dk < -on_plane || dk1 > on_plane) continue;
+      const double gap = std::max(0.0, dk - dk1);
       if (gap < best_gap) {
         best_gap = gap;
         pair = k;
+        d_pair = dk;
       }
     }
     if (pair == seq.size()) {
       // Beyond the sequence (a tip, a rim) or between planes that do not pair: the nearest plane.
       std::size_t nearest = 0;
+      double nearest_distance = std::abs(distance(0));
       for (std::size_t k = 1; k < seq.size(); ++k) {
-        if (std::abs(d_[k]) < std::abs(d_[nearest])) nearest = k;
+        const double dk = std::abs(distance(k));
+        if (dk < nearest_distance) {
+          nearest = k;
+          nearest_distance = dk;
+        }
       }
-      return alone(seq[nearest].curve, seq[nearest].plane, x);
+      return alone(seq[nearest].curve, seq[nearest].plane, x, &seeds);
     }
     const Station& sa = seq[pair];
     const Station& sb = seq[pair + 1];
     const CurveDraft& ca = layout_.curves[sa.curve];
     const CurveDraft& cb = layout_.curves[sb.curve];
-    const double w = best_gap > 0.0 ? std::clamp(d_[pair] / best_gap, 0.0, 1.0) : 0.0;
-    const double va = parameterAt(positions_[sa.curve], ca, sa.plane, x);
-    const double vb = parameterAt(positions_[sb.curve], cb, sb.plane, x);
+    const double w = best_gap > 0.0 ? std::clamp(d_pair / best_gap, 0.0, 1.0) : 0.0;
+    const double va = parameter(sa.curve, sa.plane, x, &seeds);
+    const double vb = parameter(sb.curve, sb.plane, x, &seeds);
     const bool both_closed = ca.closed && cb.closed;
     // One v serves both series only where the curves' parameters agree at this vertex (an arc
     // next to a full ring, or two rings whose starts drifted apart, do not): else the nearer
@@ -198,26 +456,147 @@ class Binder {
     return {sa.curve, sb.curve, w, blendParameters(va, vb, w, both_closed)};
   }
 
+  // Pairs k of `seq` whose curves run the same way round (the others never pair).
+  std::vector<char> pairable(const std::vector<Station>& seq) const {
+    std::vector<char> out(seq.size() > 0 ? seq.size() - 1 : 0, 0);
+    for (std::size_t k = 0; k + 1 < seq.size(); ++k) {
+      out[k] = glm::dot(layout_.curves[seq[k].curve].orientation, layout_.curves[seq[k + 1].curve].orientation) > 0.0;
+    }
+    return out;
+  }
+
  private:
   const CurveLayout& layout_;
   double spacing_;
+  bool exhaustive_;
   std::vector<std::vector<Vec3>> positions_;
-  std::vector<double> d_;
+  std::vector<std::vector<Segment>> segments_;
+  std::vector<double> pads_;
+  std::vector<SegmentTree> trees_;
 };
 
 }  // namespace
 
 std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexAdjacency& adjacency,
-                                       const Segmentation& seg, const CurveLayout& layout, double spacing) {
+                                       const Segmentation& seg, const CurveLayout& layout, double spacing,
+                                       BindingSearch search) {
+  const bool exhaustive = search == BindingSearch::kExhaustive;
   std::vector<std::vector<Station>> ext(seg.parts.size());
   for (std::uint32_t p = 0; p < seg.parts.size(); ++p) ext[p] = extendedSequence(p, seg, layout, spacing);
-  const std::vector<std::int32_t> part_of = bindingParts(rest, adjacency, seg, ext);
-  Binder binder(rest, layout, spacing);
+  const std::vector<std::int32_t> part_of = bindingParts(rest, adjacency, seg, ext, exhaustive);
+  const Binder binder(rest, layout, spacing, exhaustive);
   std::vector<CurveBinding> bindings(rest.size());
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    bindings[i] = part_of[i] < 0 ? binder.nearestCurve(rest[i])
-                                 : binder.bind(ext[static_cast<std::size_t>(part_of[i])], rest[i]);
+  std::vector<std::vector<char>> pairable(seg.parts.size());
+  for (std::uint32_t p = 0; p < seg.parts.size(); ++p) pairable[p] = binder.pairable(ext[p]);
+  if (exhaustive) {
+    std::vector<std::vector<std::uint32_t>> every_pair(seg.parts.size());
+    for (std::uint32_t p = 0; p < seg.parts.size(); ++p) {
+      for (std::uint32_t k = 0; k < pairable[p].size(); ++k) {
+        if (pairable[p][k]) every_pair[p].push_back(k);
+      }
+    }
+    SeedCache unused;
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      const auto p = static_cast<std::size_t>(part_of[i]);
+      bindings[i] = part_of[i] < 0 ? binder.nearestCurve(rest[i]) : binder.bind(ext[p], every_pair[p], rest[i], unused);
+    }
+    return bindings;
   }
+
+  // A part's sequence has ~extent / spacing stations, which grows with the mesh's resolution, and
+  // a vertex lies between few of them. Vertices are grouped in small clusters (a k-d split of each
+  // part's vertices); a pair of planes that cannot enclose any point of a cluster's bounding
+  // sphere (each signed distance moves by at most the radius) is not tried for its vertices, so
+  // the pair each vertex gets is the one a scan of every pair finds.
+  // Parts with few pairs skip the clustering: every vertex tries all of them.
+  std::vector<std::vector<std::uint32_t>> members(seg.parts.size());
+  std::vector<std::uint32_t> unconnected;
+  for (std::uint32_t i = 0; i < rest.size(); ++i) {
+    if (part_of[i] < 0) unconnected.push_back(i);
+    else members[static_cast<std::size_t>(part_of[i])].push_back(i);
+  }
+  struct Cluster {
+    std::uint32_t part = 0;
+    std::uint32_t first = 0, last = 0;  // range of members[part]
+    bool every_pair = false;            // no bounds: try every pair
+  };
+  std::vector<Cluster> clusters;
+  for (std::uint32_t p = 0; p < seg.parts.size(); ++p) {
+    std::vector<std::uint32_t>& verts = members[p];
+    if (std::count(pairable[p].begin(), pairable[p].end(), 1) <= kPairsWithoutClusters) {
+      for (std::uint32_t first = 0; first < verts.size(); first += kChunkVertices) {
+        clusters.push_back({p, first, std::min<std::uint32_t>(first + kChunkVertices, static_cast<std::uint32_t>(verts.size())), true});
+      }
+      continue;
+    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges{{0u, static_cast<std::uint32_t>(verts.size())}};
+    while (!ranges.empty()) {
+      const auto [first, last] = ranges.back();
+      ranges.pop_back();
+      if (last - first <= kClusterVertices) {
+        if (last > first) clusters.push_back({p, first, last, false});
+        continue;
+      }
+      Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+      for (std::uint32_t k = first; k < last; ++k) {
+        lo = glm::min(lo, rest[verts[k]]);
+        hi = glm::max(hi, rest[verts[k]]);
+      }
+      const Vec3 spread = hi - lo;
+      const int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
+      const std::uint32_t middle = first + (last - first) / 2;
+      std::nth_element(verts.begin() + first, verts.begin() + middle, verts.begin() + last,
+                       [&](std::uint32_t a, std::uint32_t b) { return rest[a][axis] < rest[b][axis]; });
+      ranges.emplace_back(first, middle);
+      ranges.emplace_back(middle, last);
+    }
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, clusters.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::uint32_t> candidates;
+    SeedCache seeds;
+    for (std::size_t c = r.begin(); c < r.end(); ++c) {
+      const Cluster& cluster = clusters[c];
+      const std::vector<Station>& seq = ext[cluster.part];
+      const std::vector<std::uint32_t>& verts = members[cluster.part];
+      if (cluster.every_pair) {
+        candidates.clear();
+        for (std::uint32_t k = 0; k < pairable[cluster.part].size(); ++k) {
+          if (pairable[cluster.part][k]) candidates.push_back(k);
+        }
+        for (std::uint32_t k = cluster.first; k < cluster.last; ++k) {
+          bindings[verts[k]] = binder.bind(seq, candidates, rest[verts[k]], seeds);
+        }
+        continue;
+      }
+      Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+      for (std::uint32_t k = cluster.first; k < cluster.last; ++k) {
+        lo = glm::min(lo, rest[verts[k]]);
+        hi = glm::max(hi, rest[verts[k]]);
+      }
+      const Vec3 centre = 0.5 * (lo + hi);
+      const double radius = 0.5 * glm::length(hi - lo);
+      const double on_plane = 1e-9 * spacing;
+      candidates.clear();
+      for (std::size_t k = 0; k + 1 < seq.size(); ++k) {
+        if (!pairable[cluster.part][k]) continue;
+        const Plane& a = seq[k].plane;
+        const Plane& b = seq[k + 1].plane;
+        // Far more than the rounding of either signed distance.
+        const double slack_a = kBoundSlack * (radius + glm::length(centre - a.origin) + glm::length(a.origin));
+        const double slack_b = kBoundSlack * (radius + glm::length(centre - b.origin) + glm::length(b.origin));
+        if (glm::dot(a.normal, centre - a.origin) + radius + slack_a < -on_plane) continue;
+        if (glm::dot(b.normal, centre - b.origin) - radius - slack_b > on_plane) continue;
+        candidates.push_back(static_cast<std::uint32_t>(k));
+      }
+      for (std::uint32_t k = cluster.first; k < cluster.last; ++k) {
+        const std::uint32_t i = verts[k];
+        bindings[i] = binder.bind(seq, candidates, rest[i], seeds);
+      }
+    }
+  });
+  tbb::parallel_for(std::size_t{0}, unconnected.size(), [&](std::size_t k) {
+    bindings[unconnected[k]] = binder.nearestCurve(rest[unconnected[k]]);
+  });
   return bindings;
 }
 

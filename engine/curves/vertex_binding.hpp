@@ -21,8 +21,15 @@
 
 namespace odeskin {
 
+// How each vertex's pair of planes and nearest curve points are found: pruned (vertices in small
+// clusters that rule out most pairs at once, a bounding-box tree over each curve's segments), or
+// by scanning every pair and every segment, the reference the tests hold the pruned search to.
+// Both give the same bindings, bit for bit; the scans cost O(V sqrt V) on refined meshes.
+enum class BindingSearch { kPruned, kExhaustive };
+
 // `layout`: compacted, every curve oriented, at least one curve. One binding per vertex.
 std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexAdjacency& adjacency,
-                                       const Segmentation& seg, const CurveLayout& layout, double spacing);
+                                       const Segmentation& seg, const CurveLayout& layout, double spacing,
+                                       BindingSearch search = BindingSearch::kPruned);
 
 }  // namespace odeskin

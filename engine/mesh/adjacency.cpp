@@ -6,25 +6,41 @@
 namespace odeskin {
 
 VertexAdjacency vertexAdjacency(const FaceList& faces, std::size_t vertex_count) {
-  std::vector<std::vector<std::uint32_t>> rows(vertex_count);
-  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
-    const std::uint32_t begin = faces.face_offsets[f];
-    const std::uint32_t n = faces.face_offsets[f + 1] - begin;
-    for (std::uint32_t k = 0; k < n; ++k) {
-      const std::uint32_t a = faces.indices[begin + k];
-      const std::uint32_t b = faces.indices[begin + (k + 1) % n];
-      rows[a].push_back(b);
-      rows[b].push_back(a);
+  // Compressed rows in two passes (count, fill), then each row sorted and deduplicated in place:
+  // no per-vertex allocation.
+  std::vector<std::uint32_t> start(vertex_count + 1, 0);
+  auto edges = [&](auto&& visit) {
+    for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+      const std::uint32_t begin = faces.face_offsets[f];
+      const std::uint32_t n = faces.face_offsets[f + 1] - begin;
+      for (std::uint32_t k = 0; k < n; ++k) visit(faces.indices[begin + k], faces.indices[begin + (k + 1) % n]);
     }
-  }
+  };
+  edges([&](std::uint32_t a, std::uint32_t b) {
+    ++start[a + 1];
+    ++start[b + 1];
+  });
+  for (std::size_t v = 0; v < vertex_count; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> all(start.back());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  edges([&](std::uint32_t a, std::uint32_t b) {
+    all[fill[a]++] = b;
+    all[fill[b]++] = a;
+  });
   VertexAdjacency adjacency;
-  adjacency.offsets.reserve(vertex_count + 1);
-  for (auto& row : rows) {
-    std::sort(row.begin(), row.end());
-    row.erase(std::unique(row.begin(), row.end()), row.end());
-    adjacency.neighbours.insert(adjacency.neighbours.end(), row.begin(), row.end());
-    adjacency.offsets.push_back(static_cast<std::uint32_t>(adjacency.neighbours.size()));
+  adjacency.offsets.resize(vertex_count + 1);
+  adjacency.offsets[0] = 0;
+  std::size_t out = 0;
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const auto row_begin = all.begin() + start[v];
+    const auto row_end = all.begin() + start[v + 1];
+    std::sort(row_begin, row_end);
+    const auto unique_end = std::unique(row_begin, row_end);
+    for (auto it = row_begin; it != unique_end; ++it) all[out++] = *it;
+    adjacency.offsets[v + 1] = static_cast<std::uint32_t>(out);
   }
+  all.resize(out);
+  adjacency.neighbours = std::move(all);
   return adjacency;
 }
 

@@ -9,27 +9,37 @@ Result<PolyMesh> buildPolyMesh(std::span<const Vec3> positions, const FaceList& 
   PolyMesh mesh;
   mesh.reserve(positions.size(), positions.size() * 3, faces.faceCount());
   for (const Vec3& p : positions) mesh.add_vertex(PolyMesh::Point(p.x, p.y, p.z));
+  // Buffers reused from face to face, and the face's name only built for an error.
   std::vector<PolyMesh::VertexHandle> face;
+  std::vector<std::uint32_t> sorted;
+  auto where = [&](std::size_t f) { return source + ": face " + std::to_string(f + 1); };
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {
     face.clear();
-    const std::string where = source + ": face " + std::to_string(f + 1);
-    for (std::uint32_t k = faces.face_offsets[f]; k < faces.face_offsets[f + 1]; ++k) {
+    const std::uint32_t begin = faces.face_offsets[f];
+    const std::uint32_t end = faces.face_offsets[f + 1];
+    for (std::uint32_t k = begin; k < end; ++k) {
       const std::uint32_t index = faces.indices[k];
       if (index >= positions.size()) {
-        return invalidArgument(where + " uses vertex " + std::to_string(index + 1) + " of " +
+        return invalidArgument(where(f) + " uses vertex " + std::to_string(index + 1) + " of " +
                                std::to_string(positions.size()));
       }
       face.push_back(PolyMesh::VertexHandle(static_cast<int>(index)));
     }
-    if (face.size() < 3) return invalidArgument(where + " has fewer than 3 vertices");
-    std::vector<PolyMesh::VertexHandle> sorted = face;
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
-      return invalidArgument(where + " repeats a vertex");
+    if (face.size() < 3) return invalidArgument(where(f) + " has fewer than 3 vertices");
+    bool repeats = false;
+    if (face.size() <= 4) {
+      for (std::size_t i = 0; i < face.size() && !repeats; ++i) {
+        for (std::size_t j = i + 1; j < face.size(); ++j) repeats = repeats || face[i] == face[j];
+      }
+    } else {
+      sorted.assign(faces.indices.begin() + begin, faces.indices.begin() + end);
+      std::sort(sorted.begin(), sorted.end());
+      repeats = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
     }
+    if (repeats) return invalidArgument(where(f) + " repeats a vertex");
     if (!mesh.add_face(face).is_valid()) {
-      return invalidArgument(where + " makes the mesh non-manifold (an edge or vertex shared by too many faces, "
-                                     "or inconsistent orientation)");
+      return invalidArgument(where(f) + " makes the mesh non-manifold (an edge or vertex shared by too many faces, "
+                                        "or inconsistent orientation)");
     }
   }
   return mesh;

@@ -26,9 +26,7 @@ bool isFinite(const glm::dvec3& p) {
 // MATH.md 4.2 test min|R_ii| > 1e-10 max|R_ii| reads off the diagonal and is rank revealing; with
 // unpivoted QR a dependent column can hide behind a moderately small R_ii instead of a near-zero one.
 // `what` describes the problem for the error message.
-Result<Eigen::MatrixXd> solveLeastSquares(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
-                                          const std::string& what) {
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+Status checkRank(const Eigen::ColPivHouseholderQR<Eigen::MatrixXd>& qr, const std::string& what) {
   const Eigen::VectorXd diag = qr.matrixR().diagonal().cwiseAbs();
   const double max_r = diag.maxCoeff();
   const double min_r = diag.minCoeff();
@@ -36,25 +34,31 @@ Result<Eigen::MatrixXd> solveLeastSquares(const Eigen::MatrixXd& a, const Eigen:
     return illPosed(what + ": rank deficient (min|R_ii| = " + std::to_string(min_r) +
                     ", max|R_ii| = " + std::to_string(max_r) + ")");
   }
-  return Eigen::MatrixXd(qr.solve(b));
+  return okStatus();
 }
 
-Status validateFitInput(std::span<const double> v, std::span<const glm::dvec3> values, int modes,
-                        bool closed) {
+// The checks on N, the parameters and the sample count (`samples` values).
+Status validateParameters(std::span<const double> v, std::size_t samples, int modes, bool closed) {
   if (modes < 1 || modes > kMaxFourierModes) {
     return outOfRange("Fourier mode count N = " + std::to_string(modes) + " outside [1, " +
                       std::to_string(kMaxFourierModes) + "]");
   }
-  if (v.size() != values.size()) {
+  if (v.size() != samples) {
     return invalidArgument("parameter count " + std::to_string(v.size()) +
-                           " differs from sample count " + std::to_string(values.size()));
+                           " differs from sample count " + std::to_string(samples));
   }
   const std::size_t min_samples = closed ? 1 : 2;  // open curves need both end points
-  if (values.size() < min_samples) {
+  if (samples < min_samples) {
     return invalidArgument(std::string(closed ? "closed" : "open") + " curve with " +
-                           std::to_string(values.size()) + " samples: need at least " +
+                           std::to_string(samples) + " samples: need at least " +
                            std::to_string(min_samples));
   }
+  return okStatus();
+}
+
+Status validateFitInput(std::span<const double> v, std::span<const glm::dvec3> values, int modes,
+                        bool closed) {
+  ODESKIN_TRY(validateParameters(v, values.size(), modes, closed));
   for (std::size_t j = 0; j < values.size(); ++j) {
     if (!std::isfinite(v[j]) || !isFinite(values[j])) {
       return invalidArgument("non-finite parameter or sample at index " + std::to_string(j));
@@ -74,79 +78,100 @@ double residualSumOfSquares(const Eigen::MatrixXd& a, const Eigen::MatrixXd& x, 
   return (a * x - b).squaredNorm();
 }
 
-// MATH.md 4.2: closed curves fit all samples with the full 2N+1 basis.
-Result<FourierFit> fitClosed(std::span<const double> v, std::span<const glm::dvec3> values, int modes) {
-  const auto rows = static_cast<Eigen::Index>(values.size());
-  const Eigen::Index cols = 2 * modes + 1;
-  const std::string what = "closed curve with " + std::to_string(rows) + " samples cannot determine " +
-                           std::to_string(cols) + " coefficients (N=" + std::to_string(modes) + ")";
-  // J < 2N+1 is rank deficient by counting; say so before QR (which also wants rows >= cols).
-  if (rows < cols) return illPosed(what + ": rank deficient (too few samples)");
-  Eigen::MatrixXd a(rows, cols);
-  Eigen::MatrixXd b(rows, 3);
-  std::vector<double> phi(static_cast<std::size_t>(cols));
-  for (Eigen::Index j = 0; j < rows; ++j) {
-    const auto uj = static_cast<std::size_t>(j);
-    fourierBasis(v[uj], modes, phi);
-    for (Eigen::Index m = 0; m < cols; ++m) a(j, m) = phi[static_cast<std::size_t>(m)];
-    for (int k = 0; k < 3; ++k) b(j, k) = values[uj][k];
+}  // namespace
+
+// MATH.md 4.2: closed curves fit all samples with the full 2N+1 basis. MATH.md 4.3 (erratum G9),
+// open curves: C(v) = P_0 + (P_J - P_0) v + sum_n [a_n (cos 2 pi n v - 1) + b_n sin 2 pi n v]; every
+// correction term vanishes at v = 0 and v = 1, so the ends are exact, and a_n, b_n (2N unknowns)
+// come from least squares over the interior samples j = 1..J-1.
+struct FourierFitter::Design {
+  Eigen::MatrixXd a;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
+};
+
+Result<FourierFitter> FourierFitter::create(std::span<const double> v, int modes, bool closed) {
+  ODESKIN_TRY(validateParameters(v, v.size(), modes, closed));
+  for (std::size_t j = 0; j < v.size(); ++j) {
+    if (!std::isfinite(v[j])) return invalidArgument("non-finite parameter or sample at index " + std::to_string(j));
   }
-  ODESKIN_ASSIGN_OR_RETURN(const Eigen::MatrixXd c, solveLeastSquares(a, b, what));
+  if (!closed && (v.front() != 0.0 || v.back() != 1.0)) {
+    return invalidArgument("open curve parameters must start at 0 and end at 1 (got " +
+                           std::to_string(v.front()) + " and " + std::to_string(v.back()) + ")");
+  }
+  const Eigen::Index rows = closed ? static_cast<Eigen::Index>(v.size()) : static_cast<Eigen::Index>(v.size()) - 2;
+  const Eigen::Index cols = closed ? 2 * modes + 1 : 2 * modes;
+  const std::string what =
+      closed ? "closed curve with " + std::to_string(rows) + " samples cannot determine " + std::to_string(cols) +
+                   " coefficients (N=" + std::to_string(modes) + ")"
+             : "open curve with " + std::to_string(rows) + " interior samples cannot determine " +
+                   std::to_string(cols) + " coefficients (N=" + std::to_string(modes) + ")";
+  // Too few samples is rank deficient by counting; say so before QR (which also wants rows >= cols).
+  if (rows < cols) return illPosed(what + ": rank deficient (too few samples)");
+  auto design = std::make_shared<Design>();
+  design->a.resize(rows, cols);
+  std::vector<double> phi(static_cast<std::size_t>(2 * modes + 1));
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const auto j = static_cast<std::size_t>(r) + (closed ? 0 : 1);
+    fourierBasis(v[j], modes, phi);
+    if (closed) {
+      for (Eigen::Index m = 0; m < cols; ++m) design->a(r, m) = phi[static_cast<std::size_t>(m)];
+    } else {
+      for (int n = 1; n <= modes; ++n) {
+        design->a(r, 2 * n - 2) = phi[static_cast<std::size_t>(2 * n - 1)] - 1.0;
+        design->a(r, 2 * n - 1) = phi[static_cast<std::size_t>(2 * n)];
+      }
+    }
+  }
+  design->qr.compute(design->a);
+  ODESKIN_TRY(checkRank(design->qr, what));
+  FourierFitter fitter;
+  fitter.v_.assign(v.begin(), v.end());
+  fitter.modes_ = modes;
+  fitter.closed_ = closed;
+  fitter.design_ = std::move(design);
+  return fitter;
+}
+
+Result<FourierFit> FourierFitter::fit(std::span<const glm::dvec3> values) const {
+  ODESKIN_TRY(validateFitInput(v_, values, modes_, closed_));
+  const Eigen::MatrixXd& a = design_->a;
+  const Eigen::Index rows = a.rows();
+  const Eigen::Index cols = a.cols();
   FourierFit fit;
-  fit.modes = modes;
-  fit.closed = true;
-  fit.coefficients.resize(static_cast<std::size_t>(cols));
-  for (Eigen::Index m = 0; m < cols; ++m) {
-    fit.coefficients[static_cast<std::size_t>(m)] = glm::dvec3(c(m, 0), c(m, 1), c(m, 2));
+  fit.modes = modes_;
+  fit.closed = closed_;
+  Eigen::MatrixXd b(rows, 3);
+  if (closed_) {
+    for (Eigen::Index j = 0; j < rows; ++j) {
+      for (int k = 0; k < 3; ++k) b(j, k) = values[static_cast<std::size_t>(j)][k];
+    }
+  } else {
+    fit.p0 = values.front();
+    fit.slope = values.back() - fit.p0;
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      const auto j = static_cast<std::size_t>(r) + 1;
+      const glm::dvec3 detrended = values[j] - (fit.p0 + fit.slope * v_[j]);
+      for (int k = 0; k < 3; ++k) b(r, k) = detrended[k];
+    }
+  }
+  const Eigen::MatrixXd c(design_->qr.solve(b));
+  if (closed_) {
+    fit.coefficients.resize(static_cast<std::size_t>(cols));
+    for (Eigen::Index m = 0; m < cols; ++m) {
+      fit.coefficients[static_cast<std::size_t>(m)] = glm::dvec3(c(m, 0), c(m, 1), c(m, 2));
+    }
+  } else {
+    // Layout of MATH.md 4.3: c_{2n-1} = a_n, c_{2n} = b_n, c_0 = -sum_n a_n.
+    fit.coefficients.assign(static_cast<std::size_t>(cols) + 1, glm::dvec3(0.0));
+    for (Eigen::Index m = 0; m < cols; ++m) {
+      const glm::dvec3 cm(c(m, 0), c(m, 1), c(m, 2));
+      fit.coefficients[static_cast<std::size_t>(m) + 1] = cm;
+      if (m % 2 == 0) fit.coefficients[0] -= cm;
+    }
   }
   fit.rss = residualSumOfSquares(a, c, b);
   return fit;
 }
-
-// MATH.md 4.3 (erratum G9): C(v) = P_0 + (P_J - P_0) v + sum_n [a_n (cos 2 pi n v - 1) + b_n sin 2 pi n v].
-// Every correction term vanishes at v = 0 and v = 1, so the ends are exact; a_n, b_n (2N unknowns)
-// come from least squares over the interior samples j = 1..J-1.
-Result<FourierFit> fitOpen(std::span<const double> v, std::span<const glm::dvec3> values, int modes) {
-  const std::size_t last = values.size() - 1;
-  const auto rows = static_cast<Eigen::Index>(last) - 1;
-  const Eigen::Index cols = 2 * modes;
-  const std::string what = "open curve with " + std::to_string(rows) +
-                           " interior samples cannot determine " + std::to_string(cols) +
-                           " coefficients (N=" + std::to_string(modes) + ")";
-  if (rows < cols) return illPosed(what + ": rank deficient (too few samples)");
-  const glm::dvec3 p0 = values.front();
-  const glm::dvec3 slope = values[last] - p0;
-  Eigen::MatrixXd a(rows, cols);
-  Eigen::MatrixXd b(rows, 3);
-  std::vector<double> phi(static_cast<std::size_t>(cols) + 1);
-  for (Eigen::Index r = 0; r < rows; ++r) {
-    const auto j = static_cast<std::size_t>(r) + 1;
-    fourierBasis(v[j], modes, phi);
-    for (int n = 1; n <= modes; ++n) {
-      a(r, 2 * n - 2) = phi[static_cast<std::size_t>(2 * n - 1)] - 1.0;
-      a(r, 2 * n - 1) = phi[static_cast<std::size_t>(2 * n)];
-    }
-    const glm::dvec3 detrended = values[j] - (p0 + slope * v[j]);
-    for (int k = 0; k < 3; ++k) b(r, k) = detrended[k];
-  }
-  ODESKIN_ASSIGN_OR_RETURN(const Eigen::MatrixXd ab, solveLeastSquares(a, b, what));
-  FourierFit fit;
-  fit.modes = modes;
-  fit.closed = false;
-  fit.p0 = p0;
-  fit.slope = slope;
-  // Layout of MATH.md 4.3: c_{2n-1} = a_n, c_{2n} = b_n, c_0 = -sum_n a_n.
-  fit.coefficients.assign(static_cast<std::size_t>(cols) + 1, glm::dvec3(0.0));
-  for (Eigen::Index m = 0; m < cols; ++m) {
-    const glm::dvec3 cm(ab(m, 0), ab(m, 1), ab(m, 2));
-    fit.coefficients[static_cast<std::size_t>(m) + 1] = cm;
-    if (m % 2 == 0) fit.coefficients[0] -= cm;
-  }
-  fit.rss = residualSumOfSquares(a, ab, b);
-  return fit;
-}
-
-}  // namespace
 
 Result<std::vector<double>> arcLengthParameters(std::span<const glm::dvec3> points, bool closed) {
   if (points.size() < 2) {
@@ -207,7 +232,8 @@ glm::dvec3 FourierFit::evaluate(double v) const {
 Result<FourierFit> fitFourier(std::span<const double> v, std::span<const glm::dvec3> values, int modes,
                               bool closed) {
   ODESKIN_TRY(validateFitInput(v, values, modes, closed));
-  return closed ? fitClosed(v, values, modes) : fitOpen(v, values, modes);
+  ODESKIN_ASSIGN_OR_RETURN(const FourierFitter fitter, FourierFitter::create(v, modes, closed));
+  return fitter.fit(values);
 }
 
 }  // namespace odeskin

@@ -4,6 +4,7 @@
 // phi_{2n} = sin(2 pi n v), n = 1..N.
 #pragma once
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -46,5 +47,28 @@ struct FourierFit {
 // e.g. fewer than 2N+1 samples, or the uniform J = 2N Nyquist case).
 Result<FourierFit> fitFourier(std::span<const double> v, std::span<const glm::dvec3> values, int modes,
                               bool closed);
+
+// fitFourier split in two for many value sets on the same parameters (one curve, every segment of a
+// fit): the design matrix depends on v alone, so it is factorised once. fit(values) returns what
+// fitFourier(v, values, modes, closed) returns, bit for bit.
+class FourierFitter {
+ public:
+  // The checks of fitFourier that concern v, N and the sample count, then the factorisation.
+  // Errors: as fitFourier's, except those about `values`.
+  static Result<FourierFitter> create(std::span<const double> v, int modes, bool closed);
+  // `values`: one per parameter. kInvalidArgument for a size mismatch or a non-finite value.
+  Result<FourierFit> fit(std::span<const glm::dvec3> values) const;
+
+  int modes() const { return modes_; }
+  bool closed() const { return closed_; }
+
+ private:
+  struct Design;
+  FourierFitter() = default;
+  std::vector<double> v_;
+  int modes_ = 0;
+  bool closed_ = true;
+  std::shared_ptr<const Design> design_;  // the factorised matrix (shared: copies are cheap)
+};
 
 }  // namespace odeskin

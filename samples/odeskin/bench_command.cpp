@@ -136,6 +136,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchCommandOptions& o) {
   cmd->add_option("--json", o.json, "Write the records here (JSON)")->required();
   cmd->add_option("--csv", o.csv, "Also write the records as CSV");
   cmd->add_option("--plot", o.plot, "Also draw vertices/s against vertices (PNG)");
+  cmd->add_option("--fit-plot", o.fit_plot, "Also draw the fitting stages' time against vertices (PNG)");
   cmd->add_option("--data", o.data, "The shared data folder with cat-poses and horse-gallop");
   cmd->add_option("--sizes", o.sizes, "Vertex counts (default 1e3,1e4,32185,1e5,1e6,4e6)")->delimiter(',');
   cmd->add_option("--terms", o.terms, "Fourier terms N (default 3,5,9,17)")->delimiter(',');
@@ -167,7 +168,7 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
     return reportError(console, m.rfind("bench: ", 0) == 0 ? m : "bench: " + m, kExitFailure);
   };
   // Minutes of timing must not end in an unwritable path: check the folders before any work.
-  for (const std::filesystem::path& path : {o.json, o.csv, o.plot}) {
+  for (const std::filesystem::path& path : {o.json, o.csv, o.plot, o.fit_plot}) {
     const std::filesystem::path parent = path.parent_path();
     if (path.empty() || parent.empty()) continue;
     std::error_code ec;
@@ -239,6 +240,9 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
   }
   if (!o.plot.empty()) {
     if (Status s = bench::writePlot(o.plot, report); !s.ok()) return fail(s);
+  }
+  if (!o.fit_plot.empty()) {
+    if (Status s = bench::writeFitPlot(o.fit_plot, report); !s.ok()) return fail(s);
   }
   if (!console.quiet) {
     console.out << "device: " << report.device << "\nmachine: " << report.cpu << ", " << report.hardware_threads

@@ -23,6 +23,7 @@ struct BenchCommandOptions {
   std::filesystem::path json;             // required
   std::filesystem::path csv;              // optional
   std::filesystem::path plot;             // optional PNG
+  std::filesystem::path fit_plot;         // optional PNG: fitting stages against vertices
   std::filesystem::path data = "../shared/data";  // cat-poses, horse-gallop (absent: procedural arm, no fit table)
   std::vector<std::size_t> sizes;         // empty: the default for quick or full
   std::vector<int> terms;                 // empty: the default for quick or full

@@ -169,6 +169,36 @@ TEST(BenchPlot, WritesAPngAndRefusesAnEmptyReport) {
   fs::remove_all(dir);
 }
 
+TEST(BenchPlot, FitPlotDrawsTheSubdividedSeriesOnly) {
+  const fs::path dir = fs::temp_directory_path() / ("odeskin_fit_plot_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  BenchReport report;
+  report.cpu = "test cpu";
+  FitStageRecord other;
+  other.dataset = "cat-poses 00-01";
+  other.vertices = 7207;
+  other.curve_identification = 0.01;
+  report.fit_stages.push_back(other);
+  EXPECT_EQ(writeFitPlot(dir / "none.png", report).code(), StatusCode::kInvalidArgument);  // no scaling series
+  EXPECT_FALSE(fs::exists(dir / "none.png"));
+  for (int level = 0; level < 3; ++level) {
+    FitStageRecord f;
+    f.dataset = "cat-poses 00-01, given rig, subdivided x" + std::to_string(level);
+    f.vertices = 7207u << (2 * level);
+    f.curve_identification = 0.005 * (1 << (2 * level));
+    f.geometric_transform = 0.0005 * (1 << (2 * level));
+    f.fourier_and_deformation = 0.002 * (1 << (2 * level));
+    f.analytic_solve = 0.001 * (1 << (2 * level));
+    report.fit_stages.push_back(f);
+  }
+  ASSERT_TRUE(writeFitPlot(dir / "fit.png", report).ok());
+  std::ifstream in(dir / "fit.png", std::ios::binary);
+  char signature[8] = {};
+  in.read(signature, 8);
+  EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+  fs::remove_all(dir);
+}
+
 class DeformCases : public testing::GpuTest {};
 
 TEST_F(DeformCases, VerifiesAndTimesEveryBackendAndKernel) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -381,6 +382,59 @@ TEST(FourierFitInvalid, RankDeficiency) {
     nyquist_points.push_back(wobblyCurve(nyquist.back()));
   }
   EXPECT_EQ(fitFourier(nyquist, nyquist_points, 2, true).status().code(), StatusCode::kIllPosed);
+}
+
+TEST(FourierFitter, FitsAsFitFourierDoesToTheBit) {
+  // One factorisation, many value sets: every fit equals fitFourier's, coefficient for coefficient.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const bool closed : {true, false}) {
+    for (const int samples : {12, 40, 97}) {
+      std::vector<double> v(static_cast<std::size_t>(samples));
+      double sum = 0.0;
+      for (double& x : v) {
+        sum += 0.2 + 0.5 * (unit(rng) + 1.0);
+        x = sum;
+      }
+      for (double& x : v) x = (x - v.front()) / (closed ? sum - v.front() + 0.3 : sum - v.front());
+      if (!closed) v.back() = 1.0;
+      for (const int modes : {1, 3, 5, 9}) {
+        Result<FourierFitter> fitter = FourierFitter::create(v, modes, closed);
+        const bool determined = (closed ? samples : samples - 2) >= (closed ? 2 * modes + 1 : 2 * modes);
+        ASSERT_EQ(fitter.ok(), determined) << samples << " samples, N = " << modes;
+        for (int set = 0; set < 3; ++set) {
+          std::vector<glm::dvec3> values(v.size());
+          for (glm::dvec3& p : values) p = glm::dvec3(unit(rng), unit(rng), unit(rng));
+          const Result<FourierFit> direct = fitFourier(v, values, modes, closed);
+          ASSERT_EQ(direct.ok(), determined);
+          if (!determined) {
+            EXPECT_EQ(direct.status().message(), fitter.status().message());
+            continue;
+          }
+          const Result<FourierFit> reused = fitter->fit(values);
+          ASSERT_TRUE(reused.ok());
+          EXPECT_EQ(reused->coefficients, direct->coefficients);
+          EXPECT_EQ(reused->p0, direct->p0);
+          EXPECT_EQ(reused->slope, direct->slope);
+          EXPECT_EQ(reused->rss, direct->rss);
+        }
+      }
+    }
+  }
+}
+
+TEST(FourierFitter, RejectsBadInputLikeFitFourier) {
+  const std::vector<double> v = {0.0, 0.2, 0.4, 0.6, 0.8};
+  EXPECT_EQ(FourierFitter::create(v, 0, true).status().code(), StatusCode::kOutOfRange);
+  EXPECT_EQ(FourierFitter::create(v, 3, true).status().code(), StatusCode::kIllPosed);
+  EXPECT_EQ(FourierFitter::create(v, 2, false).status().code(), StatusCode::kInvalidArgument);  // v ends below 1
+  Result<FourierFitter> fitter = FourierFitter::create(v, 2, true);
+  ASSERT_TRUE(fitter.ok());
+  std::vector<glm::dvec3> values(5, glm::dvec3(1.0));
+  values[3].y = std::nan("");
+  EXPECT_EQ(fitter->fit(values).status().message(), fitFourier(v, values, 2, true).status().message());
+  values.pop_back();
+  EXPECT_EQ(fitter->fit(values).status().code(), StatusCode::kInvalidArgument);
 }
 
 }  // namespace

@@ -249,5 +249,62 @@ TEST(ResidualFit, RejectsMismatchedInput) {
   EXPECT_EQ(fitDeformAsset(arm->fit_input, resonant).status().code(), StatusCode::kIllPosed);
 }
 
+// Four keys (rest, bent 100 degrees, bent 50, rest) of the arm: three segments, rates carried.
+FitInput fourKeyArm() {
+  ArmOptions half;
+  half.bend_degrees = 50.0;
+  Result<ProceduralArm> full = makeProceduralArm(ArmOptions{});
+  Result<ProceduralArm> partial = makeProceduralArm(half);
+  EXPECT_TRUE(full.ok() && partial.ok());
+  FitInput in = full->fit_input;
+  in.poses = {full->start_positions, full->end_positions, partial->end_positions, full->start_positions};
+  in.key_poses = {full->fit_input.key_poses[0], full->fit_input.key_poses[1], partial->fit_input.key_poses[1],
+                  full->fit_input.key_poses[0]};
+  return in;
+}
+
+TEST(ResidualFit, KeyErrorsAreTheReferenceKernelsToTheBit) {
+  // The fit plays its keys back with the reference kernel's arithmetic, each vertex's harmonics
+  // computed once for its curves and both frames of a key: the same numbers as playing every
+  // frame with FourierDeformJob (DeformPlayer::play).
+  const FitInput in = fourKeyArm();
+  for (const SkinningMode skinning : {SkinningMode::kLinear, SkinningMode::kDualQuaternion}) {
+    for (const ResidualSpace space : {ResidualSpace::kBind, ResidualSpace::kPosed}) {
+      for (const bool pure : {false, true}) {
+        FitOptions opt;
+        opt.skinning = skinning;
+        opt.residual_space = space;
+        opt.pure_fourier = pure;
+        opt.modes = 5;
+        opt.materials = {skinMaterial(), Material{1.0, 4.0, 30.0, 0.0}};
+        opt.curve_materials.assign(in.curves.size(), 0);
+        for (std::size_t c = 0; c < in.curves.size(); c += 3) opt.curve_materials[c] = 1;
+        FitReport report;
+        Result<DeformAsset> asset = fitDeformAsset(in, opt, &report);
+        ASSERT_TRUE(asset.ok()) << asset.status().toString();
+        asset->skinning = skinning;
+        Result<DeformPlayer> player = DeformPlayer::create(*asset);
+        ASSERT_TRUE(player.ok());
+        ASSERT_EQ(report.key_error.size(), 4u);
+        bool rates = false;
+        for (const Vec3& r : asset->segments[2].rates) rates = rates || glm::length(r) > 0.0;
+        EXPECT_TRUE(rates);
+        std::vector<Vec3> out(asset->vertexCount());
+        for (std::size_t k = 0; k < 4; ++k) {
+          double worst = 0.0;
+          for (int side = 0; side < 2; ++side) {
+            if ((side == 0 && k == 3) || (side == 1 && k == 0)) continue;
+            const auto segment = static_cast<std::uint32_t>(side == 0 ? k : k - 1);
+            ASSERT_TRUE(player->play(*asset, segment, side == 0 ? 0.0 : 1.0, out).ok());
+            worst = std::max(worst, maxDistance(out, in.poses[k]));
+          }
+          EXPECT_EQ(report.key_error[k], worst / longestBoxSide(in.poses[k]))
+              << "key " << k << ", skinning " << static_cast<int>(skinning) << ", space " << static_cast<int>(space);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace odeskin
