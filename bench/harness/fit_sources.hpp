@@ -29,6 +29,11 @@ Result<FitSources> fitSources(const std::filesystem::path& data_dir, std::span<c
 struct FitStageOptions {
   bool quick = false;       // quick: the cat with 2 poses, and one subdivision level
   int max_subdivisions = 4;  // the cat's 7,207 vertices x ~4 per level: 4 levels reach 1.8 million
+  // Fits of meshes below `repeat_below_vertices` run `repeats` times and keep each stage's fastest
+  // time (and the fastest total): milliseconds on a shared machine swing with its other load.
+  // Not in a quick run.
+  int repeats = 3;
+  std::size_t repeat_below_vertices = 200000;
   std::function<void(const std::string&)> progress;
 };
 

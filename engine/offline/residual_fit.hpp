@@ -52,8 +52,9 @@ struct FitReport {
   double max_series_error = 0.0;      // worst |eps| before remainders, / longest box side
   double rms_series_error = 0.0;      // root mean square |eps| over all vertices and segments, / box side
   std::size_t reduced_curves = 0;     // (segment, curve) fits that used fewer than N modes
-  // Seconds per stage (thesis Table 6.3): skinning the bind mesh at every key and the bind-space
-  // residuals; Fourier fits and remainders; time bases, rate chaining and playing every key back.
+  // Seconds per stage (thesis Table 6.3): conditioning the blended linear parts, skinning the bind
+  // mesh at every key and the bind-space residuals; Fourier fits and remainders; time bases, rate
+  // chaining and playing every key back.
   double seconds_geometric = 0.0;
   double seconds_fourier = 0.0;
   double seconds_solve = 0.0;

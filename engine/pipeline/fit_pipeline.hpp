@@ -36,7 +36,8 @@ struct PipelineOptions {
 struct StageTimings {
   double rig = 0.0;                  // bones, weights and key transforms (given, Kabsch, or automatic)
   double curve_identification = 0.0; // parts, plane cuts, bindings
-  double geometric_transform = 0.0;  // LBS of the bind mesh at every key and the bind-space residuals
+  double geometric_transform = 0.0;  // the blended linear parts at every key (conditioning), LBS of the
+                                     // bind mesh at every key and the bind-space residuals
   double fourier_and_deformation = 0.0;  // per-curve Fourier fits and remainders for every segment
   double analytic_solve = 0.0;       // time bases, rate chaining, and playing every key with the skin deformer
   double total = 0.0;
