@@ -262,13 +262,15 @@ class SeedCache {
       if (c == curve) return j;
     }
     next_ = (next_ + 1) % kSlots;
-    slots_[next_] = {curve, std::numeric_limits<std::uint32_t>::max()};
+    slots_[next_] = {curve, kNone};
     return slots_[next_].second;
   }
 
  private:
   static constexpr std::size_t kSlots = 8;
-  std::pair<std::uint32_t, std::uint32_t> slots_[kSlots] = {};
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::pair<std::uint32_t, std::uint32_t> slots_[kSlots] = {{kNone, kNone}, {kNone, kNone}, {kNone, kNone}, {kNone, kNone},
+                                                           {kNone, kNone}, {kNone, kNone}, {kNone, kNone}, {kNone, kNone}};
   std::size_t next_ = 0;
 };
 
