@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <glm/geometric.hpp>
+#include "../core/disjoint_sets.hpp"
 
 namespace odeskin {
 namespace {
@@ -14,20 +15,6 @@ namespace {
 // A seam's plane is the bisector of its two parts' axes when that is within 25 degrees of the
 // plane fitted to the seam.
 constexpr double kBisectorCos = 0.906;
-
-struct DisjointSets {
-  std::vector<std::uint32_t> parent;
-  explicit DisjointSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);

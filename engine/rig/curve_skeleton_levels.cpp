@@ -8,23 +8,10 @@
 #include <functional>
 
 #include <glm/geometric.hpp>
+#include "../core/disjoint_sets.hpp"
 
 namespace odeskin {
 namespace {
-
-struct DisjointSets {
-  std::vector<std::uint32_t> parent;
-  explicit DisjointSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // The slab of a value (values are >= 0 and finite here).
 std::uint32_t slabOf(double value, double spacing) { return static_cast<std::uint32_t>(std::floor(value / spacing)); }
