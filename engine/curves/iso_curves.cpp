@@ -67,19 +67,6 @@ Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const Skele
   return okStatus();
 }
 
-double meanEdgeLength(std::span<const Vec3> rest, const VertexAdjacency& adjacency) {
-  double sum = 0.0;
-  std::size_t edges = 0;
-  for (std::uint32_t i = 0; i < rest.size(); ++i) {
-    for (std::uint32_t j : adjacency.of(i)) {
-      if (j <= i) continue;
-      sum += glm::length(rest[j] - rest[i]);
-      ++edges;
-    }
-  }
-  return edges > 0 ? sum / static_cast<double>(edges) : 0.0;
-}
-
 }  // namespace
 
 Result<CurveSet> buildIsoCurves(std::span<const Vec3> rest, const FaceList& faces, const Skeleton& skeleton,

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include <glm/geometric.hpp>
+
 namespace odeskin {
 
 VertexAdjacency vertexAdjacency(const FaceList& faces, std::size_t vertex_count) {
@@ -42,6 +44,19 @@ VertexAdjacency vertexAdjacency(const FaceList& faces, std::size_t vertex_count)
   all.resize(out);
   adjacency.neighbours = std::move(all);
   return adjacency;
+}
+
+double meanEdgeLength(std::span<const Vec3> positions, const VertexAdjacency& adjacency) {
+  double sum = 0.0;
+  std::size_t edges = 0;
+  for (std::uint32_t i = 0; i < positions.size(); ++i) {
+    for (std::uint32_t j : adjacency.of(i)) {
+      if (j <= i) continue;
+      sum += glm::length(positions[j] - positions[i]);
+      ++edges;
+    }
+  }
+  return edges > 0 ? sum / static_cast<double>(edges) : 0.0;
 }
 
 }  // namespace odeskin

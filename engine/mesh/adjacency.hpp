@@ -22,4 +22,8 @@ struct VertexAdjacency {
 // Vertices joined by a face edge; face indices must be < vertex_count (checked by the readers).
 VertexAdjacency vertexAdjacency(const FaceList& faces, std::size_t vertex_count);
 
+// Mean length of the mesh's edges (each counted once) at `positions`; 0 without edges. The curve
+// spacing of iso-curve identification is a multiple of it.
+double meanEdgeLength(std::span<const Vec3> positions, const VertexAdjacency& adjacency);
+
 }  // namespace odeskin

@@ -75,19 +75,6 @@ const std::vector<Rigged>& datasets() {
   return all;
 }
 
-double meanEdge(std::span<const Vec3> rest, const VertexAdjacency& adjacency) {
-  double sum = 0.0;
-  std::size_t edges = 0;
-  for (std::uint32_t i = 0; i < rest.size(); ++i) {
-    for (std::uint32_t j : adjacency.of(i)) {
-      if (j <= i) continue;
-      sum += glm::length(rest[j] - rest[i]);
-      ++edges;
-    }
-  }
-  return sum / static_cast<double>(edges);
-}
-
 void expectSameLayout(const CurveLayout& a, const CurveLayout& b, const std::string& what) {
   ASSERT_EQ(a.curves.size(), b.curves.size()) << what;
   for (std::size_t c = 0; c < a.curves.size(); ++c) {
@@ -117,7 +104,7 @@ TEST(CurveSearch, PlaneCutsAndBindingsMatchTheScans) {
     SCOPED_TRACE(d.name);
     ASSERT_TRUE(isSimpleManifold(d.faces, d.rest.size()));
     const VertexAdjacency adjacency = vertexAdjacency(d.faces, d.rest.size());
-    const double spacing = 3.0 * meanEdge(d.rest, adjacency);
+    const double spacing = 3.0 * meanEdgeLength(d.rest, adjacency);
     const Segmentation seg = segmentParts(d.rest, adjacency, d.skeleton, d.influences, 16, 4);
     const CutMesh mesh = buildCutMesh(d.faces, d.rest.size());
     // Every region with a tree from the start, none with one, and the default (after a few cuts).
