@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "median_split.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -109,16 +111,7 @@ std::uint32_t CutRegion::build(std::span<const Vec3> lo, std::span<const Vec3> h
     return index;
   }
   // Median split along the widest spread of the triangles' centres; boxes from the children up.
-  Vec3 c_lo(std::numeric_limits<double>::infinity()), c_hi(-std::numeric_limits<double>::infinity());
-  for (std::uint32_t k = first; k < last; ++k) {
-    c_lo = glm::min(c_lo, centre[order_[k]]);
-    c_hi = glm::max(c_hi, centre[order_[k]]);
-  }
-  const Vec3 spread = c_hi - c_lo;
-  const int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
-  const std::uint32_t middle = first + (last - first) / 2;
-  std::nth_element(order_.begin() + first, order_.begin() + middle, order_.begin() + last,
-                   [&](std::uint32_t a, std::uint32_t b) { return centre[a][axis] < centre[b][axis]; });
+  const std::uint32_t middle = splitAtMedian(order_, centre, first, last);
   const std::uint32_t left = build(lo, hi, centre, first, middle);
   const std::uint32_t right = build(lo, hi, centre, middle, last);
   nodes_[index].lo = glm::min(nodes_[left].lo, nodes_[right].lo);

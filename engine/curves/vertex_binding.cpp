@@ -13,6 +13,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "median_split.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -539,16 +541,7 @@ std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexA
         if (last > first) clusters.push_back({p, first, last, false});
         continue;
       }
-      Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-      for (std::uint32_t k = first; k < last; ++k) {
-        lo = glm::min(lo, rest[verts[k]]);
-        hi = glm::max(hi, rest[verts[k]]);
-      }
-      const Vec3 spread = hi - lo;
-      const int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
-      const std::uint32_t middle = first + (last - first) / 2;
-      std::nth_element(verts.begin() + first, verts.begin() + middle, verts.begin() + last,
-                       [&](std::uint32_t a, std::uint32_t b) { return rest[a][axis] < rest[b][axis]; });
+      const std::uint32_t middle = splitAtMedian(verts, rest, first, last);
       ranges.emplace_back(first, middle);
       ranges.emplace_back(middle, last);
     }
