@@ -183,6 +183,8 @@ Status checkInput(const CurveSkeleton& cs, const std::vector<std::vector<Vec3>>&
   return okStatus();
 }
 
+}  // namespace
+
 const char* reasonName(JointReason r) {
   switch (r) {
     case JointReason::kRoot: return "root";
@@ -194,8 +196,6 @@ const char* reasonName(JointReason r) {
   }
   return "joint";
 }
-
-}  // namespace
 
 Result<AnimationSkeleton> buildAnimationSkeleton(const CurveSkeleton& cs, const std::vector<std::vector<Vec3>>& poses,
                                                  const AnimationSkeletonOptions& o) {

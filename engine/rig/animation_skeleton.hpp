@@ -33,6 +33,9 @@ enum class JointReason : std::uint8_t {
   kTip,       // the free end of a branch
 };
 
+// The reason's lower-case name ("bend", "tip", ...): joint names and the rig command's summary.
+const char* reasonName(JointReason reason);
+
 struct AnimationSkeleton {
   std::vector<Vec3> joints;             // J, on the bind mesh
   std::vector<std::int32_t> parents;    // J: the parent joint (-1 for the root, joint 0)

@@ -13,6 +13,7 @@
 #include "engine/surfaces/cardinal_spline.hpp"
 #include "engine/surfaces/hermite_blend.hpp"
 #include "number_text.hpp"
+#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {
@@ -67,8 +68,7 @@ std::string usageProblem(const BlendCommandOptions& o, std::uint32_t& u, std::ui
   }
   if (const std::string problem = parseResolution(o.res, u, v); !problem.empty()) return problem;
   if (o.output.empty()) return "blend: -o OUT.obj is required";
-  std::string ext = o.output.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lowerExtension(o.output);
   if (ext != ".obj") return "blend: " + o.output.string() + ": unknown output format '" + ext + "' (expected .obj)";
   return {};
 }

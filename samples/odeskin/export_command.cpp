@@ -10,14 +10,14 @@
 #include "engine/io/asset_file.hpp"
 #include "number_text.hpp"
 #include "progress.hpp"
+#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {
 
 std::string usageProblem(const ExportCommandOptions& o) {
   if (o.output.empty()) return "export: -o OUT.glb is required";
-  std::string ext = o.output.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lowerExtension(o.output);
   if (ext == ".gltf") return "export: " + o.output.string() + ": write .glb (one self-contained binary file)";
   if (ext != ".glb") return "export: " + o.output.string() + ": unknown output format '" + ext + "' (expected .glb)";
   if (!(o.tolerance >= 1e-8 && o.tolerance <= 0.01)) {

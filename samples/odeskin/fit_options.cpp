@@ -7,18 +7,9 @@
 
 #include "engine/offline/fourier_fit.hpp"
 #include "material_options.hpp"
+#include "file_extension.hpp"
 
 namespace odeskin {
-namespace {
-
-std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
-}  // namespace
-
 std::string fitMaterialText(const FitCommandOptions& o) { return o.material.empty() ? "skin" : o.material; }
 
 FitInputKind fitInputKind(const FitCommandOptions& o, std::string* problem) {

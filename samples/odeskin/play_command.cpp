@@ -16,6 +16,7 @@
 #include "number_text.hpp"
 #include "progress.hpp"
 #include "render_session.hpp"
+#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {
@@ -24,12 +25,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr std::size_t kMaxFrames = 1000000;  // a typo like --fps 30000 --seconds 600 stops here
 constexpr std::size_t kMaxPatternWidth = 32;
-
-std::string lowerExtension(const std::string& name) {
-  std::string ext = std::filesystem::path(name).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 // The option checks that need no asset; empty when the options are usable.
 std::string usageProblem(const PlayOptions& o) {

@@ -17,6 +17,7 @@
 #include "engine/surfaces/mesh_network_pose.hpp"
 #include "engine/surfaces/network_json.hpp"
 #include "number_text.hpp"
+#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {
@@ -26,11 +27,6 @@ using Json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 // Comma-separated finite numbers, exactly `count` of them.
 bool parseNumbers(const std::string& text, std::size_t count, std::vector<double>& out) {
@@ -62,7 +58,7 @@ std::string usageProblem(const ReconstructCommandOptions& o, MeshNetworkOptions&
   if (o.mesh.empty()) return "reconstruct: MESH.obj is required";
   for (const auto& [flag, path, extension] : {std::tuple{"-o", &o.output, ".obj"}, std::tuple{"--network", &o.network, ".json"},
                                              std::tuple{"--json", &o.json, ".json"}}) {
-    if (!path->empty() && lower(path->extension().string()) != extension) {
+    if (!path->empty() && lowerExtension(*path) != extension) {
       return std::string("reconstruct: ") + flag + " " + path->string() + ": write " + extension;
     }
   }

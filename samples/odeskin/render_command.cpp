@@ -16,6 +16,7 @@
 #include "progress.hpp"
 #include "render_inputs.hpp"
 #include "render_session.hpp"
+#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {
@@ -33,9 +34,7 @@ std::string percentText(double fraction) {
 }
 
 bool hasPngExtension(const std::string& name) {
-  std::string ext = std::filesystem::path(name).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".png";
+  return lowerExtension(name) == ".png";
 }
 
 // Checks that need no file; empty when the options are usable.

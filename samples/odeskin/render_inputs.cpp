@@ -10,6 +10,7 @@
 #include "engine/io/asset_file.hpp"
 #include "engine/io/gltf_reader.hpp"
 #include "engine/io/obj_reader.hpp"
+#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {
@@ -55,8 +56,7 @@ Result<RenderInput> loadGltfInput(const std::filesystem::path& path, const Rende
 }  // namespace
 
 Result<RenderInputKind> renderInputKind(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lowerExtension(path);
   if (ext == ".obj") return RenderInputKind::kObj;
   if (ext == ".gltf" || ext == ".glb") return RenderInputKind::kGltf;
   if (ext == ".odsk") return RenderInputKind::kAsset;

@@ -19,15 +19,10 @@
 #include "engine/rig/skeleton_compare.hpp"
 #include "render_session.hpp"
 #include "rig_picture.hpp"
+#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {
-
-std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 std::string usageProblem(const RigCommandOptions& o) {
   if (o.meshes.empty()) return "rig: give the mesh (an OBJ file), optionally followed by example poses";
@@ -59,18 +54,6 @@ double fastest(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::mi
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-const char* reasonText(JointReason r) {
-  switch (r) {
-    case JointReason::kRoot: return "root";
-    case JointReason::kJunction: return "junction";
-    case JointReason::kSeam: return "seam";
-    case JointReason::kBend: return "bend";
-    case JointReason::kTemplate: return "template";
-    case JointReason::kTip: return "tip";
-  }
-  return "?";
 }
 
 }  // namespace
@@ -167,7 +150,7 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   for (const JointReason reason : r.animation.reasons) ++by_reason[static_cast<std::size_t>(reason)];
   out << "skeleton: " << r.rig.skeleton.boneCount() << " bones, " << r.animation.jointCount() << " joints (";
   for (std::size_t k = 0; k < 6; ++k) {
-    out << (k > 0 ? ", " : "") << by_reason[k] << " " << reasonText(static_cast<JointReason>(k));
+    out << (k > 0 ? ", " : "") << by_reason[k] << " " << reasonName(static_cast<JointReason>(k));
   }
   out << "); template " << templateKindName(r.animation.used) << ": " << r.animation.template_note << "\n";
   if (o.repeat > 1) {

@@ -13,14 +13,10 @@
 #include "engine/surfaces/tessellation_glb.hpp"
 #include "host/surface_tessellator.hpp"
 #include "number_text.hpp"
+#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 // "U,V" with integers >= 2.
 bool parseResolution(const std::string& text, TessellationResolution& r) {
@@ -68,7 +64,7 @@ bool parseShape(const std::string& text, Ode6Shape& shape) {
 
 std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution& r, Ode6Shape& shape) {
   if (o.output.empty()) return "surface: -o OUT.glb is required";
-  if (lower(o.output.extension().string()) != ".glb") {
+  if (lowerExtension(o.output) != ".glb") {
     return "surface: " + o.output.string() + ": write .glb (one self-contained glTF binary; add --obj for an OBJ too)";
   }
   if (!parseResolution(o.resolution, r)) {
