@@ -33,11 +33,13 @@
 #include "engine/kernels/lbs_job.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
+#include "bench/harness/numbered_paths.hpp"
 
 namespace {
 
 using namespace odeskin;
 namespace fs = std::filesystem;
+using odeskin::bench::numbered;
 using Clock = std::chrono::steady_clock;
 
 [[noreturn]] void fail(const std::string& what) {
@@ -73,16 +75,6 @@ struct Dataset {
   std::string name;
   std::vector<fs::path> keys;
 };
-
-std::vector<fs::path> numbered(const fs::path& dir, const char* pattern, std::initializer_list<int> numbers) {
-  std::vector<fs::path> paths;
-  char name[64];
-  for (int n : numbers) {
-    std::snprintf(name, sizeof(name), pattern, n);
-    paths.push_back(dir / name);
-  }
-  return paths;
-}
 
 struct Row {
   std::string name;

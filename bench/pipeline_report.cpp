@@ -16,26 +16,18 @@
 #include "engine/io/libigl_io.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
+#include "bench/harness/numbered_paths.hpp"
 
 namespace {
 
 using namespace odeskin;
 namespace fs = std::filesystem;
+using odeskin::bench::numbered;
 
 struct Dataset {
   std::string name;
   ExampleSet examples;
 };
-
-std::vector<fs::path> numbered(const fs::path& dir, const char* pattern, std::initializer_list<int> numbers) {
-  std::vector<fs::path> paths;
-  char name[64];
-  for (int n : numbers) {
-    std::snprintf(name, sizeof(name), pattern, n);
-    paths.push_back(dir / name);
-  }
-  return paths;
-}
 
 Result<std::vector<Dataset>> loadDatasets(const fs::path& data, bool quick, const std::string& only) {
   std::vector<Dataset> sets;

@@ -9,21 +9,12 @@
 #include "engine/offline/residual_fit.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "subdivided_examples.hpp"
+#include "numbered_paths.hpp"
 
 namespace odeskin::bench {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::vector<fs::path> numbered(const fs::path& dir, const char* pattern, std::initializer_list<int> numbers) {
-  std::vector<fs::path> paths;
-  for (int n : numbers) {
-    char name[64];
-    std::snprintf(name, sizeof name, pattern, n);
-    paths.push_back(dir / name);
-  }
-  return paths;
-}
 
 Result<PipelineResult> fit(const ExampleSet& examples, int modes) {
   PipelineOptions options;
