@@ -159,7 +159,7 @@ Result<Buffer> createStorageBuffer(const Device& device, std::span<const std::by
                        std::to_string(device.limits().maxStorageBufferRange) + " bytes) of " + device.name());
   }
   ODESKIN_ASSIGN_OR_RETURN(Buffer buffer,
-                           Buffer::create(device, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | extra_usage, use));
+                           Buffer::create(device, size, kShaderInputUsage | extra_usage, use));
   ODESKIN_TRY(buffer.upload(device, bytes));
   return buffer;
 }

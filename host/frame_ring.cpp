@@ -17,7 +17,7 @@ Result<FrameRing> FrameRing::create(const Device& device, const FrameRingDesc& d
   for (Slot& slot : ring.slots_) {
     // Host-visible and mapped for the slot's lifetime: per-frame writes are plain stores.
     if (desc.input_bytes > 0) {
-      ODESKIN_ASSIGN_OR_RETURN(slot.inputs, Buffer::create(device, desc.input_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+      ODESKIN_ASSIGN_OR_RETURN(slot.inputs, Buffer::create(device, desc.input_bytes, kShaderInputUsage,
                                                            MemoryUse::kHostVisible));
     }
     VkCommandBufferAllocateInfo alloc{};
