@@ -5,6 +5,7 @@
 // checks of a sampled frame (positions against the reference, bounds against the positions).
 #pragma once
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -171,6 +172,15 @@ inline double boundsMiss(const InstanceBounds& box, std::span<const gpu::Float4>
   }
   const glm::vec3 under = glm::abs(lo - box.min), over = glm::abs(hi - box.max);
   return std::max({under.x, under.y, under.z, over.x, over.y, over.z});
+}
+
+// CPU seconds of this process so far, every thread, user and system: on a shared machine the wall
+// time says more about the neighbours than about the test.
+inline double cpuSeconds() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
 }
 
 inline double mib(double bytes) { return bytes / (1024.0 * 1024.0); }

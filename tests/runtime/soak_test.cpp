@@ -65,6 +65,7 @@ TEST(Soak, CpuRuntimeTenThousandFramesOfAHundredInstances) {
   std::size_t resident_start = 0;
   testing::AllocationCount counted_start;
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = testing::cpuSeconds();
   auto steady = start;
   double check_seconds = 0.0, prepare_seconds = 0.0, deform_seconds = 0.0;
   for (std::uint64_t f = 0; f < config.frames; ++f) {
@@ -132,6 +133,7 @@ TEST(Soak, CpuRuntimeTenThousandFramesOfAHundredInstances) {
   const testing::AllocationCount counted_end = testing::allocationsSoFar();
   const double growth = testing::mib(static_cast<double>(resident_end) - static_cast<double>(resident_start));
   const std::uint64_t measured_frames = config.frames - config.warm_up;
+  std::printf("soak: %.1f CPU seconds (all threads) for the frames\n", testing::cpuSeconds() - cpu_start);
   std::printf("soak: %.1f s in all, %.3f ms per frame after warm-up (%.1f s of it in checks), %.1f M instance vertices/s\n",
               total, 1e3 * (measured - check_seconds) / static_cast<double>(measured_frames), check_seconds,
               static_cast<double>(measured_frames) * config.instances * static_cast<double>(v) / (measured - check_seconds) / 1e6);

@@ -113,6 +113,7 @@ TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
   std::uint64_t checks = 0, allocations_in_frames = 0, bytes_in_frames = 0;
   std::size_t resident_start = 0;
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = testing::cpuSeconds();
   auto steady = start;
   double check_seconds = 0.0;
   for (std::uint64_t f = 0; f < config.frames; ++f) {
@@ -178,6 +179,8 @@ TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
   const std::size_t resident_end = testing::residentBytes();
   const double growth = testing::mib(static_cast<double>(resident_end) - static_cast<double>(resident_start));
   const std::uint64_t measured_frames = config.frames - config.warm_up;
+  std::printf("vulkan soak: %.1f CPU seconds (all threads, lavapipe's included) for the frames\n",
+              testing::cpuSeconds() - cpu_start);
   std::printf("vulkan soak: %.1f s in all, %.2f ms per frame after warm-up (gpu %.2f ms), %.1f s in checks\n", total,
               1e3 * measured / static_cast<double>(measured_frames), 1e3 * gpu_seconds / static_cast<double>(measured_frames - 1),
               check_seconds);
