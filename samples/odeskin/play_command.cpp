@@ -237,7 +237,13 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   std::vector<std::vector<Vec3>> baked;
 
   Result<AssetPlayback> playback = AssetPlayback::create(asset, o.playback, console.quiet ? nullptr : &console.err);
-  if (!playback.ok()) return reportFailure(console, playback.status());
+  if (!playback.ok()) {
+    // A Vulkan failure speaks for itself; anything else is about the asset's content.
+    const StatusCode code = playback.status().code();
+    const bool device = code == StatusCode::kUnavailable || code == StatusCode::kDeviceError;
+    return reportError(console, "play: " + (device ? std::string() : o.asset.string() + ": ") + playback.status().message(),
+                       kExitFailure);
+  }
   // --png: the device is opened before anything is written, so a missing one fails early.
   std::optional<RenderSession> session;
   if (!o.png_dir.empty()) {
@@ -253,7 +259,9 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   double deform_seconds = 0.0;
   for (std::size_t f = 0; f < times.size(); ++f) {
     const Clock::time_point start = Clock::now();
-    if (Status s = playback->positionsAt(times[f], positions); !s.ok()) return reportFailure(console, s);
+    if (Status s = playback->positionsAt(times[f], positions); !s.ok()) {
+      return reportError(console, "play: " + s.message(), kExitFailure);
+    }
     deform_seconds += std::chrono::duration<double>(Clock::now() - start).count();
     if (!o.png_dir.empty()) addFramingPoints(positions, times.size(), framing);
     if (!write_meshes) {
@@ -293,7 +301,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   std::vector<std::filesystem::path> pictures;
   if (!o.png_dir.empty()) {
     if (Status s = playPictures(o, asset, *playback, *session, times, framing, console, pictures); !s.ok()) {
-      return reportFailure(console, s);
+      return reportError(console, "play: " + s.message(), kExitFailure);
     }
   }
 
