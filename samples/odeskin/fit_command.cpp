@@ -9,6 +9,7 @@
 #include "engine/io/gltf_reader.hpp"
 #include "engine/io/libigl_io.hpp"
 #include "engine/io/obj_reader.hpp"
+#include "engine/offline/time_basis.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "material_options.hpp"
 #include "number_text.hpp"
@@ -36,6 +37,16 @@ Result<ExampleSet> readExamples(const FitCommandOptions& o) {
       break;
   }
   return readObjSequence(o.inputs, o.bind.empty() ? nullptr : &o.bind);
+}
+
+// Every mode's time basis of `material` exists (not resonant, not degenerate), checked before the
+// poses are read so a bad --material fails at once and names where it came from (`where`).
+Status checkMaterialModes(const Material& material, int terms, const std::string& where) {
+  for (int n = 0; n <= terms; ++n) {
+    Result<ModeTimeBasis> basis = ModeTimeBasis::create(material, n);
+    if (!basis.ok()) return Status(basis.status().code(), where + ": " + basis.status().message());
+  }
+  return okStatus();
 }
 
 void printSummary(std::ostream& out, const FitCommandOptions& o, const ExampleSet& examples,
@@ -99,6 +110,20 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
     if (!choice.ok()) return reportFailure(console, choice.status());
     pipeline.material = choice->default_material;
     pipeline.part_materials = choice->parts;
+  }
+  const std::string material_source =
+      o.materials_json.empty() ? "--material '" + fitMaterialText(o) + "'" : o.materials_json.string();
+  if (Status s = checkMaterialModes(pipeline.material, o.terms, material_source); !s.ok()) {
+    return reportError(console, "fit: " + s.message(), kExitFailure);
+  }
+  // MATH.md 5.4: eta/rho < 0 is accepted (the vectors use it) but is not physical; say so once.
+  if (!console.quiet && ModeTimeBasis::create(pipeline.material, 0)->negativeDamping()) {
+    console.err << "warning: fit: " << material_source << ": eta/rho < 0 (negative damping): motion grows instead of settling\n";
+  }
+  for (const auto& [part, material] : pipeline.part_materials) {
+    if (Status s = checkMaterialModes(material, o.terms, material_source + ": part \"" + part + "\""); !s.ok()) {
+      return reportError(console, "fit: " + s.message(), kExitFailure);
+    }
   }
   pipeline.key_tolerance = o.key_tolerance;
   pipeline.pure_fourier = o.pure_fourier;
