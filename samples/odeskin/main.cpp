@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The odeskin command line: CLI11 wiring only; each verb lives in its own file. Exit status: 0
 // success; 1 bad input or runtime failure, with one line "odeskin: error: ..." on stderr; 2 usage error.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -402,8 +403,20 @@ int run(int argc, char** argv, std::string& verb) {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // One line like every other failure, pointing at the help of the verb that was being parsed.
+    std::string message = e.what();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+      message = "unknown command '" + std::string(argv[1]) + "'";
+    }
+    const std::string help = app.get_subcommands().empty() ? "odeskin --help"
+                                                           : "odeskin " + app.get_subcommands().front()->get_name() + " --help";
+    std::cerr << "odeskin: error: " << message << " (see " << help << ")\n";
     return 2;
   }
 
