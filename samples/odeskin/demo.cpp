@@ -46,7 +46,7 @@ Result<std::optional<vk::Gpu>> openGpu(const DemoOptions& options, std::ostream&
   Result<vk::Gpu> gpu = vk::Gpu::open(options.device, options.validation);
   if (gpu.ok()) return std::optional<vk::Gpu>(std::move(gpu).value());
   if (options.backend == Backend::kVulkan) return gpu.status();
-  log << "note: no usable Vulkan device (" << gpu.status().message() << "); using the CPU backend\n";
+  log << "note: Vulkan failed (" << gpu.status().message() << "); using the CPU backend\n";
   return std::optional<vk::Gpu>{};
 }
 

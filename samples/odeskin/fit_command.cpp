@@ -139,7 +139,21 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
   pipeline.progress = [&bar](std::string_view stage, double fraction) { bar.fraction(stage, fraction); };
   Result<PipelineResult> result = runFitPipeline(*examples, pipeline);
   bar.finish();
-  if (!result.ok()) return reportFailure(console, result.status());
+  if (!result.ok()) {
+    // Most fit errors name their file; one about the poses together (an automatic rig that finds
+    // no motion, say) is given the poses' names so the line still says which input is at fault.
+    const std::string& message = result.status().message();
+    const bool named = std::any_of(examples->pose_labels.begin(), examples->pose_labels.end(), [&](const std::string& label) {
+      return message.find(label) != std::string::npos;
+    });
+    if (named || examples->pose_labels.empty()) return reportFailure(console, result.status());
+    const std::vector<std::string>& labels = examples->pose_labels;
+    const std::string poses = labels.size() == 1 ? labels.front()
+                              : labels.size() == 2 ? labels.front() + ", " + labels.back()
+                                                   : labels.front() + " ... " + labels.back() + " (" +
+                                                         std::to_string(labels.size()) + " poses)";
+    return reportError(console, "fit: " + poses + ": " + message, kExitFailure);
+  }
 
   std::error_code ec;
   if (o.output.has_parent_path()) {
