@@ -236,6 +236,15 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   const bool glb = lowerExtension(o.output) == ".glb";
   std::vector<std::vector<Vec3>> baked;
 
+  // --png: the device is opened before anything is written, so a missing one fails early (and
+  // before the playback, which would otherwise note a CPU fallback just before this error).
+  std::optional<RenderSession> session;
+  if (!o.png_dir.empty()) {
+    Result<RenderSession> opened = RenderSession::open(o.playback.device, o.playback.validation, vk::PictureStyle{});
+    if (!opened.ok()) return reportFailure(console, Status(opened.status().code(), "play: " + opened.status().message()));
+    session.emplace(std::move(opened).value());
+  }
+
   Result<AssetPlayback> playback = AssetPlayback::create(asset, o.playback, console.quiet ? nullptr : &console.err);
   if (!playback.ok()) {
     // A Vulkan failure speaks for itself; anything else is about the asset's content.
@@ -244,14 +253,6 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     return reportError(console, "play: " + (device ? std::string() : o.asset.string() + ": ") + playback.status().message(),
                        kExitFailure);
   }
-  // --png: the device is opened before anything is written, so a missing one fails early.
-  std::optional<RenderSession> session;
-  if (!o.png_dir.empty()) {
-    Result<RenderSession> opened = RenderSession::open(o.playback.device, o.playback.validation, vk::PictureStyle{});
-    if (!opened.ok()) return reportFailure(console, Status(opened.status().code(), "play: " + opened.status().message()));
-    session.emplace(std::move(opened).value());
-  }
-
   ProgressBar bar(console.err, "play", times.size(), !console.quiet && console.interactive && times.size() > 1);
   std::vector<Vec3> positions;
   std::vector<Vec3> framing;  // --png: vertices the pictures' camera must see (playPictures)
