@@ -59,6 +59,7 @@ void writeText(const fs::path& path, const std::string& text) {
 struct RunOptions {
   std::map<std::string, std::string> env;  // set in the child only
   long file_size_limit = -1;               // RLIMIT_FSIZE bytes; SIGXFSZ ignored so writes fail instead
+  long address_space_limit = -1;           // RLIMIT_AS bytes: allocations beyond it fail (std::bad_alloc)
 };
 
 // Runs the program with `args` (stdout and stderr captured through files in `io_dir`).
@@ -84,6 +85,11 @@ Outcome runOdeskin(const std::vector<std::string>& args, const fs::path& io_dir,
       std::signal(SIGXFSZ, SIG_IGN);  // inherited through exec: write() fails with EFBIG instead
       const rlimit limit{static_cast<rlim_t>(options.file_size_limit), static_cast<rlim_t>(options.file_size_limit)};
       ::setrlimit(RLIMIT_FSIZE, &limit);
+    }
+    if (options.address_space_limit >= 0) {
+      const rlimit limit{static_cast<rlim_t>(options.address_space_limit),
+                         static_cast<rlim_t>(options.address_space_limit)};
+      ::setrlimit(RLIMIT_AS, &limit);
     }
     ::execv(argv[0], argv.data());
     ::_exit(127);
@@ -512,6 +518,36 @@ TEST_F(BadInputCli, AWriteThatFailsPartWayLeavesTheOldFile) {
     expectOneErrorLine(r, 1, {(out_dir / name).string(), "write failed"}, commandLine(args));
     EXPECT_EQ(snapshot(out_dir), before) << name;
   }
+}
+
+// Sanitizer runtimes reserve terabytes of address space up front, so RLIMIT_AS cannot be used there.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+// An input the limits accept but this machine (here: 1 GiB of address space) cannot hold ends
+// with std::bad_alloc caught in main: exit 1, one line, no output; never an abort.
+TEST_F(BadInputCli, RunningOutOfMemoryIsAnErrorNotACrash) {
+  if (kSanitized) GTEST_SKIP() << "RLIMIT_AS does not work under a sanitizer";
+  const fs::path out_dir = dir() / "out_of_memory";
+  RunOptions limited;
+  limited.address_space_limit = 1L << 30;
+  const std::vector<std::vector<std::string>> cases{
+      {"blend", "--example", "3.17", "--res", "5000,9000", "-o", (out_dir / "big.obj").string()},
+      {"surface", in("patch.json"), "--res", "8000,8000", "-o", (out_dir / "big.glb").string()}};
+  for (const std::vector<std::string>& args : cases) {
+    const Outcome r = runOdeskin(args, dir() / "io" / "out_of_memory", limited);
+    expectOneErrorLine(r, 1, {args[0] + ": out of memory"}, commandLine(args));
+  }
+  EXPECT_TRUE(snapshot(out_dir).empty());
 }
 
 TEST_F(BadInputCli, GoodInputsSucceed) {
