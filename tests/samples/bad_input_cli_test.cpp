@@ -244,6 +244,7 @@ class BadInputCli : public ::testing::Test {
     writeText(d / "degenerate2.obj", replaceFirst(pose2, "f ", "f 1 1 2"));
     writeText(d / "bad_index.obj", replaceFirst(pose2, "f ", "f 1 2 99999"));
     writeText(d / "unbound.obj", pose2 + "v 5 5 5\n");
+    writeText(d / "unbound1.obj", pose1 + "v 5 5 5\n");
     // A third face on the edge 1-2 of the first face: non-manifold in every pose.
     writeText(d / "nonmanifold1.obj", pose1 + "v 9 9 9\nf 1 2 421\n");
     writeText(d / "nonmanifold2.obj", pose2 + "v 9 9 9\nf 1 2 421\n");
@@ -395,6 +396,8 @@ TEST_F(BadInputCli, BadMeshesPosesAndWeightsFailNamingTheFile) {
       {"reconstruct_empty", {"reconstruct", in("empty.obj"), "-o", "{out}"}, "x.obj", 1, {"empty.obj: no vertices"}},
       {"reconstruct_nonmanifold", {"reconstruct", in("nonmanifold2.obj"), "-o", "{out}"}, "x.obj", 1,
        {"nonmanifold2.obj: edge", "not manifold"}},
+      {"reconstruct_unbound", {"reconstruct", in("unbound1.obj"), "-o", "{out}"}, "x.obj", 1,
+       {"unbound1.obj: vertex 421 is in no face"}},
       {"render_empty", {"render", in("empty.obj"), "-o", "{out}"}, "x.png", 1, {"empty.obj: no vertices"}},
       {"render_nan", {"render", in("nan.obj"), "-o", "{out}"}, "x.png", 1, {"nan.obj:", "finite"}},
   };
@@ -557,6 +560,8 @@ TEST_F(BadInputCli, GoodInputsSucceed) {
       {{"play", in("cyl.odsk"), "--t", "0.5", "-q", "-o", (out / "mid.obj").string()}, out / "mid.obj"},
       {{"export", in("cyl.odsk"), "-q", "-o", (out / "cyl.glb").string()}, out / "cyl.glb"},
       {{"info", in("cyl.odsk")}, {}},
+      // A vertex in no face, in every pose: skinned by the automatic rig's bones like any other.
+      {{"fit", in("unbound1.obj"), in("unbound.obj"), "-q", "-o", (out / "unbound.odsk").string()}, out / "unbound.odsk"},
       {{"surface", in("patch.json"), "-q", "-o", (out / "patch.glb").string()}, out / "patch.glb"},
       {{"blend", "--example", "3.17", "-q", "-o", (out / "blend.obj").string()}, out / "blend.obj"},
       // Weights that sum to one within the reader's tolerance, and a material with negative
