@@ -3,6 +3,7 @@
 
 #include <utility>
 
+#include "fault_injection.hpp"
 #include "vk_status.hpp"
 
 namespace odeskin::vk {
@@ -109,7 +110,9 @@ Status FrameRing::submit() {
   submit_info.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit_info.commandBufferCount = 1;
   submit_info.pCommandBuffers = &cmd;
-  ODESKIN_VK_TRY(vkQueueSubmit(queue_, 1, &submit_info, slot.fence.get()));
+  VkResult submitted = injectedResult(VkFault::kDeviceLost);
+  if (submitted == VK_SUCCESS) submitted = vkQueueSubmit(queue_, 1, &submit_info, slot.fence.get());
+  ODESKIN_TRY(vkStatus(submitted, "vkQueueSubmit"));
   slot.pending = true;
   last_submitted_ = current_;
   next_ = (current_ + 1) % slotCount();

@@ -95,7 +95,12 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   Result<CurveRig> rig = invalidArgument("rig: not run");
   for (int run = 0; run < o.repeat; ++run) {
     rig = buildCurveRig(rest, faces, poses, options);
-    if (!rig.ok()) return reportFailure(console, Status(rig.status().code(), "rig: " + rig.status().message()));
+    if (!rig.ok()) {
+      // The curve rig's errors are about the meshes' content: name the bind mesh (and poses).
+      const std::string meshes = o.meshes.front().string() +
+                                 (o.meshes.size() > 1 ? " and " + std::to_string(o.meshes.size() - 1) + " poses" : "");
+      return reportFailure(console, Status(rig.status().code(), "rig: " + meshes + ": " + rig.status().message()));
+    }
     topology_s.push_back(rig->seconds_topology);
     curves_s.push_back(rig->seconds_curves);
     skeleton_s.push_back(rig->seconds_skeleton);
