@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "../curves/edge_loops.hpp"
 #include "curve_skeleton_levels.hpp"
 #include "curve_skeleton_parts.hpp"
 #include "curve_skeleton_tree.hpp"
@@ -25,6 +26,9 @@ constexpr double kDefaultSpacingEdges = 2.0;
 constexpr double kMinLevelsPerDiagonal = 50.0;
 // The first pass only finds the body's centre: levels this many times farther apart.
 constexpr double kFirstPassSpacing = 3.0;
+// CurveSource::kAuto takes the quad edge loops when at least this fraction of the faces are quads
+// (as buildIsoCurves' CurveMethod::kAuto).
+constexpr double kQuadDominant = 0.8;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -285,6 +289,11 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
 
 }  // namespace
 
+CurveSource resolveCurveSource(CurveSource source, const FaceList& faces) {
+  if (source != CurveSource::kAuto) return source;
+  return quadFraction(faces) >= kQuadDominant ? CurveSource::kEdgeLoops : CurveSource::kLevels;
+}
+
 std::vector<Vec3> curveSkeletonPositions(const CurveSkeleton& skeleton, std::span<const Vec3> pose) {
   std::vector<Vec3> out(skeleton.nodeCount(), Vec3(0.0));
   for (std::size_t n = 0; n < skeleton.nodeCount(); ++n) {
@@ -354,8 +363,28 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   result.part_count = parts.parts.size();
   result.pruned_branches = tree.pruned_branches;
   for (const double d : f) result.unreached_vertices += std::isfinite(d) ? 0 : 1;
-  result.source = options.source;
-  if (options.source == CurveSource::kPlaneCuts) {
+  result.source = resolveCurveSource(options.source, faces);
+  if (result.source == CurveSource::kEdgeLoops) {
+    const double levels = secondsSince(start);
+    const Clock::time_point loops_start = Clock::now();
+    EdgeLoopStats stats;
+    Result<CurveSkeleton> from_loops = skeletonFromEdgeLoops(rest, faces, graph, tree, parts, f, mesh, root_anchors, result.curves, stats);
+    result.axial_edges = stats.axial_edges;
+    result.circumferential_edges = stats.circumferential_edges;
+    result.unknown_edges = stats.unknown_edges;
+    result.edge_loop_rings = stats.rings;
+    result.axial_lines = stats.axial_lines;
+    if (from_loops.ok()) {
+      result.skeleton = std::move(*from_loops);
+      result.seconds_curves = levels + stats.seconds_loops;
+      result.seconds_skeleton = secondsSince(loops_start) - stats.seconds_loops;
+      return result;
+    }
+    result.source = CurveSource::kLevels;
+    result.note = "quad edge loops failed (" + from_loops.status().message() + "); the geodesic rings are the curves";
+    result.curves.clear();
+  }
+  if (result.source == CurveSource::kPlaneCuts) {
     const double levels = secondsSince(start);
     const Clock::time_point cuts = Clock::now();
     double seconds_cuts = 0.0;

@@ -36,9 +36,14 @@
 namespace odeskin {
 
 enum class CurveSource {
-  kLevels,     // the geodesic rings (default: closer to the ground-truth skeletons and faster, docs/rigging.md)
+  kLevels,     // the geodesic rings (closer to the ground-truth skeletons than the cuts and faster, docs/rigging.md)
   kPlaneCuts,  // curves/iso_curves.hpp on the geodesic parts (the curves odeskin fits)
+  kEdgeLoops,  // the mesh's own quad edge loops around the limbs (ray-and-fan test, curves/ray_fan_directions.hpp)
+  kAuto,       // kEdgeLoops on a quad-dominant mesh (>= 80% quads), else kLevels (default)
 };
+
+// What kAuto picks for these faces.
+CurveSource resolveCurveSource(CurveSource source, const FaceList& faces);
 
 enum class SkeletonNodeKind : std::uint8_t {
   kRoot,      // the centre ring's slab
@@ -68,7 +73,7 @@ struct CurveSkeleton {
 std::vector<Vec3> curveSkeletonPositions(const CurveSkeleton& skeleton, std::span<const Vec3> pose);
 
 struct CurveSkeletonOptions {
-  CurveSource source = CurveSource::kLevels;
+  CurveSource source = CurveSource::kAuto;
   double level_spacing = 0.0;    // distance between geodesic levels; 0: 2 mean edge lengths, at most 1/50 of the box diagonal
   double prune_fraction = 0.04;       // a leaf branch shorter than this x the box diagonal is a bump,
   double prune_radii = 1.5;           // ... and one shorter than this x its base ring's radius
@@ -82,8 +87,14 @@ struct CurveSkeletonResult {
   std::size_t part_count = 0;
   std::size_t pruned_branches = 0;
   std::size_t unreached_vertices = 0;        // in other connected components than the largest (not rigged)
-  CurveSource source = CurveSource::kLevels;  // what was used: kLevels when the plane cuts failed
-  std::string note;                          // why the plane cuts were not used, if they were asked for
+  CurveSource source = CurveSource::kLevels;  // what was used: kLevels when the plane cuts or edge loops failed
+  std::string note;                          // why the plane cuts or edge loops were not used, if they were asked for
+  // kEdgeLoops: the ray-and-fan test's edge classes and the loops it gave.
+  std::size_t axial_edges = 0;
+  std::size_t circumferential_edges = 0;
+  std::size_t unknown_edges = 0;
+  std::size_t edge_loop_rings = 0;  // closed circumferential loops (the curves, before the tree drops any)
+  std::size_t axial_lines = 0;      // loops running along the limbs
   // Table 5.1's two stages: finding the curves (geodesic levels, and plane cuts if asked) and
   // making the skeleton from them (tree, pruning, centroids).
   // The mesh's edges and triangle neighbours are built first (seconds_topology, not counted in

@@ -24,6 +24,28 @@
 namespace odeskin {
 namespace {
 
+std::optional<CurveSource> curveSource(const std::string& name) {
+  if (name == "auto") return CurveSource::kAuto;
+  if (name == "levels") return CurveSource::kLevels;
+  if (name == "cuts") return CurveSource::kPlaneCuts;
+  if (name == "loops") return CurveSource::kEdgeLoops;
+  return std::nullopt;
+}
+
+const char* curveSourceName(CurveSource source) {
+  switch (source) {
+    case CurveSource::kLevels:
+      return "geodesic rings";
+    case CurveSource::kPlaneCuts:
+      return "plane cuts";
+    case CurveSource::kEdgeLoops:
+      return "quad edge loops";
+    case CurveSource::kAuto:
+      break;
+  }
+  return "auto";
+}
+
 std::string usageProblem(const RigCommandOptions& o) {
   if (o.meshes.empty()) return "rig: give the mesh (an OBJ file), optionally followed by example poses";
   for (const std::filesystem::path& m : o.meshes) {
@@ -42,7 +64,7 @@ std::string usageProblem(const RigCommandOptions& o) {
   if (!parseTemplateKind(o.template_kind)) {
     return "rig: --template " + o.template_kind + ": use auto, humanoid, quadruped or none";
   }
-  if (o.curves != "cuts" && o.curves != "levels") return "rig: --curves " + o.curves + ": use cuts or levels";
+  if (!curveSource(o.curves)) return "rig: --curves " + o.curves + ": use auto, levels, cuts or loops";
   if (!(o.angle_deg > 0.0 && o.angle_deg < 180.0)) return "rig: --angle must lie in (0, 180) degrees";
   if (o.repeat < 1) return "rig: --repeat must be at least 1";
   if (Result<Vec3> up = parseUpAxis(o.up); !up.ok()) return "rig: " + up.status().message();
@@ -86,7 +108,7 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   }
 
   CurveRigOptions options;
-  options.curves.source = o.curves == "levels" ? CurveSource::kLevels : CurveSource::kPlaneCuts;
+  options.curves.source = *curveSource(o.curves);
   options.animation.angle_threshold_deg = o.angle_deg;
   options.animation.template_kind = *parseTemplateKind(o.template_kind);
   options.animation.up = *parseUpAxis(o.up);
@@ -138,9 +160,15 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
                 poses.size(), poses.size() == 1 ? "" : "s");
   out << line;
   std::snprintf(line, sizeof line, "curves: %zu (%s), %zu body parts, %zu bumps pruned; curve skeleton: %zu nodes\n",
-                cs.curves.size(), cs.source == CurveSource::kLevels ? "geodesic rings" : "plane cuts", cs.part_count,
+                cs.curves.size(), curveSourceName(cs.source), cs.part_count,
                 cs.pruned_branches, cs.skeleton.nodeCount());
   out << line;
+  if (cs.source == CurveSource::kEdgeLoops) {
+    std::snprintf(line, sizeof line,
+                  "ray-and-fan: %zu circumferential, %zu axial, %zu undecided edges; %zu rings, %zu lines along the limbs\n",
+                  cs.circumferential_edges, cs.axial_edges, cs.unknown_edges, cs.edge_loop_rings, cs.axial_lines);
+    out << line;
+  }
   if (!cs.note.empty()) out << "note: " << cs.note << "\n";
   if (cs.unreached_vertices > 0) {
     out << "note: " << cs.unreached_vertices << " vertices lie in other connected components than the largest; "
