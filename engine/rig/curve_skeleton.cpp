@@ -82,8 +82,7 @@ std::uint32_t largestComponentVertex(const MeshTopology& mesh) {
       stack.pop_back();
       ++size;
       for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
-        const auto& e = mesh.edges[mesh.vertex_edges[k]];
-        const std::uint32_t w = e[0] == u ? e[1] : e[0];
+        const std::uint32_t w = mesh.vertex_neighbours[k];
         if (!seen[w]) {
           seen[w] = 1;
           stack.push_back(w);
@@ -207,8 +206,7 @@ std::vector<std::uint32_t> centreBand(std::span<const Vec3> rest, const MeshTopo
       const std::uint32_t u = stack.back();
       stack.pop_back();
       for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
-        const auto& e = mesh.edges[mesh.vertex_edges[k]];
-        const std::uint32_t w = e[0] == u ? e[1] : e[0];
+        const std::uint32_t w = mesh.vertex_neighbours[k];
         if (label[w] == -2) {
           label[w] = piece;
           stack.push_back(w);
@@ -336,6 +334,7 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   const std::uint32_t extremity[1] = {
       static_cast<std::uint32_t>(std::max_element(hops.begin(), hops.end()) - hops.begin())};
   const std::vector<double> f1 = edgeDistance(mesh, extremity);
+  const Clock::time_point coarse_start = Clock::now();
   const LevelGraph first = levelGraph(rest, mesh, f1, kFirstPassSpacing * spacing);
   const LevelTree first_tree = levelTree(first, first.vertex_region[extremity[0]], prune);
   const std::int32_t centre = centreContour(first, first_tree);
@@ -349,7 +348,9 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   const std::vector<std::uint32_t> band =
       centreBand(rest, mesh, first, first_tree, static_cast<std::uint32_t>(centre), std::max(0.5 * spacing, mean_edge),
                  band_distance);
+  const Clock::time_point marching_start = Clock::now();
   const std::vector<double> f = surfaceDistance(mesh, rest, band, band_distance);
+  const Clock::time_point fine_start = Clock::now();
   const LevelGraph graph = levelGraph(rest, mesh, f, spacing);
   const LevelTree tree = levelTree(graph, graph.vertex_region[band.front()], prune);
   const TreeParts parts = treeParts(graph, tree);
@@ -359,6 +360,10 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
 
   CurveSkeletonResult result;
   result.seconds_topology = seconds_topology;
+  result.seconds_edge_distance = std::chrono::duration<double>(coarse_start - start).count();
+  result.seconds_coarse_levels = std::chrono::duration<double>(marching_start - coarse_start).count();
+  result.seconds_marching = std::chrono::duration<double>(fine_start - marching_start).count();
+  result.seconds_fine_levels = secondsSince(fine_start);
   result.vertex_parts = parts.vertex_parts;
   result.part_count = parts.parts.size();
   result.pruned_branches = tree.pruned_branches;

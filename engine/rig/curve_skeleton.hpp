@@ -102,6 +102,14 @@ struct CurveSkeletonResult {
   double seconds_topology = 0.0;
   double seconds_curves = 0.0;
   double seconds_skeleton = 0.0;
+  // seconds_curves' parts for the levels: the first pass's edge distances (sweep to an extremity
+  // and Dijkstra), its coarse level graph (with its tree, centre and band), the fast marching from
+  // the band, and the fine level graph with its tree and parts. The plane cuts or edge loops, if
+  // used, are the rest.
+  double seconds_edge_distance = 0.0;
+  double seconds_coarse_levels = 0.0;
+  double seconds_marching = 0.0;
+  double seconds_fine_levels = 0.0;
 };
 
 // rest: the mesh (>= 4 vertices, finite); faces: valid, manifold polygons over it.

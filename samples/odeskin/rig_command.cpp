@@ -114,6 +114,7 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   options.animation.up = *parseUpAxis(o.up);
   options.compute_weights = !o.weights.empty() || !o.gltf.empty();
   std::vector<double> topology_s, curves_s, skeleton_s, weights_s;
+  std::vector<double> edge_distance_s, coarse_s, marching_s, fine_s;  // vertex identification's stages
   Result<CurveRig> rig = invalidArgument("rig: not run");
   for (int run = 0; run < o.repeat; ++run) {
     rig = buildCurveRig(rest, faces, poses, options);
@@ -122,6 +123,10 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     curves_s.push_back(rig->seconds_curves);
     skeleton_s.push_back(rig->seconds_skeleton);
     weights_s.push_back(rig->seconds_weights);
+    edge_distance_s.push_back(rig->curve_skeleton.seconds_edge_distance);
+    coarse_s.push_back(rig->curve_skeleton.seconds_coarse_levels);
+    marching_s.push_back(rig->curve_skeleton.seconds_marching);
+    fine_s.push_back(rig->curve_skeleton.seconds_fine_levels);
   }
   const CurveRig& r = *rig;
 
@@ -188,6 +193,12 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
                   o.repeat, 1e3 * median(topology_s), 1e3 * fastest(topology_s), 1e3 * median(curves_s),
                   1e3 * fastest(curves_s), 1e3 * median(skeleton_s), 1e3 * fastest(skeleton_s), 1e3 * median(weights_s),
                   1e3 * fastest(weights_s));
+    out << line;
+    std::snprintf(line, sizeof line,
+                  "identification stages (median / fastest): edge distances %.3f / %.3f ms, coarse levels %.3f / %.3f ms, "
+                  "fast marching %.3f / %.3f ms, fine levels %.3f / %.3f ms\n",
+                  1e3 * median(edge_distance_s), 1e3 * fastest(edge_distance_s), 1e3 * median(coarse_s), 1e3 * fastest(coarse_s),
+                  1e3 * median(marching_s), 1e3 * fastest(marching_s), 1e3 * median(fine_s), 1e3 * fastest(fine_s));
   } else {
     std::snprintf(line, sizeof line,
                   "time: mesh edges %.3f ms, curve (vertex) identification %.3f ms, skeleton creation %.3f ms, weights "
