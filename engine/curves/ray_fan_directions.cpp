@@ -183,17 +183,18 @@ double sectionLength(const PolyMesh& mesh, VertexHandle v, const FanPlane& plane
     if (mesh.edge_handle(h) == start_edge) {
       length += glm::length(points.front() - x);
       if (length > cap) return kInfinity;
-      // Winding number about the axis point, in the plane's coordinates.
+      // Winding number about the axis point, in the plane's coordinates (u along the ray, w
+      // across it): signed crossings of the half-line u = 0, w > 0, which runs between p and q.
       points.push_back(x);
-      double turn = 0.0;
+      int winding = 0;
       auto coords = [&](const Vec3& y) { return std::array<double, 2>{glm::dot(y - centre, ray), glm::dot(y - centre, in_plane)}; };
-      std::array<double, 2> previous = coords(x);
+      std::array<double, 2> a = coords(x);
       for (const Vec3& y : points) {
-        const std::array<double, 2> c = coords(y);
-        turn += std::atan2(previous[0] * c[1] - previous[1] * c[0], previous[0] * c[0] + previous[1] * c[1]);
-        previous = c;
+        const std::array<double, 2> b = coords(y);
+        if ((a[0] > 0.0) != (b[0] > 0.0) && a[1] + (b[1] - a[1]) * (-a[0] / (b[0] - a[0])) > 0.0) winding += b[0] > a[0] ? 1 : -1;
+        a = b;
       }
-      return std::abs(turn) > std::numbers::pi ? length : kInfinity;
+      return winding != 0 ? length : kInfinity;
     }
     if (mesh.is_boundary(h)) return kInfinity;
     points.push_back(x);

@@ -378,6 +378,7 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
     result.circumferential_edges = stats.circumferential_edges;
     result.unknown_edges = stats.unknown_edges;
     result.edge_loop_rings = stats.rings;
+    result.seconds_edge_loops = stats.seconds_loops;
     result.axial_lines = stats.axial_lines;
     if (from_loops.ok()) {
       result.skeleton = std::move(*from_loops);

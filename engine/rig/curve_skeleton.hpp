@@ -110,6 +110,7 @@ struct CurveSkeletonResult {
   double seconds_coarse_levels = 0.0;
   double seconds_marching = 0.0;
   double seconds_fine_levels = 0.0;
+  double seconds_edge_loops = 0.0;  // kEdgeLoops: the half-edge mesh, the ray-and-fan test and the loop walk
 };
 
 // rest: the mesh (>= 4 vertices, finite); faces: valid, manifold polygons over it.

@@ -114,7 +114,7 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   options.animation.up = *parseUpAxis(o.up);
   options.compute_weights = !o.weights.empty() || !o.gltf.empty();
   std::vector<double> topology_s, curves_s, skeleton_s, weights_s;
-  std::vector<double> edge_distance_s, coarse_s, marching_s, fine_s;  // vertex identification's stages
+  std::vector<double> edge_distance_s, coarse_s, marching_s, fine_s, loops_s;  // vertex identification's stages
   Result<CurveRig> rig = invalidArgument("rig: not run");
   for (int run = 0; run < o.repeat; ++run) {
     rig = buildCurveRig(rest, faces, poses, options);
@@ -127,6 +127,7 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     coarse_s.push_back(rig->curve_skeleton.seconds_coarse_levels);
     marching_s.push_back(rig->curve_skeleton.seconds_marching);
     fine_s.push_back(rig->curve_skeleton.seconds_fine_levels);
+    loops_s.push_back(rig->curve_skeleton.seconds_edge_loops);
   }
   const CurveRig& r = *rig;
 
@@ -199,6 +200,13 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
                   "fast marching %.3f / %.3f ms, fine levels %.3f / %.3f ms\n",
                   1e3 * median(edge_distance_s), 1e3 * fastest(edge_distance_s), 1e3 * median(coarse_s), 1e3 * fastest(coarse_s),
                   1e3 * median(marching_s), 1e3 * fastest(marching_s), 1e3 * median(fine_s), 1e3 * fastest(fine_s));
+    out << line;
+    if (r.curve_skeleton.source == CurveSource::kEdgeLoops) {
+      std::snprintf(line, sizeof line, "edge loops (half-edge mesh, ray-and-fan test, loop walk): %.3f / %.3f ms\n",
+                    1e3 * median(loops_s), 1e3 * fastest(loops_s));
+    } else {
+      line[0] = '\0';
+    }
   } else {
     std::snprintf(line, sizeof line,
                   "time: mesh edges %.3f ms, curve (vertex) identification %.3f ms, skeleton creation %.3f ms, weights "
