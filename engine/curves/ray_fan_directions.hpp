@@ -56,9 +56,9 @@ struct RayFanDirections {
   std::size_t unknown_edges = 0;
 };
 
-// mesh: any polygon mesh (faces are fanned into triangles for the rays); options.fan_planes >= 2
-// and max_section_diameters > 0 (smaller values are raised to those). Runs the vertices in
-// parallel (TBB); deterministic.
+// mesh: any polygon mesh (faces are fanned into triangles for the rays). options: fan_planes
+// below 2 count as 2, a max_section_diameters that is not > 0 as the default. Runs the vertices
+// in parallel (TBB); the result does not depend on the threads.
 RayFanDirections rayFanDirections(const PolyMesh& mesh, const RayFanOptions& options = {});
 
 // The loops of edgeLoops(mesh) that are closed, have >= min_points vertices and more than half of

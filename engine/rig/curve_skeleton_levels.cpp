@@ -116,10 +116,13 @@ MeshTopology meshTopology(std::span<const Vec3> positions, const FaceList& faces
   mesh.vertex_corner_steps.resize(2 * mesh.vertex_triangles.size());
   for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
-    for (std::size_t at = 0; at < 3; ++at) {
-      const std::uint32_t k = fill[tri[at]]++;
+    for (std::size_t corner = 0; corner < 3; ++corner) {
+      const std::uint32_t k = fill[tri[corner]]++;
       mesh.vertex_triangles[k] = t;
-      // Edge j of a triangle runs from corner j to j + 1: u -> next is edge `at`, prev -> u edge at + 2.
+      // A corner is u's first in the triangle (a degenerate triangle repeats a vertex; the sweep
+      // has always stepped from the first). Edge j runs from corner j to j + 1: u -> next is edge
+      // `at`, prev -> u is edge at + 2.
+      const std::size_t at = tri[0] == tri[corner] ? 0 : (tri[1] == tri[corner] ? 1 : 2);
       const std::uint32_t next = tri[(at + 1) % 3];
       const std::uint32_t prev = tri[(at + 2) % 3];
       mesh.vertex_corner_steps[2 * k] = {next, prev, mesh.edge_lengths[mesh.triangle_edges[t][at]]};
