@@ -11,11 +11,13 @@
 //     across the body and its limbs (a ring grown from a point on a torso first spreads over its
 //     surface as a disc). Short branches off thin rings are bumps and are pruned
 //     (curve_skeleton_tree.hpp).
-//  2. Curves: with CurveSource::kLevels (the default) the geodesic rings themselves; with
-//     kPlaneCuts the existing identification cuts each part (a branch of the tree) with planes
-//     across it (centroid-following, dichotomy between seams), the curves odeskin binds vertices
-//     to. On the shared data the rings give skeletons closer to the ground truth, in a fraction of
-//     the time (docs/rigging.md).
+//  2. Curves: with CurveSource::kLevels (what kAuto, the default, takes on triangle meshes) the
+//     geodesic rings themselves; with kPlaneCuts the existing identification cuts each part (a
+//     branch of the tree) with planes across it (centroid-following, dichotomy between seams), the
+//     curves odeskin binds vertices to; with kEdgeLoops (kAuto on quad-dominant meshes) the quad
+//     edge loops the ray-and-fan test calls circumferential (curves/ray_fan_directions.hpp). On
+//     the shared data the rings give skeletons closer to the ground truth than the cuts, in a
+//     fraction of the time (docs/rigging.md).
 //  3. Nodes: every curve's length-weighted centroid; a junction region's centroid where branches
 //     meet (the seam curves of the limbs that leave there are its children); at each free end the
 //     centroid of the cap beyond the last ring. Node 0 is the centre ring of step 1.
