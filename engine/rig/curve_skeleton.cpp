@@ -65,34 +65,37 @@ Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const Curve
   return okStatus();
 }
 
-// A vertex of the largest connected component (rigging is for one connected surface).
-std::uint32_t largestComponentVertex(const MeshTopology& mesh) {
+// The far end of a breadth-first sweep (hop counts) from the smallest vertex of the largest
+// connected component (rigging is for one connected surface; the first such component on a tie),
+// the smallest vertex index among the farthest. One sweep per component finds the components and
+// the hops at once: the same vertex edgeHops(component's smallest vertex) would give.
+std::uint32_t largestComponentExtremity(const MeshTopology& mesh) {
   const std::size_t count = mesh.vertex_offsets.size() - 1;
-  std::vector<char> seen(count, 0);
+  std::vector<std::int32_t> hops(count, -1);
+  std::vector<std::uint32_t> queue;
+  queue.reserve(count);
   std::size_t best_size = 0;
   std::uint32_t best = 0;
-  std::vector<std::uint32_t> stack;
   for (std::uint32_t s = 0; s < count; ++s) {
-    if (seen[s]) continue;
-    std::size_t size = 0;
-    seen[s] = 1;
-    stack.push_back(s);
-    while (!stack.empty()) {
-      const std::uint32_t u = stack.back();
-      stack.pop_back();
-      ++size;
+    if (hops[s] >= 0) continue;
+    queue.clear();
+    queue.push_back(s);
+    hops[s] = 0;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::uint32_t u = queue[head];
       for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
         const std::uint32_t w = mesh.vertex_neighbours[k];
-        if (!seen[w]) {
-          seen[w] = 1;
-          stack.push_back(w);
-        }
+        if (hops[w] >= 0) continue;
+        hops[w] = hops[u] + 1;
+        queue.push_back(w);
       }
     }
-    if (size > best_size) {
-      best_size = size;
-      best = s;
-    }
+    if (queue.size() <= best_size) continue;
+    best_size = queue.size();
+    // The queue is in hop order: its last vertex is at the largest hop count.
+    const std::int32_t far = hops[queue.back()];
+    best = queue.back();
+    for (std::size_t k = queue.size(); k-- > 0 && hops[queue[k]] == far;) best = std::min(best, queue[k]);
   }
   return best;
 }
@@ -330,9 +333,7 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
 
   // Pass 1, coarse (edge paths, levels kFirstPassSpacing apart: it only has to find the centre):
   // from an extremity, the far end of a breadth-first sweep from any vertex of the largest component.
-  const std::vector<std::int32_t> hops = edgeHops(mesh, largestComponentVertex(mesh));
-  const std::uint32_t extremity[1] = {
-      static_cast<std::uint32_t>(std::max_element(hops.begin(), hops.end()) - hops.begin())};
+  const std::uint32_t extremity[1] = {largestComponentExtremity(mesh)};
   const std::vector<double> f1 = edgeDistance(mesh, extremity);
   const Clock::time_point coarse_start = Clock::now();
   const LevelGraph first = levelGraph(rest, mesh, f1, kFirstPassSpacing * spacing);
