@@ -218,9 +218,10 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
       ->check(CLI::IsMember({"auto", "humanoid", "quadruped", "none"}));
   cmd->add_option("--gltf", o.gltf, "Also write the mesh with its skin and joints as a .glb");
   cmd->add_option("--png", o.png, "Also draw the curves and the skeleton over the mesh (Vulkan; lavapipe works)");
-  cmd->add_option("--curves", o.curves, "levels (geodesic rings, default) or cuts (odeskin's plane-cut curve identification\n"
-                  "run on the parts the rings find)")
-      ->check(CLI::IsMember({"cuts", "levels"}));
+  cmd->add_option("--curves", o.curves, "auto (default: loops on a mesh of >= 80% quads, else levels), levels (geodesic\n"
+                  "rings), cuts (odeskin's plane-cut curve identification run on the parts the rings find) or loops\n"
+                  "(the quad edge loops the ray-and-fan test calls circumferential)")
+      ->check(CLI::IsMember({"auto", "cuts", "levels", "loops"}));
   cmd->add_option("--angle", o.angle_deg, "Turn in degrees that makes a joint (default 20)");
   cmd->add_option("--up", o.up, "The mesh's up axis: x, y, z, -x, -y or -z (default y)");
   cmd->add_option("--compare", o.compare, "A ground-truth skeleton (.tgf): print joint errors and bone counts against it");
