@@ -15,14 +15,15 @@ jobs="$(nproc)"
 "$root/scripts/install-deps.sh"
 
 # Every instrumented program the tests start (test executables, odeskin, the samples; also the
-# test listing the build itself runs) reads these. A finding stops the program with exit code 86, not
-# 1 or 2, which the failure-path tests expect from odeskin (cmake/ExpectFailure.cmake), so a
-# sanitizer report can never pass as an expected failure. Node.js and Chromium (web.viewer_e2e) are
-# not instrumented and ignore them. tests/sanitizers/lsan.supp may name third-party libraries only
-# (the Vulkan loader, Mesa, the validation layer), never odeskin code.
-export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:exitcode=86:detect_leaks=1:check_initialization_order=1:strict_init_order=1"
+# test listing the build itself runs) reads these. A finding aborts the program (SIGABRT, no core
+# file): CTest ignores the exit status of a test with PASS_REGULAR_EXPRESSION and inverts it for
+# WILL_FAIL, so a sanitizer exit code could pass there, and 1 or 2 is what the failure-path tests
+# expect from odeskin (cmake/ExpectFailure.cmake); a killed process fails every kind of test. Node.js
+# and Chromium (web.viewer_e2e) are not instrumented and ignore these. tests/sanitizers/lsan.supp may
+# name third-party libraries only (the Vulkan loader, Mesa, the validation layer), never odeskin code.
+export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:disable_coredump=1:detect_leaks=1:check_initialization_order=1:strict_init_order=1"
 export LSAN_OPTIONS="suppressions=$suppressions/lsan.supp:print_suppressions=0"
-export UBSAN_OPTIONS="halt_on_error=1:abort_on_error=0:exitcode=86:print_stacktrace=1"
+export UBSAN_OPTIONS="halt_on_error=1:abort_on_error=1:disable_coredump=1:print_stacktrace=1"
 
 # ccache lets the engine-only build below reuse the objects of this one (same flags, same sources):
 # the check then costs a configure and a cache lookup per file instead of a second engine build.
