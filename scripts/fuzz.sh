@@ -40,7 +40,7 @@ if [[ ! -f "$build/build.ninja" ]]; then
     -DODESKIN_BUILD_FUZZERS=ON -DODESKIN_BUILD_HOST=OFF -DODESKIN_BUILD_TESTS=OFF -DODESKIN_BUILD_BENCH=OFF \
     "${launcher[@]}" > /dev/null
 fi
-ninja -C "$build" -j"${ODESKIN_BUILD_JOBS:-2}" odeskin_fuzzers | grep -v '^\[' || true
+ninja -C "$build" -j"${ODESKIN_BUILD_JOBS:-$(nproc)}" odeskin_fuzzers | grep -v '^\[' || true
 [[ -x "$build/tests/fuzz/fuzz_obj" ]] || { echo "fuzz.sh: build failed" >&2; exit 1; }
 echo "fuzz.sh: built in $(($(date +%s) - start)) s"
 
