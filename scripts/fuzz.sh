@@ -52,7 +52,7 @@ mkdir -p "$seeds"/{obj,tgf,dmat,odsk,gltf,network}
 "$build/tests/fuzz/odeskin_fuzz_seeds" "$seeds"
 copy_if_there() {  # copy_if_there DEST FILE...: data files are optional (a checkout without ../shared)
   local dest="$1"; shift
-  for f in "$@"; do [[ -f "$f" ]] && cp "$f" "$dest/"; done
+  for f in "$@"; do [[ -f "$f" ]] && install -m 644 "$f" "$dest/"; done
   return 0
 }
 copy_if_there "$seeds/obj" "$data/cylinder/cylinder.obj"
