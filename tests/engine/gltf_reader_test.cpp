@@ -793,6 +793,19 @@ TEST(GltfReaderErrors, BytesInMemoryCannotReferToFiles) {
   EXPECT_TRUE(readGltfExamples(path, request).ok());  // the same file on disk finds its .bin
 }
 
+// Found with the fuzz target (tests/fuzz/regressions/gltf/unbacked-position-count.gltf): an
+// accessor without a bufferView is zeros, and 300 bytes of JSON declared 44.7M of them (over 2 GB
+// with the copies behind it). Its count may not exceed one element per byte of the file's buffers.
+TEST(GltfReaderErrors, UnbackedAccessorCountIsBoundedByTheBuffers) {
+  const std::string json = R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "accessors":[{"componentType":5126,"count":44739240,"type":"VEC3","min":[0,0,0],"max":[0,0,0]}]})";
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  expectError(parseGltfExamples(json, "unbacked.gltf", request), StatusCode::kParseError,
+              {"unbacked.gltf: ", "count 44739240 without a bufferView is beyond the limit of 65536"});
+}
+
 TEST(GltfReaderErrors, MissingFile) {
   const fs::path path = tempDir() / "absent.glb";
   expectError(read(path, {1.0}), StatusCode::kIoError, {path.string()});
