@@ -7,7 +7,7 @@
 # Exits non-zero when a target crashes, leaks, runs out of memory (2 GiB) or spends over 10 s on one
 # input; the input is saved under build-fuzz/findings/<target>/ and its path printed. The corpus
 # grows in build-fuzz/corpus/<target>/ from run to run; tests/fuzz/regressions/<target>/ (inputs
-# that once failed) is replayed first on every run.
+# that once failed) is replayed first on every run. ODESKIN_FUZZ_BUILD_DIR overrides build-fuzz/.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -26,7 +26,7 @@ done
 [[ "$seconds" =~ ^[0-9]+$ && "$seconds" -ge 1 ]] || { echo "fuzz.sh: --seconds-per-target must be a whole number >= 1" >&2; exit 2; }
 [[ "$jobs" =~ ^[0-9]+$ && "$jobs" -ge 1 ]] || { echo "fuzz.sh: --jobs must be a whole number >= 1" >&2; exit 2; }
 
-build="$root/build-fuzz"
+build="${ODESKIN_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 data="${ODESKIN_SHARED_DIR:-$root/../shared}/data"
 command -v clang++ > /dev/null || { echo "fuzz.sh: clang++ not found (scripts/install-deps.sh installs clang)" >&2; exit 1; }
 

@@ -51,7 +51,8 @@ bool noWrite(std::string* err, const std::string&, const std::vector<unsigned ch
 bool isGlb(std::string_view first_bytes) { return first_bytes.substr(0, 4) == "glTF"; }
 
 // tinygltf's load (it reports a bad file by returning false, but a few paths throw).
-Result<tinygltf::Model> runLoader(const std::string& source, const std::function<bool(tinygltf::Model&, std::string&, std::string&)>& load) {
+Result<tinygltf::Model> runLoader(const std::string& source,
+                                  const std::function<bool(tinygltf::Model&, std::string&, std::string&)>& load) {
   tinygltf::Model model;
   std::string err;
   std::string warn;
