@@ -14,8 +14,17 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian; so is memcpy here");
 
 // An accessor without a bufferView is zeros (plus sparse values): nothing in the file bounds its
-// count, so cap what we allocate for one (2^27 doubles = 1 GiB).
+// count, so cap what we allocate for one (2^27 doubles = 1 GiB) and, tighter, allow it no more
+// elements than a backed accessor of the same file could have (one per byte of its buffers, and at
+// least kMinUnbackedCount): else a few hundred bytes could declare gigabytes of zeros.
 constexpr std::size_t kMaxUnbackedValues = std::size_t{1} << 27;
+constexpr std::size_t kMinUnbackedCount = std::size_t{1} << 16;
+
+std::size_t unbackedCountLimit(const tinygltf::Model& model, std::size_t components) {
+  std::size_t buffer_bytes = 0;
+  for (const tinygltf::Buffer& b : model.buffers) buffer_bytes += b.data.size();
+  return std::min(kMaxUnbackedValues / components, std::max(buffer_bytes, kMinUnbackedCount));
+}
 
 std::size_t componentSize(int component_type) {
   switch (component_type) {
@@ -247,9 +256,11 @@ Result<AccessorData> readAccessor(const tinygltf::Model& model, int index, const
     ODESKIN_TRY(readBlock(model, a.bufferView, static_cast<long long>(a.byteOffset), a.count, stride, l, where,
                           data.values));
   } else {
-    if (a.count > kMaxUnbackedValues / data.components) {
+    const std::size_t limit = unbackedCountLimit(model, data.components);
+    if (a.count > limit) {
       return parseError(where + ": count " + std::to_string(a.count) + " without a bufferView is beyond the limit of " +
-                        std::to_string(kMaxUnbackedValues / data.components));
+                        std::to_string(limit) + " (one element per byte of the file's buffers, at least " +
+                        std::to_string(kMinUnbackedCount) + ")");
     }
     data.values.assign(a.count * data.components, 0.0);
   }

@@ -56,7 +56,8 @@ struct AccessorData {
 // substitutions on top. kParseError naming the accessor index and its role: index out of range, a
 // type or format the request does not accept, a count other than the required one, a bufferView or
 // buffer out of range, data past the end of its bufferView or buffer, a byteStride smaller than an
-// element, non-finite floats, sparse indices not strictly increasing or >= count.
+// element, non-finite floats, sparse indices not strictly increasing or >= count, a count without
+// a bufferView above one element per byte of the file's buffers (at least 65536; at most 2^27 values).
 Result<AccessorData> readAccessor(const tinygltf::Model& model, int index, const AccessorRequest& request);
 
 }  // namespace odeskin::gltf

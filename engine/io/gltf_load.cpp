@@ -5,10 +5,12 @@
 #include <array>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <fstream>
 #include <limits>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 namespace odeskin::gltf {
 namespace {
@@ -33,6 +35,41 @@ std::string trimmed(std::string s) {
   return s;
 }
 
+// File callbacks for glTF held in memory: it has no folder, so a buffer URI that is not a data: URI
+// names nothing, and nothing is ever written.
+bool noFile(const std::string&, void*) { return false; }
+std::string samePath(const std::string& path, void*) { return path; }
+bool noRead(std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+  if (err) *err += "external file '" + path + "' cannot be read: the glTF is held in memory\n";
+  return false;
+}
+bool noWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "odeskin never writes while reading glTF\n";
+  return false;
+}
+
+bool isGlb(std::string_view first_bytes) { return first_bytes.substr(0, 4) == "glTF"; }
+
+// tinygltf's load (it reports a bad file by returning false, but a few paths throw).
+Result<tinygltf::Model> runLoader(const std::string& source,
+                                  const std::function<bool(tinygltf::Model&, std::string&, std::string&)>& load) {
+  tinygltf::Model model;
+  std::string err;
+  std::string warn;
+  bool ok = false;
+  try {
+    ok = load(model, err, warn);
+  } catch (const std::exception& e) {
+    err = e.what();
+    ok = false;
+  }
+  if (!ok) {
+    err = trimmed(err);
+    return parseError(source + ": tinygltf cannot read it: " + (err.empty() ? "no reason given" : err));
+  }
+  return model;
+}
+
 }  // namespace
 
 Result<tinygltf::Model> loadModel(const std::filesystem::path& path) {
@@ -50,26 +87,29 @@ Result<tinygltf::Model> loadModel(const std::filesystem::path& path) {
     if (!file) return ioError(path.string() + ": cannot open for reading");
     file.read(magic.data(), magic.size());
   }
-  const bool binary = std::string_view(magic.data(), magic.size()) == "glTF";
+  const bool binary = isGlb(std::string_view(magic.data(), magic.size()));
 
-  tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
-  std::string err;
-  std::string warn;
-  bool ok = false;
-  try {
-    ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
-  } catch (const std::exception& e) {
-    err = e.what();
-    ok = false;
+  return runLoader(path.string(), [&](tinygltf::Model& model, std::string& err, std::string& warn) {
+    return binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
+                  : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
+  });
+}
+
+Result<tinygltf::Model> loadModelFromMemory(const std::string& bytes, const std::string& source) {
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+    return ioError(source + ": " + std::to_string(bytes.size()) + " bytes, over the 2 GiB tinygltf 2.7 can read");
   }
-  if (!ok) {
-    err = trimmed(err);
-    return parseError(path.string() + ": tinygltf cannot read it: " + (err.empty() ? "no reason given" : err));
-  }
-  return model;
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skipImage, nullptr);
+  loader.SetFsCallbacks(tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
+  const auto length = static_cast<unsigned int>(bytes.size());
+  return runLoader(source, [&](tinygltf::Model& model, std::string& err, std::string& warn) {
+    return isGlb(bytes) ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                      reinterpret_cast<const unsigned char*>(bytes.data()), length, "")
+                        : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), length, "");
+  });
 }
 
 Status checkRequiredExtensions(const tinygltf::Model& model) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include <tiny_gltf.h>
 
@@ -16,6 +17,11 @@ namespace odeskin::gltf {
 // load). kIoError naming the path: missing, unreadable, or over 2 GiB (tinygltf 2.7 has no size
 // guard). kParseError naming the path with tinygltf's message when it refuses the file.
 Result<tinygltf::Model> loadModel(const std::filesystem::path& path);
+
+// loadModel on bytes already in memory; `source` stands for the path in the messages. It has no
+// folder: a buffer URI other than a data: URI is refused (tinygltf's message), and no file is
+// touched. kIoError over 2 GiB.
+Result<tinygltf::Model> loadModelFromMemory(const std::string& bytes, const std::string& source);
 
 // kInvalidArgument naming the first extensionsRequired entry odeskin does not handle. Handled:
 // KHR_mesh_quantization (decoded), and extensions confined to materials, textures and lights

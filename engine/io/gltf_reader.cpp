@@ -256,23 +256,41 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
   return out;
 }
 
-}  // namespace
-
-Result<ExampleSet> readGltfExamples(const std::filesystem::path& path, const GltfPoseRequest& request) {
+// The request's own checks, before the file is read.
+Status checkRequest(const std::string& source, const GltfPoseRequest& request) {
   const std::size_t poses =
       (request.include_bind_pose ? 1 : 0) + request.times.size() + request.morph_targets.size();
   const std::size_t needed = std::max<std::size_t>(request.min_poses, 1);
   if (poses < needed) {
-    return invalidArgument(path.string() + ": " + std::to_string(poses) + " example poses requested, at least " +
+    return invalidArgument(source + ": " + std::to_string(poses) + " example poses requested, at least " +
                            std::to_string(needed) + " are needed");
   }
   for (double t : request.times) {
-    if (!std::isfinite(t)) return invalidArgument(path.string() + ": a requested time is not finite");
+    if (!std::isfinite(t)) return invalidArgument(source + ": a requested time is not finite");
   }
-  ODESKIN_ASSIGN_OR_RETURN(const tinygltf::Model model, loadModel(path));
-  Result<ExampleSet> examples = buildExamples(model, request, path.filename().string());
-  if (!examples.ok()) return Status(examples.status().code(), path.string() + ": " + examples.status().message());
+  return okStatus();
+}
+
+Result<ExampleSet> examplesNamingSource(const tinygltf::Model& model, const GltfPoseRequest& request,
+                                        const std::string& source, const std::string& file) {
+  Result<ExampleSet> examples = buildExamples(model, request, file);
+  if (!examples.ok()) return Status(examples.status().code(), source + ": " + examples.status().message());
   return examples;
+}
+
+}  // namespace
+
+Result<ExampleSet> readGltfExamples(const std::filesystem::path& path, const GltfPoseRequest& request) {
+  ODESKIN_TRY(checkRequest(path.string(), request));
+  ODESKIN_ASSIGN_OR_RETURN(const tinygltf::Model model, loadModel(path));
+  return examplesNamingSource(model, request, path.string(), path.filename().string());
+}
+
+Result<ExampleSet> parseGltfExamples(const std::string& bytes, const std::string& source,
+                                     const GltfPoseRequest& request) {
+  ODESKIN_TRY(checkRequest(source, request));
+  ODESKIN_ASSIGN_OR_RETURN(const tinygltf::Model model, loadModelFromMemory(bytes, source));
+  return examplesNamingSource(model, request, source, std::filesystem::path(source).filename().string());
 }
 
 }  // namespace odeskin

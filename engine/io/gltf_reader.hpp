@@ -54,4 +54,10 @@ struct GltfPoseRequest {
 // joint indices, zero weight sums, welded copies of a vertex with different weights or deltas...).
 Result<ExampleSet> readGltfExamples(const std::filesystem::path& path, const GltfPoseRequest& request);
 
+// readGltfExamples on a .gltf or .glb held in memory (GLB by its first four bytes); `source` stands
+// for the path in the messages and labels. Buffers must be inside it (GLB chunk or data: URI):
+// there is no folder to find external files in, and no file is read or written.
+Result<ExampleSet> parseGltfExamples(const std::string& bytes, const std::string& source,
+                                     const GltfPoseRequest& request);
+
 }  // namespace odeskin

@@ -15,22 +15,21 @@
 namespace odeskin {
 namespace {
 
-std::string at(const std::filesystem::path& path, std::size_t line) {
-  return path.string() + ":" + std::to_string(line) + ": ";
-}
+std::string at(const std::string& source, std::size_t line) { return source + ":" + std::to_string(line) + ": "; }
+std::string at(const std::filesystem::path& path, std::size_t line) { return at(path.string(), line); }
 
 Vec3 toGlm(const Eigen::Vector3d& v) { return Vec3(v.x(), v.y(), v.z()); }
 
 // Parents by libigl directed_edge_parents: the bone ending where b starts. A joint that ends two
 // bones would make the parent ambiguous, and parents that loop have no root to start FK from.
-Status resolveParents(const std::filesystem::path& path, const std::vector<std::pair<int, int>>& edges,
+Status resolveParents(const std::string& source, const std::vector<std::pair<int, int>>& edges,
                       const std::vector<std::size_t>& edge_lines, std::size_t joint_count,
                       std::vector<std::int32_t>& parents) {
   std::vector<std::int32_t> bone_ending_at(joint_count, -1);
   for (std::size_t b = 0; b < edges.size(); ++b) {
     std::int32_t& slot = bone_ending_at[static_cast<std::size_t>(edges[b].second)];
     if (slot >= 0) {
-      return parseError(at(path, edge_lines[b]) + "joint " + std::to_string(edges[b].second + 1) +
+      return parseError(at(source, edge_lines[b]) + "joint " + std::to_string(edges[b].second + 1) +
                         " already ends bone " + std::to_string(slot) + " (line " +
                         std::to_string(edge_lines[static_cast<std::size_t>(slot)]) +
                         "), so the parent of a bone starting there is ambiguous");
@@ -43,7 +42,7 @@ Status resolveParents(const std::filesystem::path& path, const std::vector<std::
     std::int32_t p = parents[b];
     for (std::size_t steps = 0; p >= 0; ++steps, p = parents[static_cast<std::size_t>(p)]) {
       if (steps > edges.size())
-        return parseError(at(path, edge_lines[b]) + "bone " + std::to_string(b) + " is on a cycle");
+        return parseError(at(source, edge_lines[b]) + "bone " + std::to_string(b) + " is on a cycle");
     }
   }
   return okStatus();
@@ -53,6 +52,10 @@ Status resolveParents(const std::filesystem::path& path, const std::vector<std::
 
 Result<Skeleton> readTgf(const std::filesystem::path& path) {
   ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
+  return parseTgf(text, path.string());
+}
+
+Result<Skeleton> parseTgf(const std::string& text, const std::string& source) {
   std::vector<Vec3> joints;
   std::vector<std::pair<int, int>> edges;  // 0-based joints
   std::vector<std::size_t> edge_lines;
@@ -67,7 +70,7 @@ Result<Skeleton> readTgf(const std::filesystem::path& path) {
       ++section;
       continue;
     }
-    const std::string where = at(path, reader.number());
+    const std::string where = at(source, reader.number());
     if (section == 0) {
       std::size_t index = 0;
       if (!parseInt(first, index) || index != joints.size() + 1) {
@@ -93,10 +96,10 @@ Result<Skeleton> readTgf(const std::filesystem::path& path) {
       edge_lines.push_back(reader.number());
     }
   }
-  if (edges.empty()) return parseError(path.string() + ": no bones (edge lines after the first '#')");
+  if (edges.empty()) return parseError(source + ": no bones (edge lines after the first '#')");
 
   Skeleton skeleton;
-  ODESKIN_TRY(resolveParents(path, edges, edge_lines, joints.size(), skeleton.parents));
+  ODESKIN_TRY(resolveParents(source, edges, edge_lines, joints.size(), skeleton.parents));
   for (std::size_t b = 0; b < edges.size(); ++b) {
     skeleton.names.push_back("bone" + std::to_string(b));
     skeleton.heads.push_back(joints[static_cast<std::size_t>(edges[b].first)]);
@@ -107,6 +110,10 @@ Result<Skeleton> readTgf(const std::filesystem::path& path) {
 
 Result<DenseMatrix> readDmat(const std::filesystem::path& path) {
   ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
+  return parseDmat(text, path.string());
+}
+
+Result<DenseMatrix> parseDmat(const std::string& text, const std::string& source) {
   LineReader reader(text);
   std::string_view line;
   DenseMatrix m;
@@ -115,7 +122,7 @@ Result<DenseMatrix> readDmat(const std::filesystem::path& path) {
   std::vector<double> column_major;
   while (reader.next(line)) {
     for (std::string_view token = nextToken(line); !token.empty(); token = nextToken(line)) {
-      auto where = [&] { return at(path, reader.number()); };  // built only on the error paths
+      auto where = [&] { return at(source, reader.number()); };  // built only on the error paths
       if (!have_header) {
         const std::string_view rows = nextToken(line);
         if (!parseInt(token, m.cols) || !parseInt(rows, m.rows)) {
@@ -141,9 +148,9 @@ Result<DenseMatrix> readDmat(const std::filesystem::path& path) {
       column_major.push_back(value);
     }
   }
-  if (!have_header) return parseError(path.string() + ": empty file, no 'cols rows' header");
+  if (!have_header) return parseError(source + ": empty file, no 'cols rows' header");
   if (column_major.size() != count) {
-    return parseError(path.string() + ": header says " + std::to_string(m.cols) + " columns x " +
+    return parseError(source + ": header says " + std::to_string(m.cols) + " columns x " +
                       std::to_string(m.rows) + " rows = " + std::to_string(count) + " values, found " +
                       std::to_string(column_major.size()));
   }

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -23,6 +24,8 @@ namespace odeskin {
 // kIoError / kParseError naming path and line: a malformed line, a bone joint out of range or
 // starting where it ends, a joint ending two bones (ambiguous parent), a cycle, no bones.
 Result<Skeleton> readTgf(const std::filesystem::path& path);
+// readTgf on text already in memory; `source` stands for the path in the messages.
+Result<Skeleton> parseTgf(const std::string& text, const std::string& source);
 
 struct DenseMatrix {
   std::size_t rows = 0;
@@ -35,6 +38,8 @@ struct DenseMatrix {
 // path (and line) for a short, long, non-numeric or non-finite file, or a 0 x 0 header (libigl's
 // binary DMAT, not supported).
 Result<DenseMatrix> readDmat(const std::filesystem::path& path);
+// readDmat on text already in memory; `source` stands for the path in the messages.
+Result<DenseMatrix> parseDmat(const std::string& text, const std::string& source);
 
 // A .dmat of V x B weights as sparse influences (zero weights dropped). kInvalidArgument naming
 // the path if the size is not V x B, a weight is negative or non-finite, or a row does not sum to 1

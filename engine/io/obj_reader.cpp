@@ -15,7 +15,10 @@ bool parseIndex(std::string_view token, long long& out) { return parseInt(token.
 
 Result<ObjMesh> readObj(const std::filesystem::path& path) {
   ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
+  return parseObj(text, path.string());
+}
 
+Result<ObjMesh> parseObj(const std::string& text, const std::string& source) {
   ObjMesh mesh;
   std::vector<long long> raw;  // face corners as written (1-based or negative), resolved below
   std::vector<std::size_t> face_lines;
@@ -27,7 +30,7 @@ Result<ObjMesh> readObj(const std::filesystem::path& path) {
     if (hash != std::string_view::npos) line = line.substr(0, hash);
     const std::string_view keyword = nextToken(line);
     auto error = [&](const std::string& what) {
-      return parseError(path.string() + ":" + std::to_string(line_number) + ": " + what);
+      return parseError(source + ":" + std::to_string(line_number) + ": " + what);
     };
     if (keyword == "v") {
       Vec3 p;
@@ -50,13 +53,13 @@ Result<ObjMesh> readObj(const std::filesystem::path& path) {
       face_lines.push_back(line_number);
     }
   }
-  if (mesh.positions.empty()) return parseError(path.string() + ": no vertices");
-  if (mesh.faces.faceCount() == 0) return parseError(path.string() + ": no faces");
+  if (mesh.positions.empty()) return parseError(source + ": no vertices");
+  if (mesh.faces.faceCount() == 0) return parseError(source + ": no faces");
   mesh.faces.indices.reserve(raw.size());
   for (std::size_t f = 0; f < mesh.faces.faceCount(); ++f) {
     for (std::uint32_t k = mesh.faces.face_offsets[f]; k < mesh.faces.face_offsets[f + 1]; ++k) {
       if (raw[k] >= static_cast<long long>(mesh.positions.size())) {
-        return parseError(path.string() + ":" + std::to_string(face_lines[f]) + ": face index " +
+        return parseError(source + ":" + std::to_string(face_lines[f]) + ": face index " +
                           std::to_string(raw[k] + 1) + " > vertex count " + std::to_string(mesh.positions.size()));
       }
       mesh.faces.indices.push_back(static_cast<std::uint32_t>(raw[k]));

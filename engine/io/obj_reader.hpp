@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "../core/result.hpp"
@@ -23,6 +24,8 @@ struct ObjMesh {
 // or non-finite number, a face index 0 or out of range, a face with fewer than 3 corners, or a
 // file without vertices or faces.
 Result<ObjMesh> readObj(const std::filesystem::path& path);
+// readObj on text already in memory; `source` names it in the messages (readObj passes the path).
+Result<ObjMesh> parseObj(const std::string& text, const std::string& source);
 
 // K >= 2 OBJ files of one mesh as example poses. Every pose must have the first pose's vertex count
 // and face list (kInvalidArgument naming the first differing pose file and, for faces, the face

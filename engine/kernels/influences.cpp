@@ -33,6 +33,12 @@ Status validateInfluences(const InfluencesView& influences, std::size_t vertex_c
     const std::uint32_t begin = influences.offsets[i];
     const std::uint32_t end = influences.offsets[i + 1];
     if (end < begin) return invalidArgument("influences: offsets decrease at vertex " + std::to_string(i));
+    // Only the last offset was checked against the arrays: a middle one past it (a corrupt file)
+    // would index past bones and weights.
+    if (end > total) {
+      return invalidArgument("influences: offset " + std::to_string(end) + " of vertex " + std::to_string(i) +
+                             " is past the " + std::to_string(total) + " entries");
+    }
     if (end == begin) return invalidArgument("influences: vertex " + std::to_string(i) + " is bound to no bone");
     double sum = 0.0;
     for (std::uint32_t k = begin; k < end; ++k) {

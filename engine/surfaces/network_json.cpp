@@ -271,7 +271,14 @@ Status readShapes(const json& root, NetworkDescription& d) {
   const std::uint32_t rows = static_cast<std::uint32_t>(d.closed_u ? d.boundaries.size() : d.boundaries.size() - 1);
   ODESKIN_ASSIGN_OR_RETURN(const json* base, required(root, "", "shape"));
   ODESKIN_ASSIGN_OR_RETURN(const Ode6Shape all, shape(*base, "shape", false));
-  d.shapes.assign(std::size_t{rows} * d.columns, all);
+  // Refused before the per-patch shapes are allocated: columns alone may be up to 2^24.
+  const std::uint64_t patches = std::uint64_t{rows} * d.columns;
+  if (patches > kMaxNetworkPatches) {
+    return fail("columns", std::to_string(rows) + " rows x " + std::to_string(d.columns) + " columns = " +
+                               std::to_string(patches) + " patches, more than the " +
+                               std::to_string(kMaxNetworkPatches) + " a network may have");
+  }
+  d.shapes.assign(static_cast<std::size_t>(patches), all);
   if (root.contains("row_shapes")) {
     const json& list = root["row_shapes"];
     if (!list.is_array() || list.size() != rows) {

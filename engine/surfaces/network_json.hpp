@@ -4,6 +4,7 @@
 // "boundaries[1].derivatives.at[0]: 1.5 is outside (0, 1)", and a file's errors start with its path.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -15,6 +16,10 @@
 namespace odeskin {
 
 inline constexpr int kNetworkJsonVersion = 1;
+// Most patches (rows x columns) a network file may describe: 4M, four times the 1000 x 1000 network
+// of docs/surfaces.md. More could never be tessellated within kMaxTessellationVertices at the
+// default 33 x 33 samples, and the description alone would take hundreds of megabytes.
+inline constexpr std::uint64_t kMaxNetworkPatches = std::uint64_t{1} << 22;
 
 // kParseError for malformed JSON (with line, column and the path reached), missing or unknown
 // fields, wrong types, non-finite numbers, unknown curve names and out-of-range indices.

@@ -320,6 +320,24 @@ TEST_F(AssetFile, ConsistentChecksumButBadContentIsRejected) {
   EXPECT_NE(r.status().message().find("'REST'"), std::string::npos) << r.status().message();
 }
 
+// Fuzz finding (tests/fuzz/regressions/odsk/influence-offset-past-end.odsk): validation compared
+// only the last influence offset with the arrays, so a middle offset past the end read out of bounds.
+TEST_F(AssetFile, InfluenceOffsetPastTheArraysIsRejected) {
+  auto parts = sections(*bytes_);
+  std::string payload;
+  for (auto& [tag, data] : parts) {
+    if (tag == "INFL") {
+      // section header (12), offsets count (8), offsets[0] (4): offsets[1] = 0x7fffff00.
+      for (int i = 0; i < 4; ++i) data[24 + i] = static_cast<char>((0x7fffff00u >> (8 * i)) & 0xFF);
+    }
+    payload += data;
+  }
+  const Result<DeformAsset> r = decodeAsset(withPayload(*bytes_, payload), "offsets.odsk");
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(r.status().message().rfind("offsets.odsk: influences: offset 2147483392 of vertex 0 is past the", 0), 0u)
+      << r.status().message();
+}
+
 TEST_F(AssetFile, SavingFailsWithoutLeavingAFile) {
   const std::filesystem::path dir = scratchDir("atomic");
   const std::filesystem::path missing = dir / "no-such-folder" / "arm.odsk";

@@ -760,6 +760,52 @@ TEST(GltfReader, InterleavedPositionsHonourByteStride) {
   expectError(read(write(tube.model, "short_stride.glb", true), {1.0}), StatusCode::kParseError, {"byteStride 8"});
 }
 
+// parseGltfExamples reads bytes in memory as readGltfExamples reads the file, GLB or JSON with
+// embedded buffers, and refuses a buffer in an external file (there is no folder to look in).
+TEST_P(GltfFormats, BytesInMemoryReadAsTheFile) {
+  const bool binary = GetParam();
+  const fs::path path = write(makeTube().model, binary ? "tube.glb" : "tube.gltf", binary);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  GltfPoseRequest request;
+  request.times = {0.5, 1.0};
+  request.morph_targets = {0};
+  const Result<ExampleSet> from_file = readGltfExamples(path, request);
+  const Result<ExampleSet> from_bytes = parseGltfExamples(bytes, path.string(), request);
+  ASSERT_TRUE(from_file.ok()) << from_file.status().toString();
+  ASSERT_TRUE(from_bytes.ok()) << from_bytes.status().toString();
+  EXPECT_EQ(from_bytes->poses, from_file->poses);
+  EXPECT_EQ(from_bytes->pose_labels, from_file->pose_labels);
+  EXPECT_EQ(from_bytes->faces.indices, from_file->faces.indices);
+}
+
+TEST(GltfReaderErrors, BytesInMemoryCannotReferToFiles) {
+  tinygltf::Model model = makeTube().model;
+  const fs::path path = tempDir() / "external.gltf";
+  tinygltf::TinyGLTF writer;
+  ASSERT_TRUE(writer.WriteGltfSceneToFile(&model, path.string(), true, false, true, false));  // buffer in external.bin
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  expectError(parseGltfExamples(bytes, "memory.gltf", request), StatusCode::kParseError,
+              {"memory.gltf: tinygltf cannot read it", "external.bin"});
+  EXPECT_TRUE(readGltfExamples(path, request).ok());  // the same file on disk finds its .bin
+}
+
+// Found with the fuzz target (tests/fuzz/regressions/gltf/unbacked-position-count.gltf): an
+// accessor without a bufferView is zeros, and 300 bytes of JSON declared 44.7M of them (over 2 GB
+// with the copies behind it). Its count may not exceed one element per byte of the file's buffers.
+TEST(GltfReaderErrors, UnbackedAccessorCountIsBoundedByTheBuffers) {
+  const std::string json = R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "accessors":[{"componentType":5126,"count":44739240,"type":"VEC3","min":[0,0,0],"max":[0,0,0]}]})";
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  expectError(parseGltfExamples(json, "unbacked.gltf", request), StatusCode::kParseError,
+              {"unbacked.gltf: ", "count 44739240 without a bufferView is beyond the limit of 65536"});
+}
+
 TEST(GltfReaderErrors, MissingFile) {
   const fs::path path = tempDir() / "absent.glb";
   expectError(read(path, {1.0}), StatusCode::kIoError, {path.string()});

@@ -36,6 +36,7 @@ TEST(Influences, EachDefectHasItsError) {
   { Influences in = threeVertices(); in.offsets = {0, 1, 1, 8}; in.bones.erase(in.bones.begin() + 1, in.bones.begin() + 3);
     in.weights.erase(in.weights.begin() + 1, in.weights.begin() + 3); in.offsets = {0, 1, 1, 6}; expectInvalid(in, 3, 5, "unbound vertex"); }
   { Influences in = threeVertices(); in.weights[0] = std::nan(""); expectInvalid(in, 3, 5, "NaN"); }
+  { Influences in = threeVertices(); in.offsets[1] = 100; expectInvalid(in, 3, 5, "a middle offset past the arrays"); }
 }
 
 TEST(Influences, FromDenseDropsZeros) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <string>
 
@@ -128,7 +129,29 @@ TEST_F(TempDir, MalformedTgfNamesPathAndLine) {
   EXPECT_EQ(ok->tails[0], Vec3(1.0, 0.0, 0.0));
 }
 
+TEST(ParseTgf, TextInMemoryReadsAsTheFileAndErrorsNameTheSource) {
+  const Result<Skeleton> from_file = readTgf(kData / "cylinder/cylinder.tgf");
+  std::ifstream in(kData / "cylinder/cylinder.tgf", std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Result<Skeleton> from_text = parseTgf(text, "tgf in memory");
+  ASSERT_TRUE(from_file.ok() && from_text.ok());
+  EXPECT_EQ(from_text->parents, from_file->parents);
+  EXPECT_EQ(from_text->heads, from_file->heads);
+  const Result<Skeleton> bad = parseTgf("1 0 0 0\n#\n1 1\n", "memory.tgf");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message(), "memory.tgf:3: bone starts and ends at joint 1");
+}
+
 // --- .dmat ---
+
+TEST(ParseDmat, TextInMemoryErrorsNameTheSource) {
+  const Result<DenseMatrix> m = parseDmat("2 1\n0.25 0.75\n", "dmat in memory");
+  ASSERT_TRUE(m.ok()) << m.status().toString();
+  EXPECT_EQ(m->values, (std::vector<double>{0.25, 0.75}));
+  const Result<DenseMatrix> bad = parseDmat("2 1\n0.25\n", "memory.dmat");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message().rfind("memory.dmat: header says 2 columns x 1 rows", 0), 0u) << bad.status().message();
+}
 
 TEST(ReadDmat, CylinderWeightsAreColumnMajor) {
   const Result<DenseMatrix> w = readDmat(kData / "cylinder/cylinder.DMAT");

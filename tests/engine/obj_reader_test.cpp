@@ -168,6 +168,18 @@ TEST(ReadObj, MissingFileIsAnIoError) {
   EXPECT_NE(mesh.status().message().find(path.string()), std::string::npos);
 }
 
+TEST(ParseObj, TextInMemoryReadsAsTheFileAndErrorsNameTheSource) {
+  const fs::path path = kData / "cylinder/cylinder.obj";
+  const Result<ObjMesh> from_file = readObj(path);
+  const Result<ObjMesh> from_text = parseObj(slurp(path), "cylinder in memory");
+  ASSERT_TRUE(from_file.ok() && from_text.ok());
+  EXPECT_EQ(from_text->positions, from_file->positions);
+  EXPECT_EQ(from_text->faces.indices, from_file->faces.indices);
+  const Result<ObjMesh> bad = parseObj("v 0 0 0\nf 1 2 x\n", "memory.obj");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message(), "memory.obj:2: bad face index 'x'");
+}
+
 // --- readObjSequence ---
 
 TEST(ReadObjSequence, AllTenCatPosesShareOneTopology) {

@@ -117,6 +117,16 @@ TEST(NetworkJson, ErrorsNameTheField) {
   }
 }
 
+// Fuzz finding (tests/fuzz/regressions/network/columns-2-24.json): columns may be up to 2^24 on
+// their own, and rows x columns shapes were allocated before anything looked at the product (two
+// rows: 800 MB and over 10 s; more rows: out of memory).
+TEST(NetworkJson, TooManyPatchesAreRefusedBeforeAllocating) {
+  Result<NetworkDescription> d = parseNetworkDescription(replaced(kSmall, "\"columns\": 2", "\"columns\": 16777216"));
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.status().code(), StatusCode::kParseError);
+  EXPECT_EQ(d.status().message(), "columns: 1 rows x 16777216 columns = 16777216 patches, more than the 4194304 a network may have");
+}
+
 TEST(NetworkJson, FileErrorsStartWithThePath) {
   const std::filesystem::path missing = std::filesystem::temp_directory_path() / "odeskin_no_such_network.json";
   Result<NetworkDescription> d = readNetworkDescription(missing);

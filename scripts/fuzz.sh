@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets of tests/fuzz with clang (build-fuzz/), assembles their seed corpus
+# and runs each target for a bounded time (docs/reliability/fuzzing.md).
+#   scripts/fuzz.sh [--seconds-per-target S] [--jobs J] [--targets "obj gltf ..."]
+# S: seconds of fuzzing per target (default 20; CI uses 15, a long run e.g. 3600). J: parallel
+# fuzzing processes per target (libFuzzer -fork; default 1). Targets: obj tgf dmat odsk gltf network.
+# Exits non-zero when a target crashes, leaks, runs out of memory (2 GiB) or spends over 10 s on one
+# input; the input is saved under build-fuzz/findings/<target>/ and its path printed. The corpus
+# grows in build-fuzz/corpus/<target>/ from run to run; tests/fuzz/regressions/<target>/ (inputs
+# that once failed) is replayed first on every run. ODESKIN_FUZZ_BUILD_DIR overrides build-fuzz/.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+seconds=20
+jobs=1
+targets="obj tgf dmat odsk gltf network"
+while (($#)); do
+  case "$1" in
+    --seconds-per-target) seconds="$2"; shift 2 ;;
+    --jobs) jobs="$2"; shift 2 ;;
+    --targets) targets="$2"; shift 2 ;;
+    -h|--help) sed -n '2,11p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "fuzz.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+[[ "$seconds" =~ ^[0-9]+$ && "$seconds" -ge 1 ]] || { echo "fuzz.sh: --seconds-per-target must be a whole number >= 1" >&2; exit 2; }
+[[ "$jobs" =~ ^[0-9]+$ && "$jobs" -ge 1 ]] || { echo "fuzz.sh: --jobs must be a whole number >= 1" >&2; exit 2; }
+
+build="${ODESKIN_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+data="${ODESKIN_SHARED_DIR:-$root/../shared}/data"
+command -v clang++ > /dev/null || { echo "fuzz.sh: clang++ not found (scripts/install-deps.sh installs clang)" >&2; exit 1; }
+
+launcher=()
+if command -v ccache > /dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
+start=$(date +%s)
+if [[ ! -f "$build/build.ninja" ]]; then
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DODESKIN_BUILD_FUZZERS=ON -DODESKIN_BUILD_HOST=OFF -DODESKIN_BUILD_TESTS=OFF -DODESKIN_BUILD_BENCH=OFF \
+    "${launcher[@]}" > /dev/null
+fi
+ninja -C "$build" -j"${ODESKIN_BUILD_JOBS:-$(nproc)}" odeskin_fuzzers | grep -v '^\[' || true
+[[ -x "$build/tests/fuzz/fuzz_obj" ]] || { echo "fuzz.sh: build failed" >&2; exit 1; }
+echo "fuzz.sh: built in $(($(date +%s) - start)) s"
+
+# ---- seeds: a few small files per format from ../shared/data and samples/, tiny hand-written
+# edge cases, and what the engine's own writers produce (odeskin_fuzz_seeds) -------------------------
+seeds="$build/seeds"
+rm -rf "$seeds"
+mkdir -p "$seeds"/{obj,tgf,dmat,odsk,gltf,network}
+"$build/tests/fuzz/odeskin_fuzz_seeds" "$seeds"
+copy_if_there() {  # copy_if_there DEST FILE...: data files are optional (a checkout without ../shared)
+  local dest="$1"; shift
+  for f in "$@"; do [[ -f "$f" ]] && install -m 644 "$f" "$dest/"; done
+  return 0
+}
+copy_if_there "$seeds/obj" "$data/cylinder/cylinder.obj"
+copy_if_there "$seeds/tgf" "$data/cylinder/cylinder.tgf" "$data/cheburashka/cheburashka.tgf"
+copy_if_there "$seeds/dmat" "$data/cylinder/cylinder.DMAT" "$data/cylinder/poses-1/cylinder-1.DMAT"
+cp "$root"/samples/surfaces/networks/*.json "$seeds/network/"
+printf 'v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nv 0 0 1e-1\r\nf 1 2 3\r\nf 1/1 -1/2 -2/3\r\nf 1//1 2/2/2 4//3 3\r\n' > "$seeds/obj/tetra-crlf.obj"
+printf 'v 0 0 0 # x y z\nvt 0 0\nvn 0 0 1\ng part\nv 1 0 0\nv 1 1 0\nf 1 2 3' > "$seeds/obj/triangle-no-newline.obj"
+printf '1 0 0 0\n2 0 1 0\n3 0 2 0\n#\n1 2\n2 3\n#\n' > "$seeds/tgf/chain.tgf"
+printf '2 3\n0.5 0.25 1\n0.5 0.75 0\n' > "$seeds/dmat/small.dmat"
+
+max_len() {  # inputs past this length are cut: big enough for the seeds that matter, small enough to run fast
+  case "$1" in
+    obj|dmat) echo 40000 ;;
+    gltf) echo 65536 ;;
+    odsk) echo 32768 ;;
+    *) echo 8192 ;;
+  esac
+}
+
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:symbolize=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+failed=()
+logs="$build/fuzz-logs"
+mkdir -p "$logs"
+for t in $targets; do
+  bin="$build/tests/fuzz/fuzz_$t"
+  [[ -x "$bin" ]] || { echo "fuzz.sh: no target '$t' (obj tgf dmat odsk gltf network)" >&2; exit 2; }
+  corpus="$build/corpus/$t"
+  findings="$build/findings/$t"
+  mkdir -p "$corpus" "$findings"
+  cp -n "$seeds/$t"/* "$corpus/" 2> /dev/null || true
+  regressions="$root/tests/fuzz/regressions/$t"
+  dirs=("$corpus")
+  [[ -d "$regressions" ]] && dirs+=("$regressions")
+  parallel=()
+  ((jobs > 1)) && parallel=(-fork="$jobs")
+  log="$logs/$t.log"
+  t0=$(date +%s)
+  set +e
+  "$bin" "${dirs[@]}" "${parallel[@]}" -max_total_time="$seconds" -max_len="$(max_len "$t")" -timeout=10 \
+    -rss_limit_mb=2048 -malloc_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 > "$log" 2>&1
+  rc=$?
+  set -e
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  units=$(ls "$corpus" | wc -l)
+  if ((rc != 0)); then
+    failed+=("$t")
+    echo "fuzz.sh: $t FAILED (exit $rc) after $(($(date +%s) - t0)) s; log: $log"
+    grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error|odeskin fuzz:|.*(Test unit|artifact) written to)' "$log" | head -8 | sed 's/^/  /'
+  else
+    echo "fuzz.sh: $t ok: ${execs:-?} inputs in $(($(date +%s) - t0)) s (${rate:-?}/s), corpus $units files"
+  fi
+done
+echo "fuzz.sh: done in $(($(date +%s) - start)) s"
+if ((${#failed[@]})); then
+  echo "fuzz.sh: findings in: ${failed[*]} (inputs under $build/findings/; replay one with" \
+    "build-fuzz/tests/fuzz/fuzz_<target> <file>)" >&2
+  exit 1
+fi

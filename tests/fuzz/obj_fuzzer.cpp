@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+// libFuzzer target: the OBJ reader (engine/io/obj_reader.hpp) on arbitrary bytes.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "engine/io/obj_reader.hpp"
+#include "fuzz_checks.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace odeskin;
+  const std::string source = "fuzz.obj";
+  const Result<ObjMesh> mesh = parseObj(std::string(reinterpret_cast<const char*>(data), size), source);
+  if (!mesh.ok()) {
+    fuzz::requireNamedError(mesh.status(), source);
+    return 0;
+  }
+  // Accepted: a face list whose every corner is a vertex, faces of 3 or more corners.
+  const FaceList& faces = mesh->faces;
+  fuzz::require(!mesh->positions.empty() && faces.faceCount() > 0, "accepted a mesh without vertices or faces");
+  fuzz::require(faces.face_offsets.front() == 0 && faces.face_offsets.back() == faces.indices.size(),
+                "face offsets do not span the indices");
+  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+    fuzz::require(faces.face_offsets[f + 1] >= faces.face_offsets[f] + 3, "accepted a face with fewer than 3 corners");
+  }
+  for (std::uint32_t v : faces.indices) fuzz::require(v < mesh->positions.size(), "accepted a face index out of range");
+  return 0;
+}
