@@ -9,6 +9,7 @@ packages=(
   glslang-tools spirv-tools
   libglm-dev libeigen3-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev libstb-dev zlib1g-dev libopenmesh-dev
   libcli11-dev libgtest-dev libbenchmark-dev
+  cppcheck clang-tidy
   nodejs chromium
 )
 # Debian's npm package conflicts with a nodejs that bundles npm (NodeSource builds): ask for it only
