@@ -109,7 +109,6 @@ Result<RbfInterpolator> RbfInterpolator::create(std::span<const double> examples
     }
   }
   const double ridge = options.regularization * largest;
-  std::vector<double> y(m);
   for (std::size_t k = 0; k < k_count; ++k) {
     const auto row = static_cast<Eigen::Index>(k);
     system(row, row) += ridge;
