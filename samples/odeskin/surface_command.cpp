@@ -151,6 +151,7 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   report.rows = network->rows();
   report.columns = network->columns();
   report.warnings = warnings.size();
+  // cppcheck-suppress redundantInitialization ; Result has no default constructor
   Result<SurfaceMesh> mesh = Status(internalError("surface: no backend ran"));
   if (o.backend == "cpu") {
     const auto start = std::chrono::steady_clock::now();
