@@ -7,6 +7,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${ODESKIN_BUILD_DIR:-$root/build}"
 "$root/scripts/install-deps.sh"
 "$root/scripts/build.sh"
+"$root/scripts/analyze.sh" --cppcheck-only  # static analysis of our code (docs/reliability/analysis.md)
 
 # engine/ must never see Vulkan (STYLE.md): check the sources and that the engine configures and
 # builds on its own with the host switched off.
