@@ -82,6 +82,7 @@ Result<PatchCurves> coefficientBoundary(const PatchCurve& c1, const PatchCurve& 
     if (!std::isfinite(x)) return invalidArgument("patch boundary: coefficient w = " + number(x) + " is not finite");
   }
   return PatchCurves{c1, scaled(w[0], c1), scaled(w[1], c1), c4, scaled(w[2], c4), scaled(w[3], c4)};
+  // NOLINTNEXTLINE(clang-analyzer-cplusplus.NewDeleteLeaks): false positive, the analyzer loses std::function's heap functor once it is moved into the returned array
 }
 
 Result<PatchCurves> controlCurveBoundary(const PatchCurve& c1, const PatchCurve& cb2, const PatchCurve& cb3,
