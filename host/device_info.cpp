@@ -75,7 +75,7 @@ Status printDeviceInfo(std::ostream& out, std::string_view selector) {
     out << "    timestampPeriod: " << d.timestamp_period_ns << " ns, timestampComputeAndGraphics: "
         << (d.timestamp_compute_and_graphics ? "yes" : "no") << "\n";
     for (std::size_t h = 0; h < d.heaps.size(); ++h) {
-      out << "    heap " << h << ": " << d.heaps[h].size_bytes / (1024 * 1024) << " MiB"
+      out << "    heap " << h << ": " << d.heaps[h].size_bytes / (std::uint64_t{1024} * 1024) << " MiB"
           << (d.heaps[h].device_local ? " device-local" : "") << "\n";
     }
   }

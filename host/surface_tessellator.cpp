@@ -14,7 +14,7 @@ namespace {
 void recordPass(VkCommandBuffer cmd, const vk::ComputePipeline& base, VkPipeline pipeline,
                 gpu::TessellatePushConstants push, std::uint32_t items) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-  const VkDescriptorSet set = base.set(0);
+  VkDescriptorSet set = base.set(0);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, base.layout(), 0, 1, &set, 0, nullptr);
   push.item_count = items;
   const std::uint32_t per_dispatch = ODESKIN_TESSELLATE_MAX_GROUPS * ODESKIN_TESSELLATE_WORKGROUP_SIZE;

@@ -10,6 +10,7 @@ packages=(
   libglm-dev libeigen3-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev libstb-dev zlib1g-dev libopenmesh-dev
   libcli11-dev libgtest-dev libbenchmark-dev
   clang clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and the sanitizers
+  cppcheck clang-tidy
   nodejs chromium
 )
 # Debian's npm package conflicts with a nodejs that bundles npm (NodeSource builds): ask for it only

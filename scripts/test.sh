@@ -35,6 +35,7 @@ if command -v ccache > /dev/null 2>&1; then
 fi
 sanitize=(-DODESKIN_SANITIZE=address,undefined "${launcher[@]}")
 ODESKIN_BUILD_DIR="$asan" "$root/scripts/build.sh" "${sanitize[@]}"
+ODESKIN_BUILD_DIR="$asan" "$root/scripts/analyze.sh" --cppcheck-only  # static analysis of our code (docs/reliability/analysis.md)
 
 # engine/ must never see Vulkan (STYLE.md): check the sources and that the engine configures and
 # builds on its own with the host switched off.

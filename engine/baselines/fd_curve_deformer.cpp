@@ -42,7 +42,7 @@ struct DftTable {
   void sample(const Vec3* d, std::span<Vec3> out) const {
     for (std::size_t j = 0; j < points; ++j) {
       Vec3 sum = d[0];
-      for (int n = 1; n <= modes; ++n) sum += c(j, n) * d[2 * n - 1] + s(j, n) * d[2 * n];
+      for (int n = 1; n <= modes; ++n) sum += c(j, n) * d[2 * n - 1] + s(j, n) * d[2 * static_cast<std::size_t>(n)];
       out[j] = sum;
     }
   }
@@ -58,7 +58,7 @@ struct DftTable {
         b += s(j, n) * u[j];
       }
       d[2 * n - 1] = 2.0 * inv * a;
-      d[2 * n] = 2.0 * inv * b;
+      d[2 * static_cast<std::size_t>(n)] = 2.0 * inv * b;
     }
   }
 };

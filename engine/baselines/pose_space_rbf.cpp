@@ -72,7 +72,7 @@ Result<RbfInterpolator> RbfInterpolator::create(std::span<const double> examples
     }
   }
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(centred, Eigen::ComputeThinV);
-  const Eigen::VectorXd sigma = svd.singularValues();
+  const Eigen::VectorXd& sigma = svd.singularValues();
   for (Eigen::Index i = 0; i < sigma.size(); ++i) {
     if (sigma(i) > kHullRelativeThreshold * sigma(0) && sigma(i) > 0.0) ++rbf.hull_dimension_;
   }
@@ -109,7 +109,6 @@ Result<RbfInterpolator> RbfInterpolator::create(std::span<const double> examples
     }
   }
   const double ridge = options.regularization * largest;
-  std::vector<double> y(m);
   for (std::size_t k = 0; k < k_count; ++k) {
     const auto row = static_cast<Eigen::Index>(k);
     system(row, row) += ridge;

@@ -13,8 +13,8 @@ namespace odeskin {
 template <typename T>
 class [[nodiscard]] Result {
  public:
-  Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit by design
-  Result(Status status) : status_(std::move(status)) {  // NOLINT: implicit by design
+  Result(T value) : value_(std::move(value)) {}  // cppcheck-suppress noExplicitConstructor ; NOLINT: implicit by design
+  Result(Status status) : status_(std::move(status)) {  // cppcheck-suppress noExplicitConstructor ; NOLINT: implicit by design
     assert(!status_.ok() && "a Result built from a Status must carry an error");
   }
 
@@ -41,4 +41,4 @@ class [[nodiscard]] Result {
   auto ODESKIN_CONCAT(odeskin_result_, __LINE__) = (expr);                           \
   if (!ODESKIN_CONCAT(odeskin_result_, __LINE__).ok())                               \
     return ODESKIN_CONCAT(odeskin_result_, __LINE__).status();                       \
-  lhs = std::move(ODESKIN_CONCAT(odeskin_result_, __LINE__)).value()
+  lhs = std::move(ODESKIN_CONCAT(odeskin_result_, __LINE__)).value()  // NOLINT(bugprone-macro-parentheses): lhs declares

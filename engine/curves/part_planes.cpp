@@ -394,6 +394,7 @@ void addBoundaryLoops(std::span<const Vec3> rest, const std::vector<std::vector<
     draft.bone = seg.parts[p].bone;
     measureCurve(draft, rest);
     std::vector<Vec3> points;
+    points.reserve(loop.size());
     for (std::uint32_t v : loop) points.push_back(rest[v]);
     const PrincipalAxes pca = principalAxes(points);
     Vec3 normal = pca.values[0] <= 0.25 * pca.values[1] ? pca.axes[0] : seg.parts[p].axis;

@@ -113,6 +113,7 @@ void mergeTinyPatches(const VertexAdjacency& adjacency, std::vector<std::uint32_
     const std::uint32_t merged = compactLabels(labels, &remap);
     std::vector<std::uint32_t> bones(merged);
     for (std::uint32_t p = 0; p < count; ++p) {
+      // cppcheck-suppress containerOutOfBounds ; false positive: compactLabels filled remap through its pointer
       if (group[p] == p) bones[remap[p]] = patch_bone[largest[p]];
     }
     patch_bone = std::move(bones);

@@ -462,7 +462,7 @@ class Binder {
 
   // Pairs k of `seq` whose curves run the same way round (the others never pair).
   std::vector<char> pairable(const std::vector<Station>& seq) const {
-    std::vector<char> out(seq.size() > 0 ? seq.size() - 1 : 0, 0);
+    std::vector<char> out(!seq.empty() ? seq.size() - 1 : 0, 0);
     for (std::size_t k = 0; k + 1 < seq.size(); ++k) {
       out[k] = glm::dot(layout_.curves[seq[k].curve].orientation, layout_.curves[seq[k + 1].curve].orientation) > 0.0;
     }

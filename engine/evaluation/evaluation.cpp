@@ -126,8 +126,8 @@ Result<KeyFit> fitEvaluationKeys(const ExampleSet& frames, std::span<const std::
   if (key_set.rig && key_set.rig->key_poses.size() != keys.size()) key_set.rig->key_poses.clear();
   const auto fit_start = std::chrono::steady_clock::now();
   ODESKIN_ASSIGN_OR_RETURN(out.fit, runFitPipeline(key_set, options.pipeline));
-  PipelineResult& fit = out.fit;
   if (options.skeleton_fit == SkeletonFit::kPerBoneRigid) {
+    PipelineResult& fit = out.fit;
     // Keep the fitted rig's bones and weights; refit the keys' transforms rigidly and fit again, so
     // that the residual is measured against the same kind of skeleton the in-betweens get.
     ODESKIN_ASSIGN_OR_RETURN(Rig rig, perBoneRigidRig(fit.asset, key_set));

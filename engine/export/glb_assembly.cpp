@@ -118,7 +118,7 @@ Result<int> targetAccessor(ModelBuilder& b, const ExportMesh& mesh, const Sparse
   sparse = indices.size() * (index_bytes + 12) < count * 12;
   if (!sparse) {
     std::vector<float> dense(count * 3, 0.0f);
-    for (std::size_t k = 0; k < indices.size(); ++k) std::memcpy(&dense[3 * indices[k]], &values[3 * k], 3 * sizeof(float));
+    for (std::size_t k = 0; k < indices.size(); ++k) std::memcpy(&dense[3 * std::size_t{indices[k]}], &values[3 * k], 3 * sizeof(float));
     return b.floats(dense, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
   }
   tinygltf::Accessor a;
@@ -212,23 +212,23 @@ std::string boneName(const DeformAsset& asset, std::size_t bone) {
 
 }  // namespace
 
-Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbContents& in) {
-  const DeformAsset& asset = *in.asset;
-  const ExportMesh& mesh = *in.mesh;
+Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbContents& contents) {
+  const DeformAsset& asset = *contents.asset;
+  const ExportMesh& mesh = *contents.mesh;
   const std::size_t bones = asset.bone_count;
   if (bones == 0 || bones > 65536) return invalidArgument("export: " + std::to_string(bones) + " bones (glTF skins take 1 to 65536 joints)");
   GlbSummary summary;
   ModelBuilder b;
   b.model.asset.version = "2.0";
-  b.model.asset.generator = in.generator;
+  b.model.asset.generator = contents.generator;
 
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   writeMesh(b, mesh, primitive, bones);
   tinygltf::Value::Array names;
   std::vector<std::int32_t> slot_of_vertex(asset.vertexCount(), -1);
-  for (const SplitTarget& t : in.weights->targets) {
-    const ModeTarget& source = in.targets->targets[t.source];
+  for (const SplitTarget& t : contents.weights->targets) {
+    const ModeTarget& source = contents.targets->targets[t.source];
     const std::string name = source.name + (t.sign > 0 ? "+" : "-");
     bool sparse = false;
     ODESKIN_ASSIGN_OR_RETURN(const int accessor,
@@ -259,7 +259,7 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
   tinygltf::Node skeleton_root;
   skeleton_root.name = "skeleton";
   b.model.nodes.push_back(skeleton_root);
-  const SkeletonKeys& keys = *in.skeleton;
+  const SkeletonKeys& keys = *contents.skeleton;
   std::vector<float> inverse_binds;
   for (std::size_t bone = 0; bone < bones; ++bone) {
     tinygltf::Node node;
@@ -289,8 +289,8 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
 
   tinygltf::Animation animation;
   animation.name = "odeskin";
-  ODESKIN_TRY(writeWeightsAnimation(b, in, animation));
-  ODESKIN_TRY(writeSkeletonAnimation(b, in, kFirstJoint, animation));
+  ODESKIN_TRY(writeWeightsAnimation(b, contents, animation));
+  ODESKIN_TRY(writeSkeletonAnimation(b, contents, kFirstJoint, animation));
   b.model.animations.push_back(animation);
 
   tinygltf::Scene scene;

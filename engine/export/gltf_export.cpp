@@ -27,6 +27,7 @@ std::vector<std::vector<BoneTransform>> keyBones(const DeformAsset& asset) {
   std::vector<std::vector<BoneTransform>> out;
   for (const std::vector<RigidTransform>& key : asset.key_poses) {
     std::vector<BoneTransform>& bones = out.emplace_back();
+    // cppcheck-suppress invalidContainerReference ; false positive: bones is out.back(), and out does not grow inside this loop
     for (const RigidTransform& bone : key) bones.push_back(bone.matrix());
   }
   return out;

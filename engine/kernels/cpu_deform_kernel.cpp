@@ -451,6 +451,7 @@ Status CpuDeformKernel::run(bool deform, std::uint32_t segment, std::span<const 
   frame.bones = bones.data();
   frame.basis = basis.data();
   frame.out_positions = out_positions.data();
+  // cppcheck-suppress variableScope ; frame.dual_quats points into it until runBlocks below returns
   std::array<gpu::DualQuat, kMaxStackBones> stack_dual_quats;
   std::vector<gpu::DualQuat> heap_dual_quats;
   if (l.skinning == SkinningMode::kDualQuaternion) {

@@ -39,8 +39,8 @@ glm::vec3 curveSeries(const PackedDeformData& d, const gpu::DeformPushConstants&
   float sn = s1;
   for (std::uint32_t n = 1; n <= pc.modes; ++n) {
     const gpu::ModeBasis bn = basis[basis_base + n];
-    sum += bn.gamma * (cn * xyz(coef[2 * n - 1]) + sn * xyz(coef[2 * n]));
-    if (rate) sum += bn.psi * (cn * xyz(rate[2 * n - 1]) + sn * xyz(rate[2 * n]));
+    sum += bn.gamma * (cn * xyz(coef[2 * n - 1]) + sn * xyz(coef[2 * std::size_t{n}]));
+    if (rate) sum += bn.psi * (cn * xyz(rate[2 * n - 1]) + sn * xyz(rate[2 * std::size_t{n}]));
     const float c_next = cn * c1 - sn * s1;
     sn = sn * c1 + cn * s1;
     cn = c_next;

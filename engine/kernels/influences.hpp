@@ -28,7 +28,7 @@ struct InfluencesView {
   std::span<const double> weights;
 
   InfluencesView() = default;
-  InfluencesView(const Influences& in) : offsets(in.offsets), bones(in.bones), weights(in.weights) {}  // NOLINT
+  InfluencesView(const Influences& in) : offsets(in.offsets), bones(in.bones), weights(in.weights) {}  // cppcheck-suppress noExplicitConstructor ; NOLINT: implicit by design
 };
 
 // Checks the layout for `vertex_count` vertices and `bone_count` bones.

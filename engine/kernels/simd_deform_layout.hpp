@@ -43,7 +43,7 @@ struct AlignedAllocator {
   static constexpr std::align_val_t kAlignment{64};  // a cache line and one AVX-512 register
   AlignedAllocator() = default;
   template <typename U>
-  AlignedAllocator(const AlignedAllocator<U>&) {}  // NOLINT: rebinding, as std::allocator does
+  AlignedAllocator(const AlignedAllocator<U>&) {}  // cppcheck-suppress noExplicitConstructor ; NOLINT: rebinding, as std::allocator does
   T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
   void deallocate(T* p, std::size_t) { ::operator delete(p, kAlignment); }
   template <typename U>

@@ -118,7 +118,7 @@ Result<FourierFitter> FourierFitter::create(std::span<const double> v, int modes
     } else {
       for (int n = 1; n <= modes; ++n) {
         design->a(r, 2 * n - 2) = phi[static_cast<std::size_t>(2 * n - 1)] - 1.0;
-        design->a(r, 2 * n - 1) = phi[static_cast<std::size_t>(2 * n)];
+        design->a(r, 2 * n - 1) = phi[2 * static_cast<std::size_t>(n)];
       }
     }
   }
@@ -209,7 +209,7 @@ void fourierBasis(double v, int modes, std::span<double> out) {
   for (int n = 1; n <= modes; ++n) {
     const double angle = 2.0 * std::numbers::pi * n * v;
     out[static_cast<std::size_t>(2 * n - 1)] = std::cos(angle);
-    out[static_cast<std::size_t>(2 * n)] = std::sin(angle);
+    out[2 * static_cast<std::size_t>(n)] = std::sin(angle);
   }
 }
 
@@ -224,7 +224,7 @@ glm::dvec3 FourierFit::evaluate(double v) const {
   for (int n = 1; n <= usable_modes; ++n) {
     const double angle = 2.0 * std::numbers::pi * n * v;
     c += coefficients[static_cast<std::size_t>(2 * n - 1)] * std::cos(angle) +
-         coefficients[static_cast<std::size_t>(2 * n)] * std::sin(angle);
+         coefficients[2 * static_cast<std::size_t>(n)] * std::sin(angle);
   }
   return c;
 }

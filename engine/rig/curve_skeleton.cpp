@@ -357,6 +357,7 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   const TreeParts parts = treeParts(graph, tree);
   // The root node is the centre of the band itself (the slab next to it may hold part of a ring).
   std::vector<SkeletonAnchor> root_anchors;
+  root_anchors.reserve(band.size());
   for (const std::uint32_t v : band) root_anchors.push_back({CurvePoint{v, v, 0.0}, 1.0});
 
   CurveSkeletonResult result;

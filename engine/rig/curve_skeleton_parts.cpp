@@ -100,6 +100,7 @@ std::vector<SkeletonAnchor> tipAnchors(const LevelGraph& graph, std::uint32_t re
     }
   }
   std::vector<SkeletonAnchor> anchors;
+  anchors.reserve(rim.size());
   for (const std::uint32_t v : rim) anchors.push_back({CurvePoint{v, v, 0.0}, 1.0});
   return anchors;
 }

@@ -61,14 +61,14 @@ Result<RigidTransform> weightedKabsch(std::span<const Vec3> from, std::span<cons
 Result<RigidTransform> kabschFromCovariance(const Eigen::Matrix3d& h, const Vec3& from_centroid,
                                             const Vec3& to_centroid) {
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Vector3d s = svd.singularValues();
+  const Eigen::Vector3d& s = svd.singularValues();
   // Rank < 2: the points (or their images) lie on a line, and any turn about it fits as well.
   if (!std::isfinite(s(0)) || !(s(0) > 0.0) || s(1) <= kCollinearRatio * s(0)) {
     return degenerate("kabsch: the weighted points are collinear or coincide (singular values " +
                       std::to_string(s(0)) + ", " + std::to_string(s(1)) + ", " + std::to_string(s(2)) + ")");
   }
-  const Eigen::Matrix3d u = svd.matrixU();
-  const Eigen::Matrix3d v = svd.matrixV();
+  const Eigen::Matrix3d& u = svd.matrixU();
+  const Eigen::Matrix3d& v = svd.matrixV();
   // A reflection fits better when the best orthogonal map has det -1; flipping the axis of the
   // smallest singular value gives the best proper rotation instead.
   Eigen::Vector3d d(1.0, 1.0, (v * u.transpose()).determinant() < 0.0 ? -1.0 : 1.0);

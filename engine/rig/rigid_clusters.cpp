@@ -149,6 +149,7 @@ std::optional<std::vector<RigidTransform>> seedCluster(const MotionData& m, cons
 // Lloyd rounds at a fixed count, until no label changes; leaves the errors up to date.
 void lloyd(const MotionData& m, int iterations, Clustering& c) {
   const std::size_t clusters = c.clusterCount();
+  // cppcheck-suppress variableScope ; declared outside the loop so its storage is reused each iteration
   std::vector<std::uint32_t> previous;
   for (int it = 0; it < iterations; ++it) {
     const std::vector<BoneTransform> matrices = matricesOf(c.transforms);

@@ -48,8 +48,8 @@ Result<ClampedCubicSpline> ClampedCubicSpline::fit(std::span<const double> value
 namespace {
 
 struct Piece {
-  std::size_t j;
-  double s;
+  std::size_t j;  // cppcheck-suppress unusedStructMember ; read through structured bindings
+  double s;       // cppcheck-suppress unusedStructMember ; as above
 };
 
 Piece locate(double u, std::size_t n) {

@@ -53,7 +53,9 @@ MeshPoint DiskLocator::locate(Vec2 uv) const {
   MeshPoint point;
   // The point's own cell holds its triangle; rounding at a cell edge may need a neighbour's.
   for (std::uint32_t ring = 0; ring <= cells_ && best < -1e-12; ++ring) {
+    // cppcheck-suppress constStatement ; false positive: cppcheck misparses std::int64_t{ci} in a for header
     for (std::int64_t i = std::int64_t{ci} - ring; i <= std::int64_t{ci} + ring; ++i) {
+      // cppcheck-suppress constStatement ; as above
       for (std::int64_t j = std::int64_t{cj} - ring; j <= std::int64_t{cj} + ring; ++j) {
         if (i < 0 || j < 0 || i >= cells_ || j >= cells_) continue;
         if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring) continue;

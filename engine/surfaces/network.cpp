@@ -261,8 +261,9 @@ Result<Patch> Network::patch(std::uint32_t row, std::uint32_t column) const {
   const double offset = column;
   for (std::size_t e = 0; e < 2; ++e) {
     const std::uint32_t b = ends[e];
-    auto term_curve = [&](std::vector<CurveTerm> terms) -> PatchCurve {
+    auto term_curve = [&](const std::vector<CurveTerm>& terms) -> PatchCurve {
       std::vector<std::pair<double, NetworkCurve>> copies;
+      copies.reserve(terms.size());
       for (const CurveTerm& t : terms) copies.emplace_back(t.weight, curves_[t.curve]);
       return [copies = std::move(copies), offset](double v, int order) {
         Vec3 sum(0.0);

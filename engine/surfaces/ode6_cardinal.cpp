@@ -136,7 +136,7 @@ double seriesD(const SeriesTable& series, int k, double t, int m) {
   double sum = 0.0;
   double power_over_factorial = 1.0;
   for (int n = 0; n < kOde6SeriesTerms; ++n) {
-    sum += a[static_cast<std::size_t>(n + m)] * power_over_factorial;
+    sum += a[static_cast<std::size_t>(n) + static_cast<std::size_t>(m)] * power_over_factorial;
     power_over_factorial *= t / (n + 1);
   }
   return sum;

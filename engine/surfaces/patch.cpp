@@ -5,14 +5,14 @@ namespace odeskin {
 
 Result<Patch> Patch::create(const Ode6Shape& shape, PatchCurves curves) {
   ODESKIN_ASSIGN_OR_RETURN(Ode6Cardinal cardinal, Ode6Cardinal::create(shape));
-  return create(std::move(cardinal), std::move(curves));
+  return create(cardinal, std::move(curves));
 }
 
-Result<Patch> Patch::create(Ode6Cardinal cardinal, PatchCurves curves) {
+Result<Patch> Patch::create(const Ode6Cardinal& cardinal, PatchCurves curves) {
   for (std::size_t k = 0; k < curves.size(); ++k) {
     if (!curves[k]) return invalidArgument("patch: boundary curve c" + std::to_string(k + 1) + " is empty");
   }
-  return Patch(std::move(cardinal), std::move(curves));
+  return Patch(cardinal, std::move(curves));
 }
 
 Vec3 Patch::position(double u, double v) const {

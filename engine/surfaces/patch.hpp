@@ -29,7 +29,7 @@ class Patch {
   static Result<Patch> create(const Ode6Shape& shape, PatchCurves curves);
   // A patch over curves whose cardinal functions were already computed (shared by a chain of
   // v-adjacent patches, MATH.md 3.9).
-  static Result<Patch> create(Ode6Cardinal cardinal, PatchCurves curves);
+  static Result<Patch> create(const Ode6Cardinal& cardinal, PatchCurves curves);
 
   // Preconditions: u, v in [0, 1].
   Vec3 position(double u, double v) const;
@@ -39,7 +39,7 @@ class Patch {
   const PatchCurves& curves() const { return curves_; }
 
  private:
-  Patch(Ode6Cardinal cardinal, PatchCurves curves) : cardinal_(std::move(cardinal)), curves_(std::move(curves)) {}
+  Patch(const Ode6Cardinal& cardinal, PatchCurves curves) : cardinal_(cardinal), curves_(std::move(curves)) {}
 
   Ode6Cardinal cardinal_;
   PatchCurves curves_;

@@ -76,17 +76,18 @@ DerivativeWeights thesisEndSecondWeights(double u5, double u6) {
   return {1.0 / (a * a), (-1.0 / a - s) / a, s / a};
 }
 
-Result<PatchCurves> coefficientBoundary(PatchCurve c1, PatchCurve c4, const std::array<double, 4>& w) {
+Result<PatchCurves> coefficientBoundary(const PatchCurve& c1, const PatchCurve& c4, const std::array<double, 4>& w) {
   if (!c1 || !c4) return invalidArgument("patch boundary: c1 and c4 are required");
   for (double x : w) {
     if (!std::isfinite(x)) return invalidArgument("patch boundary: coefficient w = " + number(x) + " is not finite");
   }
   return PatchCurves{c1, scaled(w[0], c1), scaled(w[1], c1), c4, scaled(w[2], c4), scaled(w[3], c4)};
+  // NOLINTNEXTLINE(clang-analyzer-cplusplus.NewDeleteLeaks): false positive, the analyzer loses std::function's heap functor once it is moved into the returned array
 }
 
-Result<PatchCurves> controlCurveBoundary(PatchCurve c1, PatchCurve cb2, PatchCurve cb3, PatchCurve cb5,
-                                         PatchCurve cb6, PatchCurve c4, const ControlPositions& at,
-                                         SlopeRule slopes) {
+Result<PatchCurves> controlCurveBoundary(const PatchCurve& c1, const PatchCurve& cb2, const PatchCurve& cb3,
+                                         const PatchCurve& cb5, const PatchCurve& cb6, const PatchCurve& c4,
+                                         const ControlPositions& at, SlopeRule slopes) {
   if (!c1 || !cb2 || !cb3 || !cb5 || !cb6 || !c4) {
     return invalidArgument("patch boundary: c1, cb2, cb3, cb5, cb6 and c4 are required");
   }

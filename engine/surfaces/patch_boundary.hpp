@@ -57,7 +57,7 @@ DerivativeWeights thesisEndSecondWeights(double u5, double u6);
 
 // Way (A): c2 = w[0] c1, c3 = w[1] c1, c5 = w[2] c4, c6 = w[3] c4. kInvalidArgument for empty
 // curves or weights that are not finite.
-Result<PatchCurves> coefficientBoundary(PatchCurve c1, PatchCurve c4, const std::array<double, 4>& w);
+Result<PatchCurves> coefficientBoundary(const PatchCurve& c1, const PatchCurve& c4, const std::array<double, 4>& w);
 
 // Positions of the control curves of way (B) inside one patch.
 struct ControlPositions {
@@ -69,8 +69,8 @@ struct ControlPositions {
 
 // Way (B): c1, c4 are the boundary curves; cb2, cb3, cb5, cb6 the control curves at `at`.
 // kInvalidArgument for empty curves or unless 0 < u2 < u3 <= u5 < u6 < 1.
-Result<PatchCurves> controlCurveBoundary(PatchCurve c1, PatchCurve cb2, PatchCurve cb3, PatchCurve cb5,
-                                         PatchCurve cb6, PatchCurve c4, const ControlPositions& at,
-                                         SlopeRule slopes = SlopeRule::kOneSided);
+Result<PatchCurves> controlCurveBoundary(const PatchCurve& c1, const PatchCurve& cb2, const PatchCurve& cb3,
+                                         const PatchCurve& cb5, const PatchCurve& cb6, const PatchCurve& c4,
+                                         const ControlPositions& at, SlopeRule slopes = SlopeRule::kOneSided);
 
 }  // namespace odeskin

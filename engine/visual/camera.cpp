@@ -101,6 +101,7 @@ std::vector<Vec3> framable(std::span<const Vec3> points) {
   const Bounds b = boundsOf(points);
   if (b.diagonal() > 0.0) return {points.begin(), points.end()};
   std::vector<Vec3> corners;
+  corners.reserve(8);
   for (int c = 0; c < 8; ++c) {
     corners.push_back(b.min + Vec3((c & 1) - 0.5, ((c >> 1) & 1) - 0.5, ((c >> 2) & 1) - 0.5));
   }
@@ -129,9 +130,9 @@ Camera cameraAt(const Vec3& eye, const ViewBasis& basis, std::span<const Vec3> p
 
 }  // namespace
 
-Result<Camera> framePoints(std::span<const Vec3> input, double aspect, const ViewSpec& view) {
-  ODESKIN_TRY(checkFraming(input, aspect, view));
-  const std::vector<Vec3> points = framable(input);
+Result<Camera> framePoints(std::span<const Vec3> points, double aspect, const ViewSpec& view) {
+  ODESKIN_TRY(checkFraming(points, aspect, view));
+  const std::vector<Vec3> framed = framable(points);
   const ViewBasis basis = viewBasis(view);
   const double ty = std::tan(0.5 * radians(view.fov_y_deg)) * (1.0 - view.margin);
   const double tx = ty * aspect;
@@ -141,7 +142,7 @@ Result<Camera> framePoints(std::span<const Vec3> input, double aspect, const Vie
   double x_lo = 1e300;
   double y_hi = -1e300;
   double y_lo = 1e300;
-  for (const Vec3& p : points) {
+  for (const Vec3& p : framed) {
     const double x = glm::dot(p, basis.right);
     const double y = glm::dot(p, basis.up);
     const double z = glm::dot(p, basis.dir);
@@ -152,14 +153,14 @@ Result<Camera> framePoints(std::span<const Vec3> input, double aspect, const Vie
   }
   const double d = std::max((x_hi - x_lo) / (2.0 * tx), (y_hi - y_lo) / (2.0 * ty));
   const Vec3 eye = 0.5 * (x_hi + x_lo) * basis.right + 0.5 * (y_hi + y_lo) * basis.up + d * basis.dir;
-  return cameraAt(eye, basis, points, aspect, view);
+  return cameraAt(eye, basis, framed, aspect, view);
 }
 
-Result<std::vector<Camera>> turntableCameras(std::span<const Vec3> input, double aspect, const ViewSpec& view,
+Result<std::vector<Camera>> turntableCameras(std::span<const Vec3> points, double aspect, const ViewSpec& view,
                                              std::span<const double> azimuths_deg) {
-  ODESKIN_TRY(checkFraming(input, aspect, view));
-  const std::vector<Vec3> points = framable(input);
-  const Vec3 centre = boundsOf(points).centre();
+  ODESKIN_TRY(checkFraming(points, aspect, view));
+  const std::vector<Vec3> framed = framable(points);
+  const Vec3 centre = boundsOf(framed).centre();
   const double ty = std::tan(0.5 * radians(view.fov_y_deg)) * (1.0 - view.margin);
   const double tx = ty * aspect;
   // Looking at the centre: |a_i| <= t (d - z_i) for every point, so d >= |a_i| / t + z_i.
@@ -168,7 +169,7 @@ Result<std::vector<Camera>> turntableCameras(std::span<const Vec3> input, double
     ViewSpec turned = view;
     turned.azimuth_deg += azimuth;
     const ViewBasis basis = viewBasis(turned);
-    for (const Vec3& p : points) {
+    for (const Vec3& p : framed) {
       const Vec3 q = p - centre;
       const double z = glm::dot(q, basis.dir);
       distance = std::max({distance, std::abs(glm::dot(q, basis.right)) / tx + z,
@@ -180,7 +181,7 @@ Result<std::vector<Camera>> turntableCameras(std::span<const Vec3> input, double
     ViewSpec turned = view;
     turned.azimuth_deg += azimuth;
     const ViewBasis basis = viewBasis(turned);
-    cameras.push_back(cameraAt(centre + distance * basis.dir, basis, points, aspect, turned));
+    cameras.push_back(cameraAt(centre + distance * basis.dir, basis, framed, aspect, turned));
   }
   return cameras;
 }

@@ -51,7 +51,7 @@ std::string tickLabel(double value, double step) {
 }
 
 std::int64_t colourBarTitleHeight(const ColourBarStyle& style) {
-  const std::int64_t gap = 2 * style.text_scale;
+  const std::int64_t gap = std::int64_t{2} * style.text_scale;
   const std::int64_t line = textSize("0", style.text_scale).height;
   return line / 2 + 4 * gap + 2 * line;
 }
@@ -64,7 +64,7 @@ std::int64_t colourBarWidth(double heat_max, const ColourBarStyle& style) {
   char top[32];
   std::snprintf(top, sizeof top, "%.3g", heat_max * kPercent);
   label = std::max(label, textSize(top, style.text_scale).width);
-  const std::int64_t gap = 2 * style.text_scale;
+  const std::int64_t gap = std::int64_t{2} * style.text_scale;
   const std::int64_t body = style.bar_width + style.tick_length + gap + label;
   const std::int64_t title =
       std::max(textSize(style.title, style.text_scale).width, textSize(style.unit, style.text_scale).width);
@@ -73,7 +73,7 @@ std::int64_t colourBarWidth(double heat_max, const ColourBarStyle& style) {
 
 void drawColourBar(Image& image, std::int64_t x, std::int64_t top, std::int64_t bottom, double heat_max,
                    const ColourBarStyle& style) {
-  const std::int64_t gap = 2 * style.text_scale;
+  const std::int64_t gap = std::int64_t{2} * style.text_scale;
   const std::int64_t line = textSize("0", style.text_scale).height;
   const std::int64_t bar_x = x + gap;
   const std::int64_t height = std::max<std::int64_t>(bottom - top, 1);

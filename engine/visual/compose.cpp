@@ -9,10 +9,10 @@
 
 namespace odeskin::visual {
 
-Image overBackground(const Image& src, Rgba8 background) {
-  Image out(src.width, src.height);
-  for (std::size_t i = 0; i < src.pixels.size(); ++i) {
-    const Rgba8 s = src.pixels[i];
+Image overBackground(const Image& premultiplied, Rgba8 background) {
+  Image out(premultiplied.width, premultiplied.height);
+  for (std::size_t i = 0; i < premultiplied.pixels.size(); ++i) {
+    const Rgba8 s = premultiplied.pixels[i];
     const int keep = 255 - s.a;
     auto mix = [keep](std::uint8_t over, std::uint8_t under) {
       return static_cast<std::uint8_t>(std::min(255, over + (keep * under + 127) / 255));
@@ -97,7 +97,7 @@ Image contactSheet(std::span<const Image> frames, std::uint32_t columns, std::ui
   const auto thumb_height = std::max<std::uint32_t>(
       1, static_cast<std::uint32_t>(std::lround(double(thumb_width) * first.height / first.width)));
   const int text_scale = thumb_height >= 400 ? 2 : 1;
-  const std::int64_t caption_height = captions.empty() ? 0 : textSize("0", text_scale).height + 4 * text_scale;
+  const std::int64_t caption_height = captions.empty() ? 0 : textSize("0", text_scale).height + std::int64_t{4} * text_scale;
   columns = std::min<std::uint32_t>(columns, static_cast<std::uint32_t>(frames.size()));
   const auto rows = static_cast<std::uint32_t>((frames.size() + columns - 1) / columns);
   const std::int64_t cell_height = thumb_height + caption_height;

@@ -30,11 +30,11 @@ Result<PictureLayout> layoutPicture(const PictureSpec& spec) {
   // Labels about 3% of the height tall: scale 1 below 375 pixels, 2 up to 625, 3 up to 875.
   layout.text_scale = static_cast<int>(std::clamp<std::int64_t>(std::lround(spec.height / 250.0), 1, 4));
   layout.bar_style.text_scale = layout.text_scale;
-  layout.bar_style.bar_width = 11 * layout.text_scale;
-  layout.bar_style.tick_length = 3 * layout.text_scale;
+  layout.bar_style.bar_width = std::int64_t{11} * layout.text_scale;
+  layout.bar_style.tick_length = std::int64_t{3} * layout.text_scale;
 
   const std::int64_t label_height =
-      spec.label_lines == 0 ? 0 : static_cast<std::int64_t>(spec.label_lines) * kLinePitch * layout.text_scale + 4 * layout.text_scale;
+      spec.label_lines == 0 ? 0 : static_cast<std::int64_t>(spec.label_lines) * kLinePitch * layout.text_scale + std::int64_t{4} * layout.text_scale;
   const std::int64_t bar_width = spec.heat_max ? colourBarWidth(*spec.heat_max, layout.bar_style) : 0;
   layout.width = spec.width != 0 ? spec.width
                                  : static_cast<std::uint32_t>(spec.panels * spec.panel_width_hint +
@@ -53,12 +53,12 @@ Result<PictureLayout> layoutPicture(const PictureSpec& spec) {
   // Columns left over by the integer division are shared out as a margin on both sides.
   const std::int64_t spare = panels_width - panel_width * static_cast<std::int64_t>(spec.panels);
   for (std::size_t i = 0; i < spec.panels; ++i) layout.panel_left.push_back(spare / 2 + static_cast<std::int64_t>(i) * panel_width);
-  layout.label_top = panel_height + 2 * layout.text_scale;
+  layout.label_top = panel_height + std::int64_t{2} * layout.text_scale;
   if (spec.heat_max) {
     layout.bar_left = panels_width;
     // Room above the bar for its two title lines, and a shorter bar than the panel, as in a figure.
     const std::int64_t title = colourBarTitleHeight(layout.bar_style);
-    layout.bar_top = std::max<std::int64_t>(title + 2 * layout.text_scale, std::llround(0.16 * double(panel_height)));
+    layout.bar_top = std::max<std::int64_t>(title + std::int64_t{2} * layout.text_scale, std::llround(0.16 * double(panel_height)));
     layout.bar_bottom = std::max<std::int64_t>(layout.bar_top + 8, std::llround(0.88 * double(panel_height)));
   }
   return layout;

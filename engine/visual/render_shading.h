@@ -49,7 +49,7 @@ using uint = std::uint32_t;
 // left in front, a weaker fill from the right. Directions point towards the lights (unnormalised
 // here, normalised where used). The weights keep shadeIntensity() below 1 for every normal, so
 // lighting scales a colour without clipping it, and a heat colour keeps its hue.
-#define ODESKIN_KEY_LIGHT_X -0.45f
+#define ODESKIN_KEY_LIGHT_X (-0.45f)
 #define ODESKIN_KEY_LIGHT_Y 0.60f
 #define ODESKIN_KEY_LIGHT_Z 0.66f
 #define ODESKIN_FILL_LIGHT_X 0.70f

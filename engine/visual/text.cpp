@@ -46,6 +46,7 @@ void drawText(Image& image, std::int64_t x, std::int64_t y, std::string_view tex
                                         static_cast<int>(vertices.size() * sizeof(FontVertex)));
   for (int q = 0; q < quads; ++q) {
     const FontVertex* v = &vertices[static_cast<std::size_t>(q) * 4];
+    // cppcheck-suppress duplicateAssignExpression ; the box starts at the first corner, min and max alike
     float x0 = v[0].x, x1 = v[0].x, y0 = v[0].y, y1 = v[0].y;
     for (int k = 1; k < 4; ++k) {
       x0 = std::min(x0, v[k].x);

@@ -144,7 +144,7 @@ Result<visual::Image> OffscreenRenderer::render(const FrameDraw& frame) {
       push.shade_mode = s.draw->heat ? ODESKIN_SHADE_HEAT : ODESKIN_SHADE_BASE;
       push.heat_max = s.draw->heat ? s.draw->heat_max : 1.0f;
       vkCmdPushConstants(cmd, pipelines_.layout(), RenderPipelines::kPushStages, 0, sizeof push, &push);
-      const VkBuffer vertex_buffer = s.vertices.handle();
+      VkBuffer vertex_buffer = s.vertices.handle();
       vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &zero);
       vkCmdBindIndexBuffer(cmd, s.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
       vkCmdDrawIndexed(cmd, s.index_count, 1, 0, 0, 0);
@@ -156,7 +156,7 @@ Result<visual::Image> OffscreenRenderer::render(const FrameDraw& frame) {
       push.line_half_width = 0.5f * c.draw->width_px;
       push.line_depth_offset = c.draw->depth_offset;
       vkCmdPushConstants(cmd, pipelines_.layout(), RenderPipelines::kPushStages, 0, sizeof push, &push);
-      const VkBuffer vertex_buffer = c.vertices.handle();
+      VkBuffer vertex_buffer = c.vertices.handle();
       vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &zero);
       vkCmdDraw(cmd, c.vertex_count, 1, 0, 0);
     }

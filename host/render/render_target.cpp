@@ -223,7 +223,7 @@ Result<RenderTarget> RenderTarget::create(const Device& device, std::uint32_t wi
 }
 
 void RenderTarget::recordReadback(VkCommandBuffer cmd) const {
-  const VkImage source = samples_ != VK_SAMPLE_COUNT_1_BIT ? resolve_.image.get() : colour_.image.get();
+  VkImage source = samples_ != VK_SAMPLE_COUNT_1_BIT ? resolve_.image.get() : colour_.image.get();
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   region.imageExtent = {width_, height_, 1};

@@ -66,7 +66,7 @@ std::string usageProblem(const BlendCommandOptions& o, std::uint32_t& u, std::ui
   if (o.spline_pieces && (*o.spline_pieces < 1 || *o.spline_pieces > kMaxSplinePieces)) {
     return "blend: --spline must be in [1, 1000] pieces, got " + std::to_string(*o.spline_pieces);
   }
-  if (const std::string problem = parseResolution(o.res, u, v); !problem.empty()) return problem;
+  if (std::string problem = parseResolution(o.res, u, v); !problem.empty()) return problem;
   if (o.output.empty()) return "blend: -o OUT.obj is required";
   const std::string ext = lowerExtension(o.output);
   if (ext != ".obj") return "blend: " + o.output.string() + ": unknown output format '" + ext + "' (expected .obj)";

@@ -116,6 +116,7 @@ int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Con
 int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const std::string& device) {
   std::string problem;
   const std::vector<BaselineMethod> methods = parseMethods(o.methods, &problem);
+  // cppcheck-suppress knownConditionTrueFalse ; false positive: parseMethods sets problem through its pointer
   if (!problem.empty()) return reportUsage(console, problem);
   PoseSource source{};
   if (!parsePoseSource(o.pose_source, &source)) {

@@ -169,6 +169,7 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   }
   if (backend == "cpu") {
     const auto start = std::chrono::steady_clock::now();
+    // cppcheck-suppress redundantInitialization ; Result has no default constructor to leave it empty
     mesh = tessellateNetwork(*network, resolution);
     report.tessellate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -59,6 +59,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 // The cat from its ten example poses with the automatic rig and the skin material (~1 s).
 Result<DeformAsset> fitCat(const std::filesystem::path& data) {
   std::vector<std::filesystem::path> poses;
+  poses.reserve(10);
   for (int k = 0; k < 10; ++k) poses.push_back(data / "cat-poses" / ("cat-0" + std::to_string(k) + ".obj"));
   ODESKIN_ASSIGN_OR_RETURN(ExampleSet examples, readObjSequence(poses));
   PipelineOptions options;
@@ -74,6 +75,7 @@ void engineBones(const RuntimeAsset& asset, double t, std::uint32_t instance, st
   asset.bonesAt(segment, tau, out);
   const float angle = 0.1f * static_cast<float>(instance);
   const float c = std::cos(angle), s = std::sin(angle);
+  // NOLINTNEXTLINE(bugprone-integer-division): instance / 32 is the grid row, an integer on purpose
   const float x = 3.0f * static_cast<float>(instance % 32), z = 3.0f * static_cast<float>(instance / 32);
   for (gpu::BoneMatrix& m : out) {
     const gpu::Float4 r0 = m.row0, r2 = m.row2;

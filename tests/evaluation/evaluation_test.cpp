@@ -32,7 +32,7 @@ TEST(Evaluation, TimesPlaceTheInBetweens) {
 }
 
 TEST(Evaluation, RejectsBadKeysAndTimes) {
-  const auto message = [](std::vector<std::uint32_t> keys, std::vector<double> times = {}) {
+  const auto message = [](const std::vector<std::uint32_t>& keys, const std::vector<double>& times = {}) {
     Result<std::vector<InBetween>> ib = inBetweenFrames(5, keys, times);
     EXPECT_FALSE(ib.ok());
     return ib.ok() ? std::string() : ib.status().message();

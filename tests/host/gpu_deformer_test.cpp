@@ -70,7 +70,7 @@ std::vector<RandomPackedOptions> parityCases(SkinningMode skinning = SkinningMod
   return cases;
 }
 
-void checkFourierDeformParity(vk::Device& device, SkinningMode skinning) {
+void checkFourierDeformParity(const vk::Device& device, SkinningMode skinning) {
   for (const RandomPackedOptions& options : parityCases(skinning)) {
     const PackedDeformData data = testing::randomPackedData(options);
     Result<GpuDeformer> gpu = GpuDeformer::create(device, data);
@@ -98,7 +98,7 @@ void checkFourierDeformParity(vk::Device& device, SkinningMode skinning) {
   }
 }
 
-void checkLbsParity(vk::Device& device, SkinningMode skinning) {
+void checkLbsParity(const vk::Device& device, SkinningMode skinning) {
   for (const RandomPackedOptions& options : parityCases(skinning)) {
     const PackedDeformData data = testing::randomPackedData(options);
     Result<GpuLbs> gpu = GpuLbs::create(device, data);

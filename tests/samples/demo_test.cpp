@@ -45,7 +45,7 @@ std::filesystem::path scratch(const std::string& name) {
   return dir;
 }
 
-DemoResult runOrFail(DemoOptions options) {
+DemoResult runOrFail(const DemoOptions& options) {
   std::ostringstream log;
   Result<DemoResult> result = runDemo(options, log);
   EXPECT_TRUE(result.ok()) << result.status().toString() << "\n" << log.str();

@@ -109,7 +109,7 @@ inline std::vector<Ode6Shape> mixedRowShapes() { return {{1, 3, 1}, {1, -5, 4}, 
 // The three layouts every network test covers: a 3 x 4 tube closed in v, an open 3 x 3 sheet and a
 // 4 x 3 torus closed in u.
 inline std::vector<SweptSurface> sweptLayouts() {
-  SweptSurface tube;
+  SweptSurface tube;  // cppcheck-suppress unassignedVariable ; the defaults are the tube
   SweptSurface sheet;
   sheet.closed_v = false;
   sheet.columns = 3;
