@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of tests/fuzz with clang (build-fuzz/), assembles their seed corpus
 # and runs each target for a bounded time (docs/reliability/fuzzing.md).
-#   scripts/fuzz.sh [--seconds-per-target S] [--jobs J] [--targets "obj gltf ..."]
+#   scripts/fuzz.sh [--seconds-per-target S] [--jobs J] [--targets "obj gltf ..."] [--unoptimised]
 # S: seconds of fuzzing per target (default 20; CI uses 15, a long run e.g. 3600). J: parallel
 # fuzzing processes per target (libFuzzer -fork; default 1). Targets: obj tgf dmat odsk gltf network.
+# --unoptimised: build at -O0 into build-fuzz-O0/ (CI: the instrumented engine compiles in less than
+# half the CPU time of -O1, at a lower fuzzing rate, which short runs can afford).
 # Exits non-zero when a target crashes, leaks, runs out of memory (2 GiB) or spends over 10 s on one
 # input; the input is saved under build-fuzz/findings/<target>/ and its path printed. The corpus
 # grows in build-fuzz/corpus/<target>/ from run to run; tests/fuzz/regressions/<target>/ (inputs
@@ -12,6 +14,7 @@ set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds=20
+opt=1
 jobs=1
 targets="obj tgf dmat odsk gltf network"
 while (($#)); do
@@ -19,14 +22,17 @@ while (($#)); do
     --seconds-per-target) seconds="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
     --targets) targets="$2"; shift 2 ;;
-    -h|--help) sed -n '2,11p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --unoptimised) opt=0; shift ;;
+    -h|--help) sed -n '2,13p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "fuzz.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 [[ "$seconds" =~ ^[0-9]+$ && "$seconds" -ge 1 ]] || { echo "fuzz.sh: --seconds-per-target must be a whole number >= 1" >&2; exit 2; }
 [[ "$jobs" =~ ^[0-9]+$ && "$jobs" -ge 1 ]] || { echo "fuzz.sh: --jobs must be a whole number >= 1" >&2; exit 2; }
 
-build="${ODESKIN_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+default_build="$root/build-fuzz"
+((opt == 0)) && default_build="$root/build-fuzz-O0"
+build="${ODESKIN_FUZZ_BUILD_DIR:-$default_build}"
 data="${ODESKIN_SHARED_DIR:-$root/../shared}/data"
 command -v clang++ > /dev/null || { echo "fuzz.sh: clang++ not found (scripts/install-deps.sh installs clang)" >&2; exit 1; }
 
@@ -36,7 +42,9 @@ if command -v ccache > /dev/null; then
 fi
 start=$(date +%s)
 if [[ ! -f "$build/build.ninja" ]]; then
-  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  # Line tables only: reports still name file and line, and the compile is cheaper than with -g.
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
+    -DCMAKE_CXX_FLAGS="-O$opt -gline-tables-only" \
     -DODESKIN_BUILD_FUZZERS=ON -DODESKIN_BUILD_HOST=OFF -DODESKIN_BUILD_TESTS=OFF -DODESKIN_BUILD_BENCH=OFF \
     "${launcher[@]}" > /dev/null
 fi

@@ -53,4 +53,4 @@ export ODESKIN_REQUIRE_GPU="${ODESKIN_REQUIRE_GPU:-1}"
 ctest --test-dir "$asan" --output-on-failure -j "$jobs"
 
 # libFuzzer on every file reader, 15 s per target after replaying tests/fuzz/regressions (docs/reliability/fuzzing.md).
-"$root/scripts/fuzz.sh" --seconds-per-target 15
+"$root/scripts/fuzz.sh" --seconds-per-target 15 --unoptimised
