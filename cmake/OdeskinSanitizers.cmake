@@ -1,10 +1,9 @@
 # ODESKIN_SANITIZE builds every odeskin target (libraries, tests, programs) with the named sanitizers:
 #   address,undefined  AddressSanitizer + LeakSanitizer + UndefinedBehaviorSanitizer (CI's full build)
-#   thread             ThreadSanitizer (CI's engine-only build of the threaded CPU paths)
+#   thread             ThreadSanitizer (scripts/tsan.sh: the engine's threaded CPU paths)
 # The flags are set directory-wide here, before any add_subdirectory, because a sanitizer must see
 # every translation unit of a program: an uninstrumented library hides its own bugs and, for TSan,
-# reports false races on memory it touches. The build type's optimisation is kept so the sanitized
-# suite exercises the code CI ships; -g1 adds just the line tables the reports need.
+# reports false races on memory it touches. -g1 adds just the line tables the reports need.
 set(ODESKIN_SANITIZE "" CACHE STRING
     "Sanitizers for every odeskin target: empty, address,undefined or thread")
 set_property(CACHE ODESKIN_SANITIZE PROPERTY STRINGS "" "address,undefined" "thread")
