@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: MIT
+// The TBB calls the engine makes (parallel_for, parallel_reduce, parallel_invoke,
+// task_arena::execute), through wrappers that ThreadSanitizer can follow.
+//
+// Debian's libtbb is not built with -fsanitize=thread: TBB hands a task to a worker and joins it
+// through atomics and futex waits inside libtbb.so, which TSan does not see, so every write a
+// parallel body makes and the caller reads after the join looks like a race. Under TSan these
+// wrappers state the two edges TBB provides (docs/reliability/threads.md):
+//   fork: the caller releases a per-call "fork" token before the TBB call; every chunk (task)
+//         acquires it when it starts;
+//   join: every chunk releases a separate per-call "join" token when it ends; the caller acquires
+//         it after the TBB call returns.
+// The tokens differ, so no chunk synchronises with another through them: a race between two
+// chunks of one loop is still reported. Without TSan each wrapper is exactly the TBB call.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <type_traits>
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
+
+#if defined(__SANITIZE_THREAD__)
+#define ODESKIN_TSAN 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define ODESKIN_TSAN 1
+#endif
+#endif
+#ifndef ODESKIN_TSAN
+#define ODESKIN_TSAN 0
+#endif
+
+#if ODESKIN_TSAN
+extern "C" {
+// From <sanitizer/tsan_interface.h>, declared here so the header needs no sanitizer include path.
+void __tsan_acquire(void* addr);  // NOLINT(bugprone-reserved-identifier)
+void __tsan_release(void* addr);  // NOLINT(bugprone-reserved-identifier)
+}
+#endif
+
+namespace odeskin {
+
+#if ODESKIN_TSAN
+namespace parallel_detail {
+
+// The two tokens of one parallel call. They live on the heap so that their addresses are fresh for
+// every call: TSan keys its synchronisation objects by address and resets them when the memory is
+// freed (it does not for stack memory, where a later call's token would inherit an earlier one's).
+class ForkJoin {
+ public:
+  ForkJoin() : tokens_(std::make_unique<Tokens>()) { __tsan_release(&tokens_->fork); }
+  ForkJoin(const ForkJoin&) = delete;
+  ForkJoin& operator=(const ForkJoin&) = delete;
+  ~ForkJoin() = default;
+  void enter() const { __tsan_acquire(&tokens_->fork); }
+  void leave() const { __tsan_release(&tokens_->join); }
+  void join() const { __tsan_acquire(&tokens_->join); }
+
+ private:
+  struct Tokens {
+    alignas(8) char fork = 0;
+    alignas(8) char join = 0;
+  };
+  std::unique_ptr<Tokens> tokens_;
+};
+
+// The wrappers below run on TBB's workers before their fork acquire: they read their own fields
+// (and the range / values TBB passes by reference) from TBB task memory that TBB's hand-over orders
+// but TSan cannot see, so they are not instrumented. The user's code is called through these
+// instrumented, never-inlined functions (GCC would not inline instrumented code into an
+// uninstrumented function anyway), so every access it makes is checked.
+template <typename F, typename... Args>
+[[gnu::noinline]] decltype(auto) call(const F& f, const Args&... args) {
+  return f(args...);
+}
+
+#define ODESKIN_TSAN_UNCHECKED __attribute__((no_sanitize("thread")))
+
+template <typename Body>
+struct RangeChunk {
+  const Body* body;
+  const ForkJoin* fork_join;
+  template <typename Range>
+  ODESKIN_TSAN_UNCHECKED void operator()(const Range& r) const {
+    static_assert(std::is_trivially_copyable_v<Range>, "parallelFor under TSan copies the range unchecked");
+    const Range local = r;
+    fork_join->enter();
+    call(*body, local);
+    fork_join->leave();
+  }
+};
+
+template <typename Body>
+struct IndexChunk {
+  const Body* body;
+  const ForkJoin* fork_join;
+  template <typename Index>
+  ODESKIN_TSAN_UNCHECKED void operator()(Index i) const {
+    fork_join->enter();
+    call(*body, i);
+    fork_join->leave();
+  }
+};
+
+template <typename Value, typename Body>
+struct ReduceChunk {
+  const Body* body;
+  const ForkJoin* fork_join;
+  template <typename Range>
+  ODESKIN_TSAN_UNCHECKED Value operator()(const Range& r, const Value& v) const {
+    static_assert(std::is_trivially_copyable_v<Range> && std::is_trivially_copyable_v<Value>,
+                  "parallelReduce under TSan copies the range and the value unchecked");
+    const Range local_r = r;
+    const Value local_v = v;
+    fork_join->enter();
+    Value result = call(*body, local_r, local_v);
+    fork_join->leave();
+    return result;
+  }
+};
+
+template <typename Value, typename Reduction>
+struct ReduceJoin {
+  const Reduction* reduction;
+  const ForkJoin* fork_join;
+  ODESKIN_TSAN_UNCHECKED Value operator()(const Value& x, const Value& y) const {
+    const Value local_x = x;
+    const Value local_y = y;
+    fork_join->enter();
+    Value result = call(*reduction, local_x, local_y);
+    fork_join->leave();
+    return result;
+  }
+};
+
+template <typename F>
+struct Task {
+  const F* f;
+  const ForkJoin* fork_join;
+  ODESKIN_TSAN_UNCHECKED void operator()() const {
+    fork_join->enter();
+    call(*f);
+    fork_join->leave();
+  }
+};
+
+#undef ODESKIN_TSAN_UNCHECKED
+
+}  // namespace parallel_detail
+#endif
+
+// tbb::parallel_for(range, body): body(const Range&) per chunk.
+template <typename Range, typename Body>
+inline void parallelFor(const Range& range, const Body& body) {
+#if ODESKIN_TSAN
+  const parallel_detail::ForkJoin fork_join;
+  tbb::parallel_for(range, parallel_detail::RangeChunk<Body>{&body, &fork_join});
+  fork_join.join();
+#else
+  tbb::parallel_for(range, body);
+#endif
+}
+
+// tbb::parallel_for(first, last, f): f(i) for every i in [first, last).
+template <typename Index, typename Function>
+inline void parallelFor(Index first, Index last, const Function& f) {
+#if ODESKIN_TSAN
+  const parallel_detail::ForkJoin fork_join;
+  tbb::parallel_for(first, last, parallel_detail::IndexChunk<Function>{&f, &fork_join});
+  fork_join.join();
+#else
+  tbb::parallel_for(first, last, f);
+#endif
+}
+
+// tbb::parallel_reduce(range, identity, body, reduction), the functional form: body(range, value)
+// returns the chunk's value, reduction(x, y) combines two. Under TSan both the range and the value
+// type must be trivially copyable (the wrapper copies them before it may check accesses).
+template <typename Range, typename Value, typename Body, typename Reduction>
+inline Value parallelReduce(const Range& range, const Value& identity, const Body& body, const Reduction& reduction) {
+#if ODESKIN_TSAN
+  const parallel_detail::ForkJoin fork_join;
+  Value result = tbb::parallel_reduce(range, identity, parallel_detail::ReduceChunk<Value, Body>{&body, &fork_join},
+                                      parallel_detail::ReduceJoin<Value, Reduction>{&reduction, &fork_join});
+  fork_join.join();
+  return result;
+#else
+  return tbb::parallel_reduce(range, identity, body, reduction);
+#endif
+}
+
+// tbb::parallel_invoke(f, g, ...): runs every function, possibly at the same time.
+template <typename... Functions>
+inline void parallelInvoke(const Functions&... fs) {
+#if ODESKIN_TSAN
+  const parallel_detail::ForkJoin fork_join;
+  tbb::parallel_invoke(parallel_detail::Task<Functions>{&fs, &fork_join}...);
+  fork_join.join();
+#else
+  tbb::parallel_invoke(fs...);
+#endif
+}
+
+// arena.execute(f): f runs in the arena, on the calling thread or, when the arena has no free
+// slot, on one of its workers while the caller waits.
+template <typename Function>
+inline void arenaExecute(tbb::task_arena& arena, const Function& f) {
+#if ODESKIN_TSAN
+  const parallel_detail::ForkJoin fork_join;
+  arena.execute(parallel_detail::Task<Function>{&f, &fork_join});
+  fork_join.join();
+#else
+  arena.execute(f);
+#endif
+}
+
+}  // namespace odeskin
