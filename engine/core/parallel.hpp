@@ -15,7 +15,6 @@
 #pragma once
 
 #include <cstddef>
-#include <memory>
 #include <type_traits>
 
 #include <tbb/parallel_for.h>
@@ -47,38 +46,38 @@ namespace odeskin {
 #if ODESKIN_TSAN
 namespace parallel_detail {
 
+// Functions that run on TBB's workers before their fork acquire read memory (their own fields, the
+// tokens' address, the range and values TBB passes by reference, in TBB's task memory) that TBB's
+// hand-over orders but TSan cannot see, so they are not instrumented. They call the user's code
+// through `call` below, which is instrumented and never inlined into them (GCC does not inline
+// across different no_sanitize attributes either), so every access the user's code makes is checked.
+#define ODESKIN_TSAN_UNCHECKED __attribute__((no_sanitize("thread")))
+
 // The two tokens of one parallel call. They live on the heap so that their addresses are fresh for
-// every call: TSan keys its synchronisation objects by address and resets them when the memory is
-// freed (it does not for stack memory, where a later call's token would inherit an earlier one's).
+// every call: TSan keys its synchronisation objects by address and drops them when the memory is
+// freed (not when a stack frame is left, where a later call's token would inherit an earlier one's).
 class ForkJoin {
  public:
-  ForkJoin() : tokens_(std::make_unique<Tokens>()) { __tsan_release(&tokens_->fork); }
+  ODESKIN_TSAN_UNCHECKED ForkJoin() : tokens_(new Tokens) { __tsan_release(&tokens_->fork); }
   ForkJoin(const ForkJoin&) = delete;
   ForkJoin& operator=(const ForkJoin&) = delete;
-  ~ForkJoin() = default;
-  void enter() const { __tsan_acquire(&tokens_->fork); }
-  void leave() const { __tsan_release(&tokens_->join); }
-  void join() const { __tsan_acquire(&tokens_->join); }
+  ~ForkJoin() { delete tokens_; }
+  ODESKIN_TSAN_UNCHECKED void enter() const { __tsan_acquire(&tokens_->fork); }
+  ODESKIN_TSAN_UNCHECKED void leave() const { __tsan_release(&tokens_->join); }
+  ODESKIN_TSAN_UNCHECKED void join() const { __tsan_acquire(&tokens_->join); }
 
  private:
   struct Tokens {
     alignas(8) char fork = 0;
     alignas(8) char join = 0;
   };
-  std::unique_ptr<Tokens> tokens_;
+  Tokens* tokens_;
 };
 
-// The wrappers below run on TBB's workers before their fork acquire: they read their own fields
-// (and the range / values TBB passes by reference) from TBB task memory that TBB's hand-over orders
-// but TSan cannot see, so they are not instrumented. The user's code is called through these
-// instrumented, never-inlined functions (GCC would not inline instrumented code into an
-// uninstrumented function anyway), so every access it makes is checked.
 template <typename F, typename... Args>
 [[gnu::noinline]] decltype(auto) call(const F& f, const Args&... args) {
   return f(args...);
 }
-
-#define ODESKIN_TSAN_UNCHECKED __attribute__((no_sanitize("thread")))
 
 template <typename Body>
 struct RangeChunk {
