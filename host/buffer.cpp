@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "fault_injection.hpp"
 #include "vk_status.hpp"
 
 namespace odeskin::vk {
@@ -49,7 +50,9 @@ Result<Buffer> Buffer::create(const Device& device, VkDeviceSize size_bytes, VkB
   alloc.allocationSize = requirements.size;
   alloc.memoryTypeIndex = *type;
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkAllocateMemory(device.handle(), &alloc, nullptr, &memory));
+  VkResult allocated = injectedResult(VkFault::kOutOfMemory);
+  if (allocated == VK_SUCCESS) allocated = vkAllocateMemory(device.handle(), &alloc, nullptr, &memory);
+  ODESKIN_TRY(vkStatus(allocated, "vkAllocateMemory"));
   buffer.memory_ = UniqueMemory(device.handle(), memory);
   ODESKIN_VK_TRY(vkBindBufferMemory(device.handle(), handle, memory, 0));
 
@@ -159,7 +162,7 @@ Result<Buffer> createStorageBuffer(const Device& device, std::span<const std::by
                        std::to_string(device.limits().maxStorageBufferRange) + " bytes) of " + device.name());
   }
   ODESKIN_ASSIGN_OR_RETURN(Buffer buffer,
-                           Buffer::create(device, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | extra_usage, use));
+                           Buffer::create(device, size, kShaderInputUsage | extra_usage, use));
   ODESKIN_TRY(buffer.upload(device, bytes));
   return buffer;
 }

@@ -25,9 +25,14 @@ enum class MemoryUse {
   kHostVisible,
 };
 
-// Usage of a buffer a deformer writes and a renderer may bind directly as vertex input.
-inline constexpr VkBufferUsageFlags kOutputBufferUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
+// Usage of a buffer a shader reads: as a storage buffer, or as a uniform texel buffer
+// (TexelBinding in compute_pipeline.hpp).
+inline constexpr VkBufferUsageFlags kShaderInputUsage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+
+// Usage of a buffer a deformer writes, a later pass reads (normals) and a renderer may bind
+// directly as vertex input.
+inline constexpr VkBufferUsageFlags kOutputBufferUsage = kShaderInputUsage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
                                                          VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
 
 class Buffer {
@@ -67,8 +72,8 @@ class Buffer {
   std::byte* mapped_ = nullptr;
 };
 
-// A storage buffer holding `bytes`, at least 16 bytes long so empty arrays still give a valid
-// descriptor. kUnavailable when it exceeds maxStorageBufferRange (one binding's limit).
+// A shader input buffer (storage or uniform texel) holding `bytes`, at least 16 bytes long so
+// empty arrays still give a valid descriptor. kUnavailable when it exceeds maxStorageBufferRange (one binding's limit).
 Result<Buffer> createStorageBuffer(const Device& device, std::span<const std::byte> bytes,
                                    VkBufferUsageFlags extra_usage = 0, MemoryUse use = MemoryUse::kDeviceLocal);
 

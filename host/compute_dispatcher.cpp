@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "compute_dispatcher.hpp"
 
+#include "texel_bindings.hpp"
+
 #include <utility>
 #include <vector>
 
@@ -21,9 +23,11 @@ Result<ComputeDispatcher> ComputeDispatcher::create(const Device& device, const 
   std::vector<std::uint32_t> bindings;
   for (const StaticBinding& b : desc.static_bindings) bindings.push_back(b.binding);
   for (const FrameBinding& b : desc.frame_bindings) bindings.push_back(b.binding);
+  const SortedBindings sorted = SortedBindings::sort(bindings, desc.texel_bindings);
   ComputePipelineDesc pipeline_desc;
   pipeline_desc.spirv = desc.spirv;
-  pipeline_desc.storage_bindings = bindings;
+  pipeline_desc.storage_bindings = sorted.storage;
+  pipeline_desc.texel_bindings = sorted.texels;
   pipeline_desc.push_constant_bytes = desc.push_constant_bytes;
   pipeline_desc.descriptor_set_count = desc.frames_in_flight;
   ODESKIN_ASSIGN_OR_RETURN(d.pipeline_, ComputePipeline::create(device, pipeline_desc));
@@ -32,9 +36,9 @@ Result<ComputeDispatcher> ComputeDispatcher::create(const Device& device, const 
   // Descriptors are written once: the static buffers never change and each slot keeps its own
   // per-frame buffer, so no descriptor update happens per frame.
   for (std::uint32_t s = 0; s < desc.frames_in_flight; ++s) {
-    for (const StaticBinding& b : desc.static_bindings) d.pipeline_.bindBuffer(s, b.binding, b.buffer);
+    for (const StaticBinding& b : desc.static_bindings) ODESKIN_TRY(d.pipeline_.bindBuffer(s, b.binding, b.buffer));
     for (const FrameBinding& b : desc.frame_bindings) {
-      d.pipeline_.bindBuffer(s, b.binding, d.ring_.inputBuffer(s), b.offset, b.size);
+      ODESKIN_TRY(d.pipeline_.bindBuffer(s, b.binding, d.ring_.inputBuffer(s), b.offset, b.size));
     }
   }
   return d;

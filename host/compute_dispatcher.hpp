@@ -24,7 +24,7 @@ struct StaticBinding {
   VkBuffer buffer = VK_NULL_HANDLE;
 };
 // A slice of each slot's per-frame buffer bound at `binding`; `offset` a multiple of
-// minStorageBufferOffsetAlignment, `size` > 0.
+// minStorageBufferOffsetAlignment and minTexelBufferOffsetAlignment, `size` > 0.
 struct FrameBinding {
   std::uint32_t binding = 0;
   VkDeviceSize offset = 0;
@@ -35,6 +35,9 @@ struct ComputeDispatcherDesc {
   std::span<const std::uint32_t> spirv;
   std::span<const StaticBinding> static_bindings;
   std::span<const FrameBinding> frame_bindings;
+  // Which of those bindings the shader reads as uniform texel buffers (the rest are storage
+  // buffers); entries for bindings not used here are ignored.
+  std::span<const TexelBinding> texel_bindings;
   VkDeviceSize frame_bytes = 0;            // per-frame buffer size, > 0 if frame_bindings is not empty
   std::uint32_t push_constant_bytes = 0;
   std::uint32_t frames_in_flight = 2;

@@ -1,11 +1,32 @@
 // SPDX-License-Identifier: MIT
 #include "compute_pipeline.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "vk_status.hpp"
 
 namespace odeskin::vk {
+namespace {
+
+// Bytes per texel of the 32-bit formats the shaders fetch; 0 for any other format.
+VkDeviceSize texelBytes(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R32_SFLOAT:
+      return 4;
+    case VK_FORMAT_R32G32_UINT:
+    case VK_FORMAT_R32G32_SFLOAT:
+      return 8;
+    case VK_FORMAT_R32G32B32A32_UINT:
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return 16;
+    default:
+      return 0;
+  }
+}
+
+}  // namespace
 
 Result<ComputePipeline> ComputePipeline::create(const Device& device, const ComputePipelineDesc& desc) {
   if (desc.spirv.empty()) return invalidArgument("ComputePipeline: spirv is empty");
@@ -22,16 +43,28 @@ Result<ComputePipeline> ComputePipeline::create(const Device& device, const Comp
   ComputePipeline result;
   result.device_ = vk_device;
   result.push_constant_bytes_ = desc.push_constant_bytes;
+  result.max_texel_elements_ = device.limits().maxTexelBufferElements;
+  result.texel_bindings_.assign(desc.texel_bindings.begin(), desc.texel_bindings.end());
 
-  // Set 0: one storage buffer per binding the shader declares, all read in the compute stage.
+  // Set 0: one descriptor per binding the shader declares, all read in the compute stage.
   std::vector<VkDescriptorSetLayoutBinding> bindings;
-  for (std::uint32_t binding : desc.storage_bindings) {
+  auto add = [&bindings](std::uint32_t binding, VkDescriptorType type) {
     VkDescriptorSetLayoutBinding b{};
     b.binding = binding;
-    b.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    b.descriptorType = type;
     b.descriptorCount = 1;
     b.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     bindings.push_back(b);
+  };
+  for (std::uint32_t binding : desc.storage_bindings) add(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  for (const TexelBinding& t : desc.texel_bindings) {
+    if (texelBytes(t.format) == 0) {
+      return invalidArgument("ComputePipeline: binding " + std::to_string(t.binding) + " has a texel format other than 32-bit R, RG or RGBA");
+    }
+    if (std::find(desc.storage_bindings.begin(), desc.storage_bindings.end(), t.binding) != desc.storage_bindings.end()) {
+      return invalidArgument("ComputePipeline: binding " + std::to_string(t.binding) + " is both a storage and a texel buffer");
+    }
+    add(t.binding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
   }
   VkDescriptorSetLayoutCreateInfo set_info{};
   set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
@@ -77,14 +110,20 @@ Result<ComputePipeline> ComputePipeline::create(const Device& device, const Comp
   result.pipeline_ = UniquePipeline(vk_device, pipeline);
 
   // Exactly enough descriptors for `descriptor_set_count` sets; sets are freed with the pool.
-  VkDescriptorPoolSize pool_size{};
-  pool_size.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  pool_size.descriptorCount = static_cast<std::uint32_t>(bindings.size()) * desc.descriptor_set_count;
+  std::vector<VkDescriptorPoolSize> pool_sizes;
+  const auto storage_count = static_cast<std::uint32_t>(desc.storage_bindings.size());
+  const auto texel_count = static_cast<std::uint32_t>(desc.texel_bindings.size());
+  if (storage_count > 0) {
+    pool_sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storage_count * desc.descriptor_set_count});
+  }
+  if (texel_count > 0) {
+    pool_sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, texel_count * desc.descriptor_set_count});
+  }
   VkDescriptorPoolCreateInfo pool_info{};
   pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
   pool_info.maxSets = desc.descriptor_set_count;
-  pool_info.poolSizeCount = bindings.empty() ? 0 : 1;
-  pool_info.pPoolSizes = &pool_size;
+  pool_info.poolSizeCount = static_cast<std::uint32_t>(pool_sizes.size());
+  pool_info.pPoolSizes = pool_sizes.data();
   VkDescriptorPool pool = VK_NULL_HANDLE;
   ODESKIN_VK_TRY(vkCreateDescriptorPool(vk_device, &pool_info, nullptr, &pool));
   result.pool_ = UniqueDescriptorPool(vk_device, pool);
@@ -97,20 +136,50 @@ Result<ComputePipeline> ComputePipeline::create(const Device& device, const Comp
   alloc.pSetLayouts = layouts.data();
   result.sets_.resize(desc.descriptor_set_count);
   ODESKIN_VK_TRY(vkAllocateDescriptorSets(vk_device, &alloc, result.sets_.data()));
+  result.views_.resize(std::size_t{desc.descriptor_set_count} * texel_count);
   return result;
 }
 
-void ComputePipeline::bindBuffer(std::uint32_t set_index, std::uint32_t binding, VkBuffer buffer,
-                                 VkDeviceSize offset, VkDeviceSize range) const {
-  VkDescriptorBufferInfo info{buffer, offset, range};
+Status ComputePipeline::bindBuffer(std::uint32_t set_index, std::uint32_t binding, VkBuffer buffer,
+                                   VkDeviceSize offset, VkDeviceSize range) {
   VkWriteDescriptorSet write{};
   write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
   write.dstSet = sets_[set_index];
   write.dstBinding = binding;
   write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  write.pBufferInfo = &info;
+  const auto texel = std::find_if(texel_bindings_.begin(), texel_bindings_.end(),
+                                  [binding](const TexelBinding& t) { return t.binding == binding; });
+  if (texel == texel_bindings_.end()) {
+    const VkDescriptorBufferInfo info{buffer, offset, range};
+    write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    write.pBufferInfo = &info;
+    vkUpdateDescriptorSets(device_, 1, &write, 0, nullptr);
+    return okStatus();
+  }
+  if (range != VK_WHOLE_SIZE) {
+    const VkDeviceSize texel_bytes = texelBytes(texel->format);
+    if (range / texel_bytes > max_texel_elements_) {
+      return unavailable("ComputePipeline: binding " + std::to_string(binding) + " holds " +
+                         std::to_string(range / texel_bytes) + " texels, more than maxTexelBufferElements (" +
+                         std::to_string(max_texel_elements_) + ")");
+    }
+  }
+  VkBufferViewCreateInfo view_info{};
+  view_info.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO;
+  view_info.buffer = buffer;
+  view_info.format = texel->format;
+  view_info.offset = offset;
+  view_info.range = range;
+  VkBufferView view = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateBufferView(device_, &view_info, nullptr, &view));
+  const auto k = static_cast<std::size_t>(texel - texel_bindings_.begin());
+  // The set's old view (if any) goes only after the descriptor stops naming it.
+  UniqueBufferView replaced = std::move(views_[set_index * texel_bindings_.size() + k]);
+  views_[set_index * texel_bindings_.size() + k] = UniqueBufferView(device_, view);
+  write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+  write.pTexelBufferView = &view;
   vkUpdateDescriptorSets(device_, 1, &write, 0, nullptr);
+  return okStatus();
 }
 
 void ComputePipeline::recordDispatch(VkCommandBuffer cmd, std::uint32_t set_index, const void* push,

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <utility>
 
+#include "fault_injection.hpp"
 #include "vk_status.hpp"
 
 namespace odeskin::vk {
@@ -57,6 +58,7 @@ Result<std::vector<VkPhysicalDevice>> physicalDevices(const Instance& instance) 
   std::vector<VkPhysicalDevice> devices(count);
   if (count > 0) ODESKIN_VK_TRY(vkEnumeratePhysicalDevices(instance.handle(), &count, devices.data()));
   devices.resize(count);
+  if (injectedFault() == VkFault::kNoDevice) devices.clear();
   if (devices.empty()) {
     return unavailable(
         "no Vulkan device: install mesa-vulkan-drivers for lavapipe (a CPU implementation), or a GPU "
@@ -141,7 +143,9 @@ Result<Device> Device::create(const Instance& instance, std::string_view selecto
   info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue_info;
-  ODESKIN_VK_TRY(vkCreateDevice(device.physical_, &info, nullptr, &device.device_));
+  VkResult created = injectedResult(VkFault::kDeviceCreate);
+  if (created == VK_SUCCESS) created = vkCreateDevice(device.physical_, &info, nullptr, &device.device_);
+  ODESKIN_TRY(vkStatus(created, "vkCreateDevice"));
   vkGetDeviceQueue(device.device_, device.queue_family_, 0, &device.queue_);
 
   // Resettable command buffers: per-frame buffers are re-recorded in place instead of reallocated.
@@ -241,7 +245,9 @@ Status Device::submitAndWait(const std::function<void(VkCommandBuffer)>& record)
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
-  ODESKIN_VK_TRY(vkQueueSubmit(queue_, 1, &submit, fence.get()));
+  VkResult submitted = injectedResult(VkFault::kDeviceLost);
+  if (submitted == VK_SUCCESS) submitted = vkQueueSubmit(queue_, 1, &submit, fence.get());
+  ODESKIN_TRY(vkStatus(submitted, "vkQueueSubmit"));
   ODESKIN_VK_TRY(vkWaitForFences(device_, 1, &fence_handle, VK_TRUE, UINT64_MAX));
   return okStatus();
 }

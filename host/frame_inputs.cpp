@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "frame_inputs.hpp"
 
+#include <algorithm>
 #include <string>
 
 namespace odeskin::vk {
 
+// Slices are bound as storage or as texel buffers; both limits are powers of two, so the larger
+// one satisfies both.
 FrameInputLayout::FrameInputLayout(const Device& device)
-    : alignment_(device.limits().minStorageBufferOffsetAlignment),
+    : alignment_(std::max(device.limits().minStorageBufferOffsetAlignment, device.limits().minTexelBufferOffsetAlignment)),
       max_range_(device.limits().maxStorageBufferRange) {}
 
 VkDeviceSize FrameInputLayout::add(std::uint32_t binding, std::size_t bytes) {

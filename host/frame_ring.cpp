@@ -3,6 +3,7 @@
 
 #include <utility>
 
+#include "fault_injection.hpp"
 #include "vk_status.hpp"
 
 namespace odeskin::vk {
@@ -17,7 +18,7 @@ Result<FrameRing> FrameRing::create(const Device& device, const FrameRingDesc& d
   for (Slot& slot : ring.slots_) {
     // Host-visible and mapped for the slot's lifetime: per-frame writes are plain stores.
     if (desc.input_bytes > 0) {
-      ODESKIN_ASSIGN_OR_RETURN(slot.inputs, Buffer::create(device, desc.input_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+      ODESKIN_ASSIGN_OR_RETURN(slot.inputs, Buffer::create(device, desc.input_bytes, kShaderInputUsage,
                                                            MemoryUse::kHostVisible));
     }
     VkCommandBufferAllocateInfo alloc{};
@@ -109,7 +110,9 @@ Status FrameRing::submit() {
   submit_info.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit_info.commandBufferCount = 1;
   submit_info.pCommandBuffers = &cmd;
-  ODESKIN_VK_TRY(vkQueueSubmit(queue_, 1, &submit_info, slot.fence.get()));
+  VkResult submitted = injectedResult(VkFault::kDeviceLost);
+  if (submitted == VK_SUCCESS) submitted = vkQueueSubmit(queue_, 1, &submit_info, slot.fence.get());
+  ODESKIN_TRY(vkStatus(submitted, "vkQueueSubmit"));
   slot.pending = true;
   last_submitted_ = current_;
   next_ = (current_ + 1) % slotCount();

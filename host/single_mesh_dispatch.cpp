@@ -3,6 +3,8 @@
 
 #include <vector>
 
+#include "texel_bindings.hpp"
+
 namespace odeskin {
 
 Result<SingleMeshDispatch> SingleMeshDispatch::create(const vk::Device& device, const SingleMeshDispatchDesc& desc) {
@@ -28,6 +30,7 @@ Result<SingleMeshDispatch> SingleMeshDispatch::create(const vk::Device& device, 
   dispatcher.spirv = desc.spirv;
   dispatcher.static_bindings = statics;
   dispatcher.frame_bindings = layout.bindings();
+  dispatcher.texel_bindings = vk::kDeformTexelBindings;
   dispatcher.frame_bytes = layout.totalBytes();
   dispatcher.push_constant_bytes = desc.push_constant_bytes;
   dispatcher.frames_in_flight = 2;

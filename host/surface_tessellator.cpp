@@ -89,11 +89,11 @@ Result<SurfaceTessellator> SurfaceTessellator::create(const vk::Device& device, 
   desc.push_constant_bytes = sizeof(gpu::TessellatePushConstants);
   desc.descriptor_set_count = 1;
   ODESKIN_ASSIGN_OR_RETURN(t.pipeline_, vk::ComputePipeline::create(device, desc));
-  t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_CARDINALS, t.cardinals_.handle());
-  t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_PATCH_CARDINALS, t.patch_cardinals_.handle());
-  t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_BOUNDARY_SAMPLES, t.boundary_samples_.handle());
-  t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_TABLE, t.table_.handle());
-  t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_OUT_POSITIONS, t.positions_.handle());
+  ODESKIN_TRY(t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_CARDINALS, t.cardinals_.handle()));
+  ODESKIN_TRY(t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_PATCH_CARDINALS, t.patch_cardinals_.handle()));
+  ODESKIN_TRY(t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_BOUNDARY_SAMPLES, t.boundary_samples_.handle()));
+  ODESKIN_TRY(t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_TABLE, t.table_.handle()));
+  ODESKIN_TRY(t.pipeline_.bindBuffer(0, ODESKIN_TESSELLATE_BINDING_OUT_POSITIONS, t.positions_.handle()));
   ODESKIN_ASSIGN_OR_RETURN(t.vertex_pipeline_, vertexPipeline(device, t.pipeline_.layout()));
   return t;
 }

@@ -5,8 +5,7 @@
 //   bind:  out = skin(X + r^s + D + w(tau) eps);  posed: out = skin(X) + r^s + D + w(tau) eps
 // Mirrors curveSeries / deformRange in engine/kernels/fourier_deform_fast_job.cpp operation for
 // operation. The including shader declares pc (modes, curve_count, material_count, vertex_count,
-// residual_space and skinning.glsl's fields), the gpu_layout.h asset buffers, basis, bones and
-// bone_dual_quats, and includes skinning.glsl first.
+// residual_space and skinning.glsl's fields) and includes deform_inputs.glsl and skinning.glsl first.
 
 // Where one deformation's frame values sit in the shared buffers.
 struct DeformSource {
@@ -20,31 +19,29 @@ struct DeformSource {
 
 const float kTwoPi = 6.28318530717958647692;
 
-vec3 xyz(Float4 f) { return vec3(f.x, f.y, f.z); }
-
 // Series of curve `curve` at (cos 2 pi v, sin 2 pi v) = (c1, s1): higher harmonics by the
 // angle-addition recurrence, which costs two products per mode instead of a cos and a sin.
 vec3 curveSeries(DeformSource src, uint curve, float v, float c1, float s1) {
   uint m_count = 2u * pc.modes + 2u;
   uint base = (src.segment * pc.curve_count + curve) * m_count;
   uint rate_base = src.rates_offset + base;
-  uint basis_base = src.basis_base + curve_materials[curve] * (pc.modes + 1u);
-  ModeBasis b0 = basis[basis_base];
-  vec3 d0 = xyz(coefficients[base]) + v * xyz(coefficients[base + m_count - 1u]);
+  uint basis_base = src.basis_base + curveMaterial(curve) * (pc.modes + 1u);
+  ModeBasis b0 = modeBasis(basis_base);
+  vec3 d0 = coefficient(base) + v * coefficient(base + m_count - 1u);
   vec3 sum = b0.gamma * d0;
   if (src.use_rates) {
-    sum += b0.psi * (xyz(rates[rate_base]) + v * xyz(rates[rate_base + m_count - 1u]));
+    sum += b0.psi * (rate(rate_base) + v * rate(rate_base + m_count - 1u));
   }
   float cn = c1;
   float sn = s1;
   for (uint n = 1u; n <= pc.modes; ++n) {
-    ModeBasis bn = basis[basis_base + n];
-    vec3 dc = xyz(coefficients[base + 2u * n - 1u]);
-    vec3 ds = xyz(coefficients[base + 2u * n]);
+    ModeBasis bn = modeBasis(basis_base + n);
+    vec3 dc = coefficient(base + 2u * n - 1u);
+    vec3 ds = coefficient(base + 2u * n);
     vec3 term = cn * dc + sn * ds;
     sum += bn.gamma * term;
     if (src.use_rates) {
-      sum += bn.psi * (cn * xyz(rates[rate_base + 2u * n - 1u]) + sn * xyz(rates[rate_base + 2u * n]));
+      sum += bn.psi * (cn * rate(rate_base + 2u * n - 1u) + sn * rate(rate_base + 2u * n));
     }
     float c_next = cn * c1 - sn * s1;
     sn = sn * c1 + cn * s1;
@@ -55,7 +52,7 @@ vec3 curveSeries(DeformSource src, uint curve, float v, float c1, float s1) {
 
 // Deformed position of vertex i (< pc.vertex_count).
 vec3 deformVertex(DeformSource src, uint i) {
-  VertexBinding vb = bindings[i];
+  VertexBinding vb = vertexBinding(i);
   float angle = kTwoPi * vb.v;
   float c1 = cos(angle);
   float s1 = sin(angle);
@@ -63,15 +60,15 @@ vec3 deformVertex(DeformSource src, uint i) {
   vec3 series_b = (vb.curve_b == vb.curve_a) ? series_a : curveSeries(src, vb.curve_b, vb.v, c1, s1);
   vec3 residual = (1.0 - vb.w) * series_a + vb.w * series_b;
 
-  SegmentVertex sv = segment_vertices[src.segment * pc.vertex_count + i];
+  SegmentVertex sv = segmentVertex(src.segment * pc.vertex_count + i);
   residual += vec3(sv.base_x, sv.base_y, sv.base_z);
   if (sv.remainder_index != ODESKIN_NO_REMAINDER) {
     // The remainder weight follows the (material, mode) entries of the basis (gpu_layout.h).
-    float weight = basis[src.basis_base + pc.material_count * (pc.modes + 1u)].gamma;
-    residual += weight * xyz(remainders[src.remainder_base + sv.remainder_index]);
+    float weight = modeBasis(src.basis_base + pc.material_count * (pc.modes + 1u)).gamma;
+    residual += weight * remainder(src.remainder_base + sv.remainder_index);
   }
 
-  vec3 rest = xyz(rest_positions[i]);
+  vec3 rest = restPosition(i);
   if (pc.residual_space == ODESKIN_RESIDUAL_BIND) return skinPoint(src.bone_base, i, rest + residual);
   return skinPoint(src.bone_base, i, rest) + residual;
 }

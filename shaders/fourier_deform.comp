@@ -13,19 +13,8 @@
 
 layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
 
-layout(std430, set = 0, binding = ODESKIN_BINDING_REST_POSITIONS) readonly buffer RestPositions { Float4 rest_positions[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_VERTEX_BINDINGS) readonly buffer Bindings { VertexBinding bindings[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_SEGMENT_VERTICES) readonly buffer SegmentVertices { SegmentVertex segment_vertices[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_REMAINDERS) readonly buffer Remainders { Float4 remainders[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_CURVE_MATERIALS) readonly buffer CurveMaterials { uint curve_materials[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_COEFFICIENTS) readonly buffer Coefficients { Float4 coefficients[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_RATES) readonly buffer Rates { Float4 rates[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_INFLUENCE_OFFSETS) readonly buffer InfluenceOffsets { uint influence_offsets[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_INFLUENCES) readonly buffer Influences { Influence influences[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_BONES) readonly buffer Bones { BoneMatrix bones[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_MODE_BASIS) readonly buffer Basis { ModeBasis basis[]; };
+#include "deform_inputs.glsl"
 layout(std430, set = 0, binding = ODESKIN_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { Float4 out_positions[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_BONE_DUAL_QUATS) readonly buffer BoneDualQuats { DualQuat bone_dual_quats[]; };
 
 layout(push_constant) uniform Push { DeformPushConstants pc; };
 

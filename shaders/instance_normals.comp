@@ -11,24 +11,26 @@
 
 layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
 
-layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_POSITIONS) readonly buffer Positions { Float4 positions[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS) readonly buffer CornerOffsets { uint corner_offsets[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNERS) readonly buffer Corners { Corner corners[]; };
+// Inputs as uniform texel buffers (host/texel_bindings.hpp; deform_inputs.glsl says why).
+layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_POSITIONS) uniform samplerBuffer positions;       // Float4
+layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS) uniform usamplerBuffer corner_offsets; // uint
+layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNERS) uniform usamplerBuffer corners;         // Corner
 layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS) writeonly buffer OutNormals { Float4 out_normals[]; };
 
 layout(push_constant) uniform Push { NormalsPushConstants pc; };
 
-vec3 xyz(Float4 f) { return vec3(f.x, f.y, f.z); }
+vec3 position(uint k) { return texelFetch(positions, int(k)).xyz; }
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.vertex_count) return;
   uint base = gl_WorkGroupID.y * pc.vertex_count;  // instance y's vertices
-  vec3 p = xyz(positions[base + i]);
+  vec3 p = position(base + i);
   vec3 n = vec3(0.0);
-  for (uint k = corner_offsets[i]; k < corner_offsets[i + 1u]; ++k) {
-    Corner c = corners[k];
-    n += cross(xyz(positions[base + c.next]) - p, xyz(positions[base + c.prev]) - p);
+  uint end = texelFetch(corner_offsets, int(i + 1u)).x;
+  for (uint k = texelFetch(corner_offsets, int(i)).x; k < end; ++k) {
+    uvec2 c = texelFetch(corners, int(k)).xy;  // Corner: next, prev
+    n += cross(position(base + c.x) - p, position(base + c.y) - p);
   }
   float len = length(n);
   n = len > 0.0 ? n / len : vec3(0.0);

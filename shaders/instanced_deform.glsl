@@ -8,20 +8,9 @@
 
 layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
 
-layout(std430, set = 0, binding = ODESKIN_BINDING_REST_POSITIONS) readonly buffer RestPositions { Float4 rest_positions[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_VERTEX_BINDINGS) readonly buffer Bindings { VertexBinding bindings[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_SEGMENT_VERTICES) readonly buffer SegmentVertices { SegmentVertex segment_vertices[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_REMAINDERS) readonly buffer Remainders { Float4 remainders[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_CURVE_MATERIALS) readonly buffer CurveMaterials { uint curve_materials[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_COEFFICIENTS) readonly buffer Coefficients { Float4 coefficients[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_RATES) readonly buffer Rates { Float4 rates[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_INFLUENCE_OFFSETS) readonly buffer InfluenceOffsets { uint influence_offsets[]; };
-layout(std430, set = 0, binding = ODESKIN_BINDING_INFLUENCES) readonly buffer Influences { Influence influences[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_BINDING_BONES) readonly buffer Bones { BoneMatrix bones[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_BINDING_MODE_BASIS) readonly buffer Basis { ModeBasis basis[]; };
+#include "deform_inputs.glsl"
 layout(std430, set = 0, binding = ODESKIN_RT_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { Float4 out_positions[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_BINDING_BONE_DUAL_QUATS) readonly buffer BoneDualQuats { DualQuat bone_dual_quats[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_BINDING_INSTANCES) readonly buffer Instances { InstanceRecord instances[]; };
+layout(set = 0, binding = ODESKIN_RT_BINDING_INSTANCES) uniform usamplerBuffer instances;  // InstanceRecord
 layout(std430, set = 0, binding = ODESKIN_RT_BINDING_BOUNDS) buffer Bounds { BoundsKeys bounds[]; };
 
 layout(push_constant) uniform Push { InstancedPushConstants pc; };
@@ -49,7 +38,8 @@ void main() {
   vec3 lo = vec3(uintBitsToFloat(0x7F800000u));  // +inf
   vec3 hi = -lo;
   if (i < pc.vertex_count) {
-    InstanceRecord r = instances[instance];
+    uvec4 t = texelFetch(instances, int(instance));
+    InstanceRecord r = InstanceRecord(t.x, t.y, t.z, t.w);
     DeformSource src = DeformSource(r.segment, r.remainder_base, r.rates_offset == ODESKIN_RT_NO_RATES ? 0u : r.rates_offset,
                                     r.rates_offset != ODESKIN_RT_NO_RATES, instance * pc.basis_entries,
                                     instance * pc.bone_count);

@@ -4,15 +4,13 @@
 // chosen by pc.skinning. Mirrors skinPoint / skinPointDq in
 // engine/kernels/fourier_deform_fast_job.cpp operation for operation (reference:
 // engine/kernels/dual_quaternion.cpp). The including shader declares pc (with influence_layout and
-// skinning) and the influence_offsets, influences, bones and bone_dual_quats buffers. `bone_base`
+// skinning) and includes deform_inputs.glsl first. `bone_base`
 // is the first bone of the palette in use: 0 for one mesh, instance x bone_count when instanced.
-
-vec4 vec(Float4 f) { return vec4(f.x, f.y, f.z, f.w); }
 
 void influenceRange(uint vertex, out uint begin, out uint end) {
   if (pc.influence_layout == ODESKIN_INFLUENCES_SPARSE) {
-    begin = influence_offsets[vertex];
-    end = influence_offsets[vertex + 1u];
+    begin = influenceOffset(vertex);
+    end = influenceOffset(vertex + 1u);
   } else {
     begin = vertex * pc.influence_layout;
     end = begin + pc.influence_layout;
@@ -26,9 +24,9 @@ vec3 skinPointLbs(uint bone_base, uint vertex, vec3 p) {
   vec4 h = vec4(p, 1.0);
   vec3 out_p = vec3(0.0);
   for (uint k = begin; k < end; ++k) {
-    Influence inf = influences[k];
-    BoneMatrix m = bones[bone_base + inf.bone];
-    vec3 q = vec3(dot(vec(m.row0), h), dot(vec(m.row1), h), dot(vec(m.row2), h));
+    Influence inf = influence(k);
+    uint b = bone_base + inf.bone;
+    vec3 q = vec3(dot(boneRow(b, 0u), h), dot(boneRow(b, 1u), h), dot(boneRow(b, 2u), h));
     out_p += inf.weight * q;
   }
   return out_p;
@@ -43,18 +41,17 @@ vec3 skinPointDq(uint bone_base, uint vertex, vec3 p) {
   if (begin == end) return skinPointLbs(bone_base, vertex, p);
   uint pivot = begin;
   for (uint k = begin + 1u; k < end; ++k) {
-    if (influences[k].weight > influences[pivot].weight) pivot = k;
+    if (influence(k).weight > influence(pivot).weight) pivot = k;
   }
-  vec4 pivot_real = vec(bone_dual_quats[bone_base + influences[pivot].bone].real);
+  vec4 pivot_real = dualQuatReal(bone_base + influence(pivot).bone);
   vec4 real = vec4(0.0);
   vec4 dual = vec4(0.0);
   for (uint k = begin; k < end; ++k) {
-    Influence inf = influences[k];
-    DualQuat q = bone_dual_quats[bone_base + inf.bone];
-    vec4 q_real = vec(q.real);
+    Influence inf = influence(k);
+    vec4 q_real = dualQuatReal(bone_base + inf.bone);
     float w = dot(q_real, pivot_real) < 0.0 ? -inf.weight : inf.weight;
     real += w * q_real;
-    dual += w * vec(q.dual);
+    dual += w * dualQuatDual(bone_base + inf.bone);
   }
   float norm = length(real);
   if (!(norm > ODESKIN_DQS_MIN_BLEND_NORM)) return skinPointLbs(bone_base, vertex, p);

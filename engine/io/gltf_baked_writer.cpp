@@ -3,11 +3,13 @@
 
 #include <cmath>
 #include <cstring>
+#include <sstream>
 #include <string>
 
 #include <tiny_gltf.h>
 
 #include "gltf_buffer_builder.hpp"
+#include "obj_io.hpp"
 
 namespace odeskin {
 namespace {
@@ -89,21 +91,14 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
 }
 
 Status writeGlbAtomically(const std::filesystem::path& path, const tinygltf::Model& model) {
-  std::filesystem::path temp = path;
-  temp += ".partial";
+  // Serialised in memory, then written by the one temp-file-and-rename path: tinygltf's own file
+  // writer does not report a failed write (a full disk), so it could leave half a .glb.
+  std::ostringstream glb(std::ios::binary);
   tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToFile(&model, temp.string(), true, true, false, true)) {
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
-    return ioError(path.string() + ": cannot write the glTF file");
+  if (!writer.WriteGltfSceneToStream(&model, glb, false, true) || !glb) {
+    return ioError(path.string() + ": cannot serialise the glTF model");
   }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) {
-    std::filesystem::remove(temp, ec);
-    return ioError(path.string() + ": cannot move the written file into place");
-  }
-  return okStatus();
+  return writeFileAtomically(path, std::move(glb).str());
 }
 
 }  // namespace odeskin

@@ -18,9 +18,8 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     if (!out) return ioError(path.string() + ": cannot create file");
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
+    out.close();  // close, not only flush: the last buffered bytes can fail here too (a full disk)
     if (!out) {
-      out.close();
       std::error_code ignored;
       std::filesystem::remove(temp, ignored);
       return ioError(path.string() + ": write failed (disk full?)");

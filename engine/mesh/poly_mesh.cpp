@@ -3,9 +3,18 @@
 
 #include <algorithm>
 
+#include <OpenMesh/Core/System/omstream.hh>
+
 namespace odeskin {
 
 Result<PolyMesh> buildPolyMesh(std::span<const Vec3> positions, const FaceList& faces, const std::string& source) {
+  // OpenMesh prints its own line ("PolyMeshT::add_face: complex edge") before returning an invalid
+  // handle; the Status below says it with the file and face, and a command prints exactly one line.
+  static const bool silenced = [] {
+    omerr().disable();
+    return true;
+  }();
+  (void)silenced;
   PolyMesh mesh;
   mesh.reserve(positions.size(), positions.size() * 3, faces.faceCount());
   for (const Vec3& p : positions) mesh.add_vertex(PolyMesh::Point(p.x, p.y, p.z));

@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "../curves/edge_loops.hpp"
 #include "curve_skeleton_levels.hpp"
 #include "curve_skeleton_parts.hpp"
 #include "curve_skeleton_tree.hpp"
@@ -25,6 +26,9 @@ constexpr double kDefaultSpacingEdges = 2.0;
 constexpr double kMinLevelsPerDiagonal = 50.0;
 // The first pass only finds the body's centre: levels this many times farther apart.
 constexpr double kFirstPassSpacing = 3.0;
+// CurveSource::kAuto takes the quad edge loops when at least this fraction of the faces are quads
+// (as buildIsoCurves' CurveMethod::kAuto).
+constexpr double kQuadDominant = 0.8;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -61,35 +65,37 @@ Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const Curve
   return okStatus();
 }
 
-// A vertex of the largest connected component (rigging is for one connected surface).
-std::uint32_t largestComponentVertex(const MeshTopology& mesh) {
+// The far end of a breadth-first sweep (hop counts) from the smallest vertex of the largest
+// connected component (rigging is for one connected surface; the first such component on a tie),
+// the smallest vertex index among the farthest. One sweep per component finds the components and
+// the hops at once: the same vertex edgeHops(component's smallest vertex) would give.
+std::uint32_t largestComponentExtremity(const MeshTopology& mesh) {
   const std::size_t count = mesh.vertex_offsets.size() - 1;
-  std::vector<char> seen(count, 0);
+  std::vector<std::int32_t> hops(count, -1);
+  std::vector<std::uint32_t> queue;
+  queue.reserve(count);
   std::size_t best_size = 0;
   std::uint32_t best = 0;
-  std::vector<std::uint32_t> stack;
   for (std::uint32_t s = 0; s < count; ++s) {
-    if (seen[s]) continue;
-    std::size_t size = 0;
-    seen[s] = 1;
-    stack.push_back(s);
-    while (!stack.empty()) {
-      const std::uint32_t u = stack.back();
-      stack.pop_back();
-      ++size;
+    if (hops[s] >= 0) continue;
+    queue.clear();
+    queue.push_back(s);
+    hops[s] = 0;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::uint32_t u = queue[head];
       for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
-        const auto& e = mesh.edges[mesh.vertex_edges[k]];
-        const std::uint32_t w = e[0] == u ? e[1] : e[0];
-        if (!seen[w]) {
-          seen[w] = 1;
-          stack.push_back(w);
-        }
+        const std::uint32_t w = mesh.vertex_neighbours[k];
+        if (hops[w] >= 0) continue;
+        hops[w] = hops[u] + 1;
+        queue.push_back(w);
       }
     }
-    if (size > best_size) {
-      best_size = size;
-      best = s;
-    }
+    if (queue.size() <= best_size) continue;
+    best_size = queue.size();
+    // The queue is in hop order: its last vertex is at the largest hop count.
+    const std::int32_t far = hops[queue.back()];
+    best = queue.back();
+    for (std::size_t k = queue.size(); k-- > 0 && hops[queue[k]] == far;) best = std::min(best, queue[k]);
   }
   return best;
 }
@@ -203,8 +209,7 @@ std::vector<std::uint32_t> centreBand(std::span<const Vec3> rest, const MeshTopo
       const std::uint32_t u = stack.back();
       stack.pop_back();
       for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
-        const auto& e = mesh.edges[mesh.vertex_edges[k]];
-        const std::uint32_t w = e[0] == u ? e[1] : e[0];
+        const std::uint32_t w = mesh.vertex_neighbours[k];
         if (label[w] == -2) {
           label[w] = piece;
           stack.push_back(w);
@@ -285,6 +290,11 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
 
 }  // namespace
 
+CurveSource resolveCurveSource(CurveSource source, const FaceList& faces) {
+  if (source != CurveSource::kAuto) return source;
+  return quadFraction(faces) >= kQuadDominant ? CurveSource::kEdgeLoops : CurveSource::kLevels;
+}
+
 std::vector<Vec3> curveSkeletonPositions(const CurveSkeleton& skeleton, std::span<const Vec3> pose) {
   std::vector<Vec3> out(skeleton.nodeCount(), Vec3(0.0));
   for (std::size_t n = 0; n < skeleton.nodeCount(); ++n) {
@@ -323,10 +333,9 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
 
   // Pass 1, coarse (edge paths, levels kFirstPassSpacing apart: it only has to find the centre):
   // from an extremity, the far end of a breadth-first sweep from any vertex of the largest component.
-  const std::vector<std::int32_t> hops = edgeHops(mesh, largestComponentVertex(mesh));
-  const std::uint32_t extremity[1] = {
-      static_cast<std::uint32_t>(std::max_element(hops.begin(), hops.end()) - hops.begin())};
+  const std::uint32_t extremity[1] = {largestComponentExtremity(mesh)};
   const std::vector<double> f1 = edgeDistance(mesh, extremity);
+  const Clock::time_point coarse_start = Clock::now();
   const LevelGraph first = levelGraph(rest, mesh, f1, kFirstPassSpacing * spacing);
   const LevelTree first_tree = levelTree(first, first.vertex_region[extremity[0]], prune);
   const std::int32_t centre = centreContour(first, first_tree);
@@ -340,7 +349,9 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   const std::vector<std::uint32_t> band =
       centreBand(rest, mesh, first, first_tree, static_cast<std::uint32_t>(centre), std::max(0.5 * spacing, mean_edge),
                  band_distance);
+  const Clock::time_point marching_start = Clock::now();
   const std::vector<double> f = surfaceDistance(mesh, rest, band, band_distance);
+  const Clock::time_point fine_start = Clock::now();
   const LevelGraph graph = levelGraph(rest, mesh, f, spacing);
   const LevelTree tree = levelTree(graph, graph.vertex_region[band.front()], prune);
   const TreeParts parts = treeParts(graph, tree);
@@ -350,12 +361,37 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
 
   CurveSkeletonResult result;
   result.seconds_topology = seconds_topology;
+  result.seconds_edge_distance = std::chrono::duration<double>(coarse_start - start).count();
+  result.seconds_coarse_levels = std::chrono::duration<double>(marching_start - coarse_start).count();
+  result.seconds_marching = std::chrono::duration<double>(fine_start - marching_start).count();
+  result.seconds_fine_levels = secondsSince(fine_start);
   result.vertex_parts = parts.vertex_parts;
   result.part_count = parts.parts.size();
   result.pruned_branches = tree.pruned_branches;
   for (const double d : f) result.unreached_vertices += std::isfinite(d) ? 0 : 1;
-  result.source = options.source;
-  if (options.source == CurveSource::kPlaneCuts) {
+  result.source = resolveCurveSource(options.source, faces);
+  if (result.source == CurveSource::kEdgeLoops) {
+    const double levels = secondsSince(start);
+    const Clock::time_point loops_start = Clock::now();
+    EdgeLoopStats stats;
+    Result<CurveSkeleton> from_loops = skeletonFromEdgeLoops(rest, faces, graph, tree, parts, f, mesh, root_anchors, result.curves, stats);
+    result.axial_edges = stats.axial_edges;
+    result.circumferential_edges = stats.circumferential_edges;
+    result.unknown_edges = stats.unknown_edges;
+    result.edge_loop_rings = stats.rings;
+    result.seconds_edge_loops = stats.seconds_loops;
+    result.axial_lines = stats.axial_lines;
+    if (from_loops.ok()) {
+      result.skeleton = std::move(*from_loops);
+      result.seconds_curves = levels + stats.seconds_loops;
+      result.seconds_skeleton = secondsSince(loops_start) - stats.seconds_loops;
+      return result;
+    }
+    result.source = CurveSource::kLevels;
+    result.note = "quad edge loops failed (" + from_loops.status().message() + "); the geodesic rings are the curves";
+    result.curves.clear();
+  }
+  if (result.source == CurveSource::kPlaneCuts) {
     const double levels = secondsSince(start);
     const Clock::time_point cuts = Clock::now();
     double seconds_cuts = 0.0;

@@ -11,11 +11,13 @@
 //     across the body and its limbs (a ring grown from a point on a torso first spreads over its
 //     surface as a disc). Short branches off thin rings are bumps and are pruned
 //     (curve_skeleton_tree.hpp).
-//  2. Curves: with CurveSource::kLevels (the default) the geodesic rings themselves; with
-//     kPlaneCuts the existing identification cuts each part (a branch of the tree) with planes
-//     across it (centroid-following, dichotomy between seams), the curves odeskin binds vertices
-//     to. On the shared data the rings give skeletons closer to the ground truth, in a fraction of
-//     the time (docs/rigging.md).
+//  2. Curves: with CurveSource::kLevels (what kAuto, the default, takes on triangle meshes) the
+//     geodesic rings themselves; with kPlaneCuts the existing identification cuts each part (a
+//     branch of the tree) with planes across it (centroid-following, dichotomy between seams), the
+//     curves odeskin binds vertices to; with kEdgeLoops (kAuto on quad-dominant meshes) the quad
+//     edge loops the ray-and-fan test calls circumferential (curves/ray_fan_directions.hpp). On
+//     the shared data the rings give skeletons closer to the ground truth than the cuts, in a
+//     fraction of the time (docs/rigging.md).
 //  3. Nodes: every curve's length-weighted centroid; a junction region's centroid where branches
 //     meet (the seam curves of the limbs that leave there are its children); at each free end the
 //     centroid of the cap beyond the last ring. Node 0 is the centre ring of step 1.
@@ -36,9 +38,14 @@
 namespace odeskin {
 
 enum class CurveSource {
-  kLevels,     // the geodesic rings (default: closer to the ground-truth skeletons and faster, docs/rigging.md)
+  kLevels,     // the geodesic rings (closer to the ground-truth skeletons than the cuts and faster, docs/rigging.md)
   kPlaneCuts,  // curves/iso_curves.hpp on the geodesic parts (the curves odeskin fits)
+  kEdgeLoops,  // the mesh's own quad edge loops around the limbs (ray-and-fan test, curves/ray_fan_directions.hpp)
+  kAuto,       // kEdgeLoops on a quad-dominant mesh (>= 80% quads), else kLevels (default)
 };
+
+// What kAuto picks for these faces.
+CurveSource resolveCurveSource(CurveSource source, const FaceList& faces);
 
 enum class SkeletonNodeKind : std::uint8_t {
   kRoot,      // the centre ring's slab
@@ -68,7 +75,7 @@ struct CurveSkeleton {
 std::vector<Vec3> curveSkeletonPositions(const CurveSkeleton& skeleton, std::span<const Vec3> pose);
 
 struct CurveSkeletonOptions {
-  CurveSource source = CurveSource::kLevels;
+  CurveSource source = CurveSource::kAuto;
   double level_spacing = 0.0;    // distance between geodesic levels; 0: 2 mean edge lengths, at most 1/50 of the box diagonal
   double prune_fraction = 0.04;       // a leaf branch shorter than this x the box diagonal is a bump,
   double prune_radii = 1.5;           // ... and one shorter than this x its base ring's radius
@@ -82,8 +89,14 @@ struct CurveSkeletonResult {
   std::size_t part_count = 0;
   std::size_t pruned_branches = 0;
   std::size_t unreached_vertices = 0;        // in other connected components than the largest (not rigged)
-  CurveSource source = CurveSource::kLevels;  // what was used: kLevels when the plane cuts failed
-  std::string note;                          // why the plane cuts were not used, if they were asked for
+  CurveSource source = CurveSource::kLevels;  // what was used: kLevels when the plane cuts or edge loops failed
+  std::string note;                          // why the plane cuts or edge loops were not used, if they were asked for
+  // kEdgeLoops: the ray-and-fan test's edge classes and the loops it gave.
+  std::size_t axial_edges = 0;
+  std::size_t circumferential_edges = 0;
+  std::size_t unknown_edges = 0;
+  std::size_t edge_loop_rings = 0;  // closed circumferential loops (the curves, before the tree drops any)
+  std::size_t axial_lines = 0;      // loops running along the limbs
   // Table 5.1's two stages: finding the curves (geodesic levels, and plane cuts if asked) and
   // making the skeleton from them (tree, pruning, centroids).
   // The mesh's edges and triangle neighbours are built first (seconds_topology, not counted in
@@ -91,6 +104,15 @@ struct CurveSkeletonResult {
   double seconds_topology = 0.0;
   double seconds_curves = 0.0;
   double seconds_skeleton = 0.0;
+  // seconds_curves' parts for the levels: the first pass's edge distances (sweep to an extremity
+  // and Dijkstra), its coarse level graph (with its tree, centre and band), the fast marching from
+  // the band, and the fine level graph with its tree and parts. The plane cuts or edge loops, if
+  // used, are the rest.
+  double seconds_edge_distance = 0.0;
+  double seconds_coarse_levels = 0.0;
+  double seconds_marching = 0.0;
+  double seconds_fine_levels = 0.0;
+  double seconds_edge_loops = 0.0;  // kEdgeLoops: the half-edge mesh, the ray-and-fan test and the loop walk
 };
 
 // rest: the mesh (>= 4 vertices, finite); faces: valid, manifold polygons over it.

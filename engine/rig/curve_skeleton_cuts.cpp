@@ -46,10 +46,18 @@ Result<CurveSkeleton> skeletonFromPlaneCuts(std::span<const Vec3> rest, const Fa
   if (!set.ok()) return set.status();
   seconds_cuts = std::chrono::duration<double>(std::chrono::steady_clock::now() - cut_start).count();
 
+  return skeletonFromPartCurves(rest, graph, tree, parts, f, mesh, root_anchors, set->curves, curves);
+}
+
+CurveSkeleton skeletonFromPartCurves(std::span<const Vec3> rest, const LevelGraph& graph, const LevelTree& tree,
+                                     const TreeParts& parts, std::span<const double> f, const MeshTopology& mesh,
+                                     std::span<const SkeletonAnchor> root_anchors, std::vector<IsoCurve>& found,
+                                     std::vector<IsoCurve>& curves) {
+  const std::size_t p_count = parts.parts.size();
   // Each curve on one part (the deepest it touches), keyed by the mean distance of its points.
   std::vector<std::vector<std::pair<double, std::uint32_t>>> per_part(p_count);
-  for (std::uint32_t c = 0; c < set->curves.size(); ++c) {
-    const IsoCurve& curve = set->curves[c];
+  for (std::uint32_t c = 0; c < found.size(); ++c) {
+    const IsoCurve& curve = found[c];
     std::uint32_t part = curve.part < p_count ? curve.part : 0;
     double key = 0.0;
     for (const CurvePoint& p : curve.points) {
@@ -84,7 +92,7 @@ Result<CurveSkeleton> skeletonFromPlaneCuts(std::span<const Vec3> rest, const Fa
     std::sort(per_part[p].begin(), per_part[p].end());
     double last_radius = s.radii[static_cast<std::size_t>(previous)];
     for (const auto& [key, c] : per_part[p]) {
-      IsoCurve& curve = set->curves[c];
+      IsoCurve& curve = found[c];
       curve.part = p;
       if (!curve.closed) {  // an arc cut off by a hole or rim: its centroid is off the axis
         curves.push_back(curve);

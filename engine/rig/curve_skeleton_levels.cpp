@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numeric>
 #include <functional>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include "../core/disjoint_sets.hpp"
@@ -15,6 +16,24 @@ namespace {
 
 // The slab of a value (values are >= 0 and finite here).
 std::uint32_t slabOf(double value, double spacing) { return static_cast<std::uint32_t>(std::floor(value / spacing)); }
+
+// The length-weighted centroid from the contour's points already placed (point(i): point i).
+template <typename Point>
+Vec3 centroidOf(const LevelContour& contour, const Point& point) {
+  Vec3 sum(0.0);
+  double total = 0.0;
+  for (const auto& s : contour.segments) {
+    const Vec3 a = point(s[0]);
+    const Vec3 b = point(s[1]);
+    const double length = glm::length(b - a);
+    sum += 0.5 * length * (a + b);
+    total += length;
+  }
+  if (total > 0.0) return sum / total;
+  Vec3 mean(0.0);
+  for (std::size_t i = 0; i < contour.points.size(); ++i) mean += point(static_cast<std::uint32_t>(i));
+  return contour.points.empty() ? mean : mean / static_cast<double>(contour.points.size());
+}
 
 }  // namespace
 
@@ -76,10 +95,16 @@ MeshTopology meshTopology(std::span<const Vec3> positions, const FaceList& faces
   }
   for (std::size_t v = 0; v < v_count; ++v) mesh.vertex_offsets[v + 1] += mesh.vertex_offsets[v];
   mesh.vertex_edges.resize(2 * mesh.edges.size());
+  mesh.vertex_neighbours.resize(2 * mesh.edges.size());
+  mesh.vertex_edge_lengths.resize(2 * mesh.edges.size());
   std::vector<std::uint32_t> fill(mesh.vertex_offsets.begin(), mesh.vertex_offsets.end() - 1);
   for (std::uint32_t e = 0; e < mesh.edges.size(); ++e) {
-    mesh.vertex_edges[fill[mesh.edges[e][0]]++] = e;
-    mesh.vertex_edges[fill[mesh.edges[e][1]]++] = e;
+    for (int end = 0; end < 2; ++end) {
+      const std::uint32_t k = fill[mesh.edges[e][static_cast<std::size_t>(end)]]++;
+      mesh.vertex_edges[k] = e;
+      mesh.vertex_neighbours[k] = mesh.edges[e][static_cast<std::size_t>(1 - end)];
+      mesh.vertex_edge_lengths[k] = mesh.edge_lengths[e];
+    }
   }
   mesh.vertex_triangle_offsets.assign(v_count + 1, 0);
   for (const auto& t : mesh.triangles) {
@@ -88,8 +113,21 @@ MeshTopology meshTopology(std::span<const Vec3> positions, const FaceList& faces
   for (std::size_t v = 0; v < v_count; ++v) mesh.vertex_triangle_offsets[v + 1] += mesh.vertex_triangle_offsets[v];
   mesh.vertex_triangles.resize(3 * mesh.triangles.size());
   fill.assign(mesh.vertex_triangle_offsets.begin(), mesh.vertex_triangle_offsets.end() - 1);
+  mesh.vertex_corner_steps.resize(2 * mesh.vertex_triangles.size());
   for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (const std::uint32_t v : mesh.triangles[t]) mesh.vertex_triangles[fill[v]++] = t;
+    const auto& tri = mesh.triangles[t];
+    for (std::size_t corner = 0; corner < 3; ++corner) {
+      const std::uint32_t k = fill[tri[corner]]++;
+      mesh.vertex_triangles[k] = t;
+      // A corner is u's first in the triangle (a degenerate triangle repeats a vertex; the sweep
+      // has always stepped from the first). Edge j runs from corner j to j + 1: u -> next is edge
+      // `at`, prev -> u is edge at + 2.
+      const std::size_t at = tri[0] == tri[corner] ? 0 : (tri[1] == tri[corner] ? 1 : 2);
+      const std::uint32_t next = tri[(at + 1) % 3];
+      const std::uint32_t prev = tri[(at + 2) % 3];
+      mesh.vertex_corner_steps[2 * k] = {next, prev, mesh.edge_lengths[mesh.triangle_edges[t][at]]};
+      mesh.vertex_corner_steps[2 * k + 1] = {prev, next, mesh.edge_lengths[mesh.triangle_edges[t][(at + 2) % 3]]};
+    }
   }
   mesh.boundary_vertex.assign(v_count, 0);
   for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
@@ -135,12 +173,22 @@ std::vector<double> surfaceDistance(const MeshTopology& mesh, std::span<const Ve
   for (const double l : mesh.edge_lengths) mean_edge += l;
   mean_edge = mesh.edge_lengths.empty() ? 1.0 : mean_edge / static_cast<double>(mesh.edge_lengths.size());
   const double width = mean_edge > 0.0 ? kBucketEdges * mean_edge : 1.0;
-  std::vector<std::vector<std::uint32_t>> buckets;
+  // Each bucket a stack threaded through one pool of entries (last in, first out), so that the
+  // thousands of buckets cost no allocation of their own.
+  constexpr std::uint32_t kEnd = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> heads;
+  std::vector<std::uint32_t> entry_vertex;
+  std::vector<std::uint32_t> entry_next;
+  entry_vertex.reserve(4 * v_count);
+  entry_next.reserve(4 * v_count);
   std::size_t current = 0;
   auto push = [&](std::uint32_t w, double value) {
     const auto b = static_cast<std::size_t>(value / width);
-    if (b >= buckets.size()) buckets.resize(b + 1 + buckets.size() / 2);
-    buckets[std::max(b, current)].push_back(w);
+    if (b >= heads.size()) heads.resize(b + 1 + heads.size() / 2, kEnd);
+    std::uint32_t& head = heads[std::max(b, current)];
+    entry_vertex.push_back(w);
+    entry_next.push_back(head);
+    head = static_cast<std::uint32_t>(entry_vertex.size() - 1);
   };
   for (std::size_t i = 0; i < sources.size(); ++i) {
     const std::uint32_t s = sources[i];
@@ -156,26 +204,26 @@ std::vector<double> surfaceDistance(const MeshTopology& mesh, std::span<const Ve
     }
   };
   while (true) {
-    while (current < buckets.size() && buckets[current].empty()) ++current;
-    if (current == buckets.size()) break;
-    const std::uint32_t u = buckets[current].back();
-    buckets[current].pop_back();
+    while (current < heads.size() && heads[current] == kEnd) ++current;
+    if (current == heads.size()) break;
+    const std::uint32_t top = heads[current];
+    const std::uint32_t u = entry_vertex[top];
+    heads[current] = entry_next[top];
     if (fixed[u]) continue;
     const double d = distance[u];
     fixed[u] = 1;
     // Each unfixed corner c of a triangle at u: the edge step from u, or the planar front through
     // u and the triangle's third corner o when o is fixed too; one offer per (triangle, corner).
-    for (std::uint32_t k = mesh.vertex_triangle_offsets[u]; k < mesh.vertex_triangle_offsets[u + 1]; ++k) {
-      const auto& t = mesh.triangles[mesh.vertex_triangles[k]];
-      const int at = t[0] == u ? 0 : (t[1] == u ? 1 : 2);
-      for (int step = 1; step <= 2; ++step) {
-        const std::uint32_t c = t[static_cast<std::size_t>((at + step) % 3)];
-        if (fixed[c]) continue;
-        const std::uint32_t o = t[static_cast<std::size_t>((at + 3 - step) % 3)];
-        double candidate = d + glm::length(positions[c] - positions[u]);
-        if (fixed[o]) candidate = std::min(candidate, triangleUpdate(positions[u], positions[o], positions[c], d, distance[o]));
-        offer(c, candidate);
-      }
+    // The corner steps are the triangles' corners in the order the triangles list them at u; the
+    // edge step takes the table's edge length (|c - u| and |u - c| are the same number).
+    for (std::uint32_t k = 2 * mesh.vertex_triangle_offsets[u]; k < 2 * mesh.vertex_triangle_offsets[u + 1]; ++k) {
+      const MeshTopology::CornerStep& step = mesh.vertex_corner_steps[k];
+      const std::uint32_t c = step.corner;
+      if (fixed[c]) continue;
+      const std::uint32_t o = step.other;
+      double candidate = d + step.length;
+      if (fixed[o]) candidate = std::min(candidate, triangleUpdate(positions[u], positions[o], positions[c], d, distance[o]));
+      offer(c, candidate);
     }
     // Edges without a triangle at u (a wire edge of a non-manifold fan) still carry the front.
     if (mesh.vertex_triangle_offsets[u] == mesh.vertex_triangle_offsets[u + 1]) {
@@ -192,31 +240,53 @@ std::vector<double> surfaceDistance(const MeshTopology& mesh, std::span<const Ve
 std::vector<double> edgeDistance(const MeshTopology& mesh, std::span<const std::uint32_t> sources) {
   const std::size_t v_count = mesh.vertex_offsets.size() - 1;
   std::vector<double> distance(v_count, kUnreached);
-  using Entry = std::pair<double, std::uint32_t>;
-  std::vector<Entry> heap;
-  heap.reserve(v_count);
+  // Label correcting over buckets a fifth of a mean edge wide (few vertices relaxed twice, few
+  // empty buckets) instead of Dijkstra's heap: a vertex is relaxed again whenever its distance
+  // drops after it was relaxed, so the result is the same fixed point d(w) = min over neighbours
+  // u of d(u) + |uw| (floating-point addition is monotone, so that minimum is reached bit for bit
+  // whatever the order).
+  double mean_edge = 0.0;
+  for (const double l : mesh.edge_lengths) mean_edge += l;
+  mean_edge = mesh.edge_lengths.empty() ? 1.0 : mean_edge / static_cast<double>(mesh.edge_lengths.size());
+  const double width = mean_edge > 0.0 ? 0.2 * mean_edge : 1.0;
+  constexpr std::uint32_t kEnd = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> heads;
+  std::vector<std::uint32_t> entry_vertex;
+  std::vector<std::uint32_t> entry_next;
+  entry_vertex.reserve(2 * v_count);
+  entry_next.reserve(2 * v_count);
+  std::vector<double> relaxed_at(v_count, kUnreached);  // the distance each vertex was last relaxed with
+  std::size_t current = 0;
+  auto push = [&](std::uint32_t w, double value) {
+    const auto b = static_cast<std::size_t>(value / width);
+    if (b >= heads.size()) heads.resize(b + 1 + heads.size() / 2, kEnd);
+    std::uint32_t& head = heads[std::max(b, current)];
+    entry_vertex.push_back(w);
+    entry_next.push_back(head);
+    head = static_cast<std::uint32_t>(entry_vertex.size() - 1);
+  };
   for (const std::uint32_t s : sources) {
     assert(s < v_count);
     if (distance[s] > 0.0) {
       distance[s] = 0.0;
-      heap.push_back({0.0, s});
+      push(s, 0.0);
     }
   }
-  const auto later = std::greater<Entry>();
-  std::make_heap(heap.begin(), heap.end(), later);
-  while (!heap.empty()) {
-    std::pop_heap(heap.begin(), heap.end(), later);
-    const auto [d, u] = heap.back();
-    heap.pop_back();
-    if (d > distance[u]) continue;
+  while (true) {
+    while (current < heads.size() && heads[current] == kEnd) ++current;
+    if (current == heads.size()) break;
+    const std::uint32_t top = heads[current];
+    const std::uint32_t u = entry_vertex[top];
+    heads[current] = entry_next[top];
+    const double d = distance[u];
+    if (!(d < relaxed_at[u])) continue;
+    relaxed_at[u] = d;
     for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
-      const std::uint32_t e = mesh.vertex_edges[k];
-      const std::uint32_t w = mesh.edges[e][0] == u ? mesh.edges[e][1] : mesh.edges[e][0];
-      const double candidate = d + mesh.edge_lengths[e];
+      const std::uint32_t w = mesh.vertex_neighbours[k];
+      const double candidate = d + mesh.vertex_edge_lengths[k];
       if (candidate < distance[w]) {
         distance[w] = candidate;
-        heap.push_back({candidate, w});
-        std::push_heap(heap.begin(), heap.end(), later);
+        push(w, candidate);
       }
     }
   }
@@ -232,8 +302,7 @@ std::vector<std::int32_t> edgeHops(const MeshTopology& mesh, std::uint32_t sourc
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const std::uint32_t u = queue[head];
     for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
-      const std::uint32_t e = mesh.vertex_edges[k];
-      const std::uint32_t w = mesh.edges[e][0] == u ? mesh.edges[e][1] : mesh.edges[e][0];
+      const std::uint32_t w = mesh.vertex_neighbours[k];
       if (hops[w] >= 0) continue;
       hops[w] = hops[u] + 1;
       queue.push_back(w);
@@ -377,17 +446,17 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
   for (std::size_t c = 0; c < uses.size(); ++c) {
     if (uses[c] == 1) graph.contours[contour_of_root[links.find(static_cast<std::uint32_t>(c))]].closed = false;
   }
+  std::vector<Vec3> at;  // a contour's points on `positions`, computed once for its three sums
   for (std::uint32_t c = 0; c < graph.contours.size(); ++c) {
     LevelContour& contour = graph.contours[c];
-    contour.centroid = contourCentroid(contour, positions);
+    at.clear();
+    for (const CurvePoint& p : contour.points) at.push_back(curvePointPosition(positions, p));
+    contour.centroid = centroidOf(contour, [&](std::uint32_t i) { return at[i]; });
     double length = 0.0;
-    for (const auto& s : contour.segments) {
-      length += glm::length(curvePointPosition(positions, contour.points[s[1]]) -
-                            curvePointPosition(positions, contour.points[s[0]]));
-    }
+    for (const auto& s : contour.segments) length += glm::length(at[s[1]] - at[s[0]]);
     contour.length = length;
     double radius = 0.0;
-    for (const CurvePoint& p : contour.points) radius += glm::length(curvePointPosition(positions, p) - contour.centroid);
+    for (const Vec3& p : at) radius += glm::length(p - contour.centroid);
     contour.radius = contour.points.empty() ? 0.0 : radius / static_cast<double>(contour.points.size());
     graph.regions[contour.lower].contours.push_back(c);
     graph.regions[contour.upper].contours.push_back(c);
@@ -406,19 +475,7 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
 }
 
 Vec3 contourCentroid(const LevelContour& contour, std::span<const Vec3> positions) {
-  Vec3 sum(0.0);
-  double total = 0.0;
-  for (const auto& s : contour.segments) {
-    const Vec3 a = curvePointPosition(positions, contour.points[s[0]]);
-    const Vec3 b = curvePointPosition(positions, contour.points[s[1]]);
-    const double length = glm::length(b - a);
-    sum += 0.5 * length * (a + b);
-    total += length;
-  }
-  if (total > 0.0) return sum / total;
-  Vec3 mean(0.0);
-  for (const CurvePoint& p : contour.points) mean += curvePointPosition(positions, p);
-  return contour.points.empty() ? mean : mean / static_cast<double>(contour.points.size());
+  return centroidOf(contour, [&](std::uint32_t i) { return curvePointPosition(positions, contour.points[i]); });
 }
 
 }  // namespace odeskin

@@ -36,8 +36,19 @@ struct MeshTopology {
   std::vector<double> edge_lengths;                          // on the positions it was built with
   std::vector<std::uint32_t> vertex_offsets;                 // V + 1
   std::vector<std::uint32_t> vertex_edges;                   // the edges at each vertex
+  std::vector<std::uint32_t> vertex_neighbours;              // beside vertex_edges: the edge's other end
+  std::vector<double> vertex_edge_lengths;                   // beside vertex_edges: its length
   std::vector<std::uint32_t> vertex_triangle_offsets;        // V + 1
   std::vector<std::uint32_t> vertex_triangles;               // the triangles at each vertex
+  // Beside vertex_triangles, two per triangle at vertex u: the corner c after u, then the one
+  // before, each with the third corner o and |c - u| (the distance sweeps read them in order
+  // instead of chasing triangles and edges across memory).
+  struct CornerStep {
+    std::uint32_t corner = 0;
+    std::uint32_t other = 0;
+    double length = 0.0;
+  };
+  std::vector<CornerStep> vertex_corner_steps;               // 2 x vertex_triangles.size()
   std::vector<char> boundary_vertex;                         // V: on an edge with one triangle
 };
 // `faces` must index below positions.size() (checked by the caller).

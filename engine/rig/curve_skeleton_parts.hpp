@@ -58,4 +58,30 @@ Result<CurveSkeleton> skeletonFromPlaneCuts(std::span<const Vec3> rest, const Fa
                                             const MeshTopology& mesh, std::span<const SkeletonAnchor> root_anchors,
                                             std::vector<IsoCurve>& curves, double& seconds_cuts);
 
+// The skeleton from curves found on the mesh (plane cuts, quad edge loops): each curve goes to the
+// deepest part it touches (a seam curve starts the limb), `f` orders a part's curves, and closed
+// ones become nodes chained from the part's start region to its end region. found[c].part: the
+// caller's guess of the curve's part (out of range: 0); the curves used are appended to `curves`.
+CurveSkeleton skeletonFromPartCurves(std::span<const Vec3> rest, const LevelGraph& graph, const LevelTree& tree,
+                                     const TreeParts& parts, std::span<const double> f, const MeshTopology& mesh,
+                                     std::span<const SkeletonAnchor> root_anchors, std::vector<IsoCurve>& found,
+                                     std::vector<IsoCurve>& curves);
+
+// The curve skeleton from the quad edge loops the ray-and-fan test calls circumferential
+// (curves/ray_fan_directions.hpp) on the level tree's parts; `stats` receives the edge counts.
+// kDegenerate when no loop is a ring (the caller falls back to the levels).
+struct EdgeLoopStats {
+  std::size_t axial_edges = 0;
+  std::size_t circumferential_edges = 0;
+  std::size_t unknown_edges = 0;
+  std::size_t measured_vertices = 0;
+  std::size_t rings = 0;
+  std::size_t axial_lines = 0;
+  double seconds_loops = 0.0;  // ray-and-fan test and loop walk
+};
+Result<CurveSkeleton> skeletonFromEdgeLoops(std::span<const Vec3> rest, const FaceList& faces, const LevelGraph& graph,
+                                            const LevelTree& tree, const TreeParts& parts, std::span<const double> f,
+                                            const MeshTopology& mesh, std::span<const SkeletonAnchor> root_anchors,
+                                            std::vector<IsoCurve>& curves, EdgeLoopStats& stats);
+
 }  // namespace odeskin

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "host/fault_injection.hpp"
 #include "host/vk_status.hpp"
 
 namespace odeskin::vk {
@@ -56,7 +57,9 @@ Result<AttachmentImage> createAttachment(const Device& device, std::uint32_t wid
   alloc.allocationSize = requirements.size;
   alloc.memoryTypeIndex = type;
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkAllocateMemory(vk_device, &alloc, nullptr, &memory));
+  VkResult allocated = injectedResult(VkFault::kOutOfMemory);
+  if (allocated == VK_SUCCESS) allocated = vkAllocateMemory(vk_device, &alloc, nullptr, &memory);
+  ODESKIN_TRY(vkStatus(allocated, "vkAllocateMemory"));
   out.memory = UniqueMemory(vk_device, memory);
   ODESKIN_VK_TRY(vkBindImageMemory(vk_device, image, memory, 0));
 

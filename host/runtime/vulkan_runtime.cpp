@@ -6,6 +6,7 @@
 #include <string>
 
 #include "host/compute_dispatcher.hpp"
+#include "host/texel_bindings.hpp"
 #include "shaders/instance_normals.spv.h"
 #include "shaders/instanced_deform.spv.h"
 #include "shaders/instanced_deform_shared.spv.h"
@@ -171,15 +172,19 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
   vk::ComputePipelineDesc deform_desc;
   deform_desc.spirv = subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
                                        : std::span<const std::uint32_t>(kInstancedDeformSharedSpirv);
-  deform_desc.storage_bindings = deform_bindings;
+  const vk::SortedBindings deform_sorted = vk::SortedBindings::sort(deform_bindings, vk::kDeformTexelBindings);
+  deform_desc.storage_bindings = deform_sorted.storage;
+  deform_desc.texel_bindings = deform_sorted.texels;
   deform_desc.push_constant_bytes = sizeof(gpu::InstancedPushConstants);
   deform_desc.descriptor_set_count = framesInFlight();
   ODESKIN_ASSIGN_OR_RETURN(deform_, vk::ComputePipeline::create(*device_, deform_desc));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
-    for (const auto& [binding, buffer] : deform_statics_) deform_.bindBuffer(s, binding, buffer.handle());
-    for (const vk::FrameBinding& b : layout.bindings()) deform_.bindBuffer(s, b.binding, ring_.inputBuffer(s), b.offset, b.size);
-    deform_.bindBuffer(s, ODESKIN_RT_BINDING_OUT_POSITIONS, slots_[s].positions.handle());
-    deform_.bindBuffer(s, ODESKIN_RT_BINDING_BOUNDS, slots_[s].bounds.handle());
+    for (const auto& [binding, buffer] : deform_statics_) ODESKIN_TRY(deform_.bindBuffer(s, binding, buffer.handle()));
+    for (const vk::FrameBinding& b : layout.bindings()) {
+      ODESKIN_TRY(deform_.bindBuffer(s, b.binding, ring_.inputBuffer(s), b.offset, b.size));
+    }
+    ODESKIN_TRY(deform_.bindBuffer(s, ODESKIN_RT_BINDING_OUT_POSITIONS, slots_[s].positions.handle()));
+    ODESKIN_TRY(deform_.bindBuffer(s, ODESKIN_RT_BINDING_BOUNDS, slots_[s].bounds.handle()));
   }
   if (!options().normals) return okStatus();
 
@@ -187,15 +192,17 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
                                            ODESKIN_RT_NORMALS_BINDING_CORNERS, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS};
   vk::ComputePipelineDesc normals_desc;
   normals_desc.spirv = kInstanceNormalsSpirv;
-  normals_desc.storage_bindings = normal_bindings;
+  const vk::SortedBindings normals_sorted = vk::SortedBindings::sort(normal_bindings, vk::kNormalsTexelBindings);
+  normals_desc.storage_bindings = normals_sorted.storage;
+  normals_desc.texel_bindings = normals_sorted.texels;
   normals_desc.push_constant_bytes = sizeof(gpu::NormalsPushConstants);
   normals_desc.descriptor_set_count = framesInFlight();
   ODESKIN_ASSIGN_OR_RETURN(normals_, vk::ComputePipeline::create(*device_, normals_desc));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
-    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_POSITIONS, slots_[s].positions.handle());
-    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, corner_offsets_.handle());
-    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNERS, corners_.handle());
-    normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS, slots_[s].normals.handle());
+    ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_POSITIONS, slots_[s].positions.handle()));
+    ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, corner_offsets_.handle()));
+    ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNERS, corners_.handle()));
+    ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS, slots_[s].normals.handle()));
   }
   return okStatus();
 }

@@ -22,21 +22,34 @@ Result<AssetPlayback> AssetPlayback::create(const DeformAsset& asset, const Play
   playback.device_ = "cpu: double-precision reference";
   if (options.backend == Backend::kCpu) return playback;
 
-  Result<vk::Gpu> gpu = vk::Gpu::open(options.device, options.validation);
-  if (!gpu.ok()) {
-    if (options.backend == Backend::kVulkan) return gpu.status();
-    if (notes) *notes << "note: no usable Vulkan device (" << gpu.status().message() << "); playing on the CPU\n";
-    return playback;
+  playback.backend_ = options.backend;
+  playback.notes_ = notes;
+  if (Status s = playback.openGpu(options); !s.ok()) {
+    if (options.backend == Backend::kVulkan) return s;
+    playback.fallBack(s);
   }
-  playback.gpu_ = std::make_unique<vk::Gpu>(std::move(gpu).value());
-  ODESKIN_ASSIGN_OR_RETURN(PackedDeformData packed, packDeformAsset(asset));
-  ODESKIN_ASSIGN_OR_RETURN(GpuDeformer deformer, GpuDeformer::create(playback.gpu_->device, packed));
-  playback.deformer_ = std::make_unique<GpuDeformer>(std::move(deformer));
-  playback.device_ = std::string("vulkan: ") + playback.gpu_->device.name();
-  playback.gpu_basis_.resize(playback.basis_.size());
-  playback.gpu_bones_.resize(playback.bones_.size());
-  playback.gpu_out_.resize(asset.vertexCount());
   return playback;
+}
+
+Status AssetPlayback::openGpu(const PlaybackOptions& options) {
+  ODESKIN_ASSIGN_OR_RETURN(vk::Gpu gpu, vk::Gpu::open(options.device, options.validation));
+  gpu_ = std::make_unique<vk::Gpu>(std::move(gpu));
+  ODESKIN_ASSIGN_OR_RETURN(PackedDeformData packed, packDeformAsset(*asset_));
+  ODESKIN_ASSIGN_OR_RETURN(GpuDeformer deformer, GpuDeformer::create(gpu_->device, packed));
+  deformer_ = std::make_unique<GpuDeformer>(std::move(deformer));
+  device_ = std::string("vulkan: ") + gpu_->device.name();
+  gpu_basis_.resize(basis_.size());
+  gpu_bones_.resize(bones_.size());
+  gpu_out_.resize(asset_->vertexCount());
+  return okStatus();
+}
+
+void AssetPlayback::fallBack(const Status& why) {
+  // The deformer before the device it was built on.
+  deformer_.reset();
+  gpu_.reset();
+  device_ = "cpu: double-precision reference";
+  if (notes_) *notes_ << "note: Vulkan failed (" << why.message() << "); playing on the CPU\n";
 }
 
 Status AssetPlayback::positionsAt(double t, std::vector<Vec3>& out) {
@@ -47,8 +60,14 @@ Status AssetPlayback::positionsAt(double t, std::vector<Vec3>& out) {
   if (!deformer_) return referenceJob(*asset_, segment, basis_, bones_, out).run();
   toGpuBasis(basis_, gpu_basis_);
   toGpuBones(bones_, gpu_bones_);
-  ODESKIN_TRY(deformer_->run(GpuDeformFrame{segment, gpu_bones_, gpu_basis_}));
-  ODESKIN_TRY(deformer_->readPositions(gpu_out_));
+  Status ran = deformer_->run(GpuDeformFrame{segment, gpu_bones_, gpu_basis_});
+  if (ran.ok()) ran = deformer_->readPositions(gpu_out_);
+  if (!ran.ok()) {
+    // --backend auto: a device lost or out of memory mid-sequence finishes the frames on the CPU.
+    if (backend_ != Backend::kAuto) return ran;
+    fallBack(ran);
+    return referenceJob(*asset_, segment, basis_, bones_, out).run();
+  }
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = Vec3(gpu_out_[i].x, gpu_out_[i].y, gpu_out_[i].z);
   return okStatus();
 }

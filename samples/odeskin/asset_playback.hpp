@@ -30,7 +30,9 @@ class AssetPlayback {
  public:
   // `asset` must stay alive and unchanged while the playback is used. Errors: DeformPlayer's
   // (a resonant material mode), kUnavailable when Vulkan is required but no device opens,
-  // GpuDeformer::create's. `notes` (optional) hears about a fallback from kAuto to the CPU.
+  // GpuDeformer::create's. kAuto falls back to the CPU when any Vulkan step fails (opening the
+  // device, uploading the asset, or a frame later: out of memory, device lost); `notes` (optional,
+  // must outlive the playback) hears about it once.
   static Result<AssetPlayback> create(const DeformAsset& asset, const PlaybackOptions& options, std::ostream* notes);
 
   AssetPlayback(AssetPlayback&&) noexcept;
@@ -48,8 +50,12 @@ class AssetPlayback {
 
  private:
   AssetPlayback() = default;
+  Status openGpu(const PlaybackOptions& options);
+  void fallBack(const Status& why);  // drops the GPU objects and says so on notes_
 
   const DeformAsset* asset_ = nullptr;
+  Backend backend_ = Backend::kCpu;
+  std::ostream* notes_ = nullptr;
   std::optional<DeformPlayer> player_;
   std::string device_;
   // Heap-held so the deformer's reference to the device survives moves of this object; the

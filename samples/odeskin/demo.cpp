@@ -46,7 +46,7 @@ Result<std::optional<vk::Gpu>> openGpu(const DemoOptions& options, std::ostream&
   Result<vk::Gpu> gpu = vk::Gpu::open(options.device, options.validation);
   if (gpu.ok()) return std::optional<vk::Gpu>(std::move(gpu).value());
   if (options.backend == Backend::kVulkan) return gpu.status();
-  log << "note: no usable Vulkan device (" << gpu.status().message() << "); using the CPU backend\n";
+  log << "note: Vulkan failed (" << gpu.status().message() << "); using the CPU backend\n";
   return std::optional<vk::Gpu>{};
 }
 
@@ -95,14 +95,26 @@ Result<DemoResult> runDemo(const DemoOptions& options, std::ostream& log) {
   ODESKIN_ASSIGN_OR_RETURN(std::optional<vk::Gpu> gpu, openGpu(options, log));
   std::optional<GpuDeformer> deformer;
   DemoResult result;
+  // kAuto: a Vulkan failure after the device opened (out of memory, device lost) also means the CPU.
+  auto fallBack = [&](const Status& why) {
+    deformer.reset();
+    gpu.reset();
+    log << "note: Vulkan failed (" << why.message() << "); using the CPU backend\n";
+  };
   if (gpu) {
-    ODESKIN_ASSIGN_OR_RETURN(GpuDeformer created, GpuDeformer::create(gpu->device, packed));
-    deformer.emplace(std::move(created));
-    result.device = std::string("vulkan: ") + gpu->device.name();
-  } else {
-    const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-    result.device = "cpu: fast path, " + std::to_string(threads) + " thread" + (threads == 1 ? "" : "s");
+    Result<GpuDeformer> created = GpuDeformer::create(gpu->device, packed);
+    if (created.ok()) {
+      deformer.emplace(std::move(created).value());
+      result.device = std::string("vulkan: ") + gpu->device.name();
+    } else if (options.backend == Backend::kVulkan) {
+      return created.status();
+    } else {
+      fallBack(created.status());
+    }
   }
+  const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  const std::string cpu_device = "cpu: fast path, " + std::to_string(threads) + " thread" + (threads == 1 ? "" : "s");
+  if (!deformer) result.device = cpu_device;
   log << "device: " << result.device << "\n";
 
   std::vector<ModeBasisValue> basis(player.basisSize());
@@ -121,10 +133,18 @@ Result<DemoResult> runDemo(const DemoOptions& options, std::ostream& log) {
     toGpuBasis(basis, gpu_basis);
     toGpuBones(bones, gpu_bones);
     if (deformer) {
-      ODESKIN_TRY(deformer->run(GpuDeformFrame{segment, gpu_bones, gpu_basis}));
+      Status ran = deformer->run(GpuDeformFrame{segment, gpu_bones, gpu_basis});
       wall += std::chrono::duration<double>(Clock::now() - start).count();
-      gpu_time += deformer->lastGpuSeconds();
-      ODESKIN_TRY(deformer->readPositions(out));
+      if (ran.ok()) {
+        gpu_time += deformer->lastGpuSeconds();
+        ran = deformer->readPositions(out);
+      }
+      if (!ran.ok()) {
+        if (options.backend == Backend::kVulkan) return ran;
+        fallBack(ran);
+        result.device = cpu_device;
+        ODESKIN_TRY((FourierDeformFastJob{&packed, segment, gpu_bones, gpu_basis, out, options.threads}).run());
+      }
     } else {
       ODESKIN_TRY((FourierDeformFastJob{&packed, segment, gpu_bones, gpu_basis, out, options.threads}).run());
       wall += std::chrono::duration<double>(Clock::now() - start).count();

@@ -9,6 +9,7 @@
 #include "engine/io/gltf_reader.hpp"
 #include "engine/io/libigl_io.hpp"
 #include "engine/io/obj_reader.hpp"
+#include "engine/offline/time_basis.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "material_options.hpp"
 #include "number_text.hpp"
@@ -36,6 +37,16 @@ Result<ExampleSet> readExamples(const FitCommandOptions& o) {
       break;
   }
   return readObjSequence(o.inputs, o.bind.empty() ? nullptr : &o.bind);
+}
+
+// Every mode's time basis of `material` exists (not resonant, not degenerate), checked before the
+// poses are read so a bad --material fails at once and names where it came from (`where`).
+Status checkMaterialModes(const Material& material, int terms, const std::string& where) {
+  for (int n = 0; n <= terms; ++n) {
+    Result<ModeTimeBasis> basis = ModeTimeBasis::create(material, n);
+    if (!basis.ok()) return Status(basis.status().code(), where + ": " + basis.status().message());
+  }
+  return okStatus();
 }
 
 void printSummary(std::ostream& out, const FitCommandOptions& o, const ExampleSet& examples,
@@ -100,6 +111,20 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
     pipeline.material = choice->default_material;
     pipeline.part_materials = choice->parts;
   }
+  const std::string material_source =
+      o.materials_json.empty() ? "--material '" + fitMaterialText(o) + "'" : o.materials_json.string();
+  if (Status s = checkMaterialModes(pipeline.material, o.terms, material_source); !s.ok()) {
+    return reportError(console, "fit: " + s.message(), kExitFailure);
+  }
+  // MATH.md 5.4: eta/rho < 0 is accepted (the vectors use it) but is not physical; say so once.
+  if (!console.quiet && ModeTimeBasis::create(pipeline.material, 0)->negativeDamping()) {
+    console.err << "warning: fit: " << material_source << ": eta/rho < 0 (negative damping): motion grows instead of settling\n";
+  }
+  for (const auto& [part, material] : pipeline.part_materials) {
+    if (Status s = checkMaterialModes(material, o.terms, material_source + ": part \"" + part + "\""); !s.ok()) {
+      return reportError(console, "fit: " + s.message(), kExitFailure);
+    }
+  }
   pipeline.key_tolerance = o.key_tolerance;
   pipeline.pure_fourier = o.pure_fourier;
   pipeline.force_auto_rig = o.rig == "auto" || o.rig == "curves";
@@ -114,7 +139,21 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
   pipeline.progress = [&bar](std::string_view stage, double fraction) { bar.fraction(stage, fraction); };
   Result<PipelineResult> result = runFitPipeline(*examples, pipeline);
   bar.finish();
-  if (!result.ok()) return reportFailure(console, result.status());
+  if (!result.ok()) {
+    // Most fit errors name their file; one about the poses together (an automatic rig that finds
+    // no motion, say) is given the poses' names so the line still says which input is at fault.
+    const std::string& message = result.status().message();
+    const bool named = std::any_of(examples->pose_labels.begin(), examples->pose_labels.end(), [&](const std::string& label) {
+      return message.find(label) != std::string::npos;
+    });
+    if (named || examples->pose_labels.empty()) return reportFailure(console, result.status());
+    const std::vector<std::string>& labels = examples->pose_labels;
+    const std::string poses = labels.size() == 1 ? labels.front()
+                              : labels.size() == 2 ? labels.front() + ", " + labels.back()
+                                                   : labels.front() + " ... " + labels.back() + " (" +
+                                                         std::to_string(labels.size()) + " poses)";
+    return reportError(console, "fit: " + poses + ": " + message, kExitFailure);
+  }
 
   std::error_code ec;
   if (o.output.has_parent_path()) {

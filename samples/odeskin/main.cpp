@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The odeskin command line: CLI11 wiring only; each verb lives in its own file. Exit status: 0
 // success; 1 bad input or runtime failure, with one line "odeskin: error: ..." on stderr; 2 usage error.
+#include <algorithm>
 #include <cstdio>
+#include <exception>
 #include <iostream>
 #include <map>
+#include <new>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -37,7 +41,7 @@ int fail(const odeskin::Status& status) {
 
 int runDemoCommand(const odeskin::DemoOptions& options) {
   odeskin::Result<odeskin::DemoResult> result = odeskin::runDemo(options, std::cout);
-  if (!result.ok()) return fail(result.status());
+  if (!result.ok()) return fail(odeskin::Status(result.status().code(), "demo: " + result.status().message()));
   const odeskin::DemoResult& r = *result;
   std::printf("frames: %zu written to %s\n", r.frames.size(), options.output_dir.string().c_str());
   std::printf("per-frame time: %.3f ms wall", 1e3 * r.mean_frame_seconds);
@@ -188,8 +192,9 @@ CLI::App* addSurfaceCommand(CLI::App& app, odeskin::SurfaceCommandOptions& o) {
   cmd->add_option("--res", o.resolution, "U,V: samples per patch along u and v, both edges included (default 33,33)");
   cmd->add_flag("--obj", o.obj, "Also write the welded quads as OUT.obj (same stem as the .glb)");
   cmd->add_option("--shape", o.shape, "RHO,ETA,LAMBDA for every patch instead of the file's shapes");
-  cmd->add_option("--backend", o.backend, "cpu (double-precision reference) or vulkan (compute shader, float)")
-      ->check(CLI::IsMember({"cpu", "vulkan"}));
+  cmd->add_option("--backend", o.backend,
+                  "cpu (double-precision reference), vulkan (compute shader, float), or auto (vulkan, else cpu)")
+      ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
   cmd->add_flag("--validation", o.validation, "vulkan: enable the Khronos validation layer; fail on any message");
   return cmd;
 }
@@ -213,9 +218,10 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
       ->check(CLI::IsMember({"auto", "humanoid", "quadruped", "none"}));
   cmd->add_option("--gltf", o.gltf, "Also write the mesh with its skin and joints as a .glb");
   cmd->add_option("--png", o.png, "Also draw the curves and the skeleton over the mesh (Vulkan; lavapipe works)");
-  cmd->add_option("--curves", o.curves, "levels (geodesic rings, default) or cuts (odeskin's plane-cut curve identification\n"
-                  "run on the parts the rings find)")
-      ->check(CLI::IsMember({"cuts", "levels"}));
+  cmd->add_option("--curves", o.curves, "auto (default: loops on a mesh of >= 80% quads, else levels), levels (geodesic\n"
+                  "rings), cuts (odeskin's plane-cut curve identification run on the parts the rings find) or loops\n"
+                  "(the quad edge loops the ray-and-fan test calls circumferential)")
+      ->check(CLI::IsMember({"auto", "cuts", "levels", "loops"}));
   cmd->add_option("--angle", o.angle_deg, "Turn in degrees that makes a joint (default 20)");
   cmd->add_option("--up", o.up, "The mesh's up axis: x, y, z, -x, -y or -z (default y)");
   cmd->add_option("--compare", o.compare, "A ground-truth skeleton (.tgf): print joint errors and bone counts against it");
@@ -298,9 +304,8 @@ CLI::App* addRenderCommand(CLI::App& app, odeskin::RenderOptions& o, RenderCliVa
   return render;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The command line parsed and run; `verb` is set once a verb is known, for main's last-resort message.
+int run(int argc, char** argv, std::string& verb) {
   CLI::App app{"odeskin: analytic physics-based skin deformation (Bian 2018) on CPU and Vulkan compute"};
   app.require_subcommand(1);
   app.fallthrough();  // global options may follow the verb
@@ -399,11 +404,24 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // One line like every other failure, pointing at the help of the verb that was being parsed.
+    std::string message = e.what();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+      message = "unknown command '" + std::string(argv[1]) + "'";
+    }
+    const std::string help = app.get_subcommands().empty() ? "odeskin --help"
+                                                           : "odeskin " + app.get_subcommands().front()->get_name() + " --help";
+    std::cerr << "odeskin: error: " << message << " (see " << help << ")\n";
     return 2;
   }
 
+  if (!app.get_subcommands().empty()) verb = app.get_subcommands().front()->get_name();
   odeskin::Console console{std::cout, std::cerr, quiet, odeskin::stderrIsTerminal()};
   if (info->parsed()) {
     if (!info_asset.empty()) return odeskin::runInfoCommand(info_asset, console);
@@ -459,4 +477,26 @@ int main(int argc, char** argv) {
   }
   if (reconstruct_cmd->parsed()) return odeskin::runReconstructCommand(reconstruct_options, console);
   return 2;
+}
+
+}  // namespace
+
+// Nothing the engine throws (it reports Status) is expected here; the catch turns what the standard
+// library can still throw (std::bad_alloc for an input too large for memory, a library's exception)
+// into exit status 1 and the usual one line, never an abort.
+int main(int argc, char** argv) {
+  std::string verb;
+  std::string problem;
+  try {
+    return run(argc, argv, verb);
+  } catch (const std::bad_alloc&) {
+    problem = "out of memory (the input is too large for this machine)";
+  } catch (const std::exception& e) {
+    problem = std::string("unexpected failure: ") + e.what();
+  } catch (...) {
+    problem = "unexpected failure (an unknown exception)";
+  }
+  std::cout.flush();
+  std::fprintf(stderr, "odeskin: error: %s%s\n", verb.empty() ? "" : (verb + ": ").c_str(), problem.c_str());
+  return 1;
 }

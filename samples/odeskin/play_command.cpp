@@ -236,9 +236,8 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   const bool glb = lowerExtension(o.output) == ".glb";
   std::vector<std::vector<Vec3>> baked;
 
-  Result<AssetPlayback> playback = AssetPlayback::create(asset, o.playback, console.quiet ? nullptr : &console.err);
-  if (!playback.ok()) return reportFailure(console, playback.status());
-  // --png: the device is opened before anything is written, so a missing one fails early.
+  // --png: the device is opened before anything is written, so a missing one fails early (and
+  // before the playback, which would otherwise note a CPU fallback just before this error).
   std::optional<RenderSession> session;
   if (!o.png_dir.empty()) {
     Result<RenderSession> opened = RenderSession::open(o.playback.device, o.playback.validation, vk::PictureStyle{});
@@ -246,6 +245,14 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     session.emplace(std::move(opened).value());
   }
 
+  Result<AssetPlayback> playback = AssetPlayback::create(asset, o.playback, console.quiet ? nullptr : &console.err);
+  if (!playback.ok()) {
+    // A Vulkan failure speaks for itself; anything else is about the asset's content.
+    const StatusCode code = playback.status().code();
+    const bool device = code == StatusCode::kUnavailable || code == StatusCode::kDeviceError;
+    return reportError(console, "play: " + (device ? std::string() : o.asset.string() + ": ") + playback.status().message(),
+                       kExitFailure);
+  }
   ProgressBar bar(console.err, "play", times.size(), !console.quiet && console.interactive && times.size() > 1);
   std::vector<Vec3> positions;
   std::vector<Vec3> framing;  // --png: vertices the pictures' camera must see (playPictures)
@@ -253,7 +260,9 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   double deform_seconds = 0.0;
   for (std::size_t f = 0; f < times.size(); ++f) {
     const Clock::time_point start = Clock::now();
-    if (Status s = playback->positionsAt(times[f], positions); !s.ok()) return reportFailure(console, s);
+    if (Status s = playback->positionsAt(times[f], positions); !s.ok()) {
+      return reportError(console, "play: " + s.message(), kExitFailure);
+    }
     deform_seconds += std::chrono::duration<double>(Clock::now() - start).count();
     if (!o.png_dir.empty()) addFramingPoints(positions, times.size(), framing);
     if (!write_meshes) {
@@ -293,7 +302,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   std::vector<std::filesystem::path> pictures;
   if (!o.png_dir.empty()) {
     if (Status s = playPictures(o, asset, *playback, *session, times, framing, console, pictures); !s.ok()) {
-      return reportFailure(console, s);
+      return reportError(console, "play: " + s.message(), kExitFailure);
     }
   }
 

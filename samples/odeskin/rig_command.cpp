@@ -24,6 +24,28 @@
 namespace odeskin {
 namespace {
 
+std::optional<CurveSource> curveSource(const std::string& name) {
+  if (name == "auto") return CurveSource::kAuto;
+  if (name == "levels") return CurveSource::kLevels;
+  if (name == "cuts") return CurveSource::kPlaneCuts;
+  if (name == "loops") return CurveSource::kEdgeLoops;
+  return std::nullopt;
+}
+
+const char* curveSourceName(CurveSource source) {
+  switch (source) {
+    case CurveSource::kLevels:
+      return "geodesic rings";
+    case CurveSource::kPlaneCuts:
+      return "plane cuts";
+    case CurveSource::kEdgeLoops:
+      return "quad edge loops";
+    case CurveSource::kAuto:
+      break;
+  }
+  return "auto";
+}
+
 std::string usageProblem(const RigCommandOptions& o) {
   if (o.meshes.empty()) return "rig: give the mesh (an OBJ file), optionally followed by example poses";
   for (const std::filesystem::path& m : o.meshes) {
@@ -42,7 +64,7 @@ std::string usageProblem(const RigCommandOptions& o) {
   if (!parseTemplateKind(o.template_kind)) {
     return "rig: --template " + o.template_kind + ": use auto, humanoid, quadruped or none";
   }
-  if (o.curves != "cuts" && o.curves != "levels") return "rig: --curves " + o.curves + ": use cuts or levels";
+  if (!curveSource(o.curves)) return "rig: --curves " + o.curves + ": use auto, levels, cuts or loops";
   if (!(o.angle_deg > 0.0 && o.angle_deg < 180.0)) return "rig: --angle must lie in (0, 180) degrees";
   if (o.repeat < 1) return "rig: --repeat must be at least 1";
   if (Result<Vec3> up = parseUpAxis(o.up); !up.ok()) return "rig: " + up.status().message();
@@ -86,20 +108,31 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   }
 
   CurveRigOptions options;
-  options.curves.source = o.curves == "levels" ? CurveSource::kLevels : CurveSource::kPlaneCuts;
+  options.curves.source = *curveSource(o.curves);
   options.animation.angle_threshold_deg = o.angle_deg;
   options.animation.template_kind = *parseTemplateKind(o.template_kind);
   options.animation.up = *parseUpAxis(o.up);
   options.compute_weights = !o.weights.empty() || !o.gltf.empty();
   std::vector<double> topology_s, curves_s, skeleton_s, weights_s;
+  std::vector<double> edge_distance_s, coarse_s, marching_s, fine_s, loops_s;  // vertex identification's stages
   Result<CurveRig> rig = invalidArgument("rig: not run");
   for (int run = 0; run < o.repeat; ++run) {
     rig = buildCurveRig(rest, faces, poses, options);
-    if (!rig.ok()) return reportFailure(console, Status(rig.status().code(), "rig: " + rig.status().message()));
+    if (!rig.ok()) {
+      // The curve rig's errors are about the meshes' content: name the bind mesh (and poses).
+      const std::string meshes = o.meshes.front().string() +
+                                 (o.meshes.size() > 1 ? " and " + std::to_string(o.meshes.size() - 1) + " poses" : "");
+      return reportFailure(console, Status(rig.status().code(), "rig: " + meshes + ": " + rig.status().message()));
+    }
     topology_s.push_back(rig->seconds_topology);
     curves_s.push_back(rig->seconds_curves);
     skeleton_s.push_back(rig->seconds_skeleton);
     weights_s.push_back(rig->seconds_weights);
+    edge_distance_s.push_back(rig->curve_skeleton.seconds_edge_distance);
+    coarse_s.push_back(rig->curve_skeleton.seconds_coarse_levels);
+    marching_s.push_back(rig->curve_skeleton.seconds_marching);
+    fine_s.push_back(rig->curve_skeleton.seconds_fine_levels);
+    loops_s.push_back(rig->curve_skeleton.seconds_edge_loops);
   }
   const CurveRig& r = *rig;
 
@@ -138,9 +171,15 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
                 poses.size(), poses.size() == 1 ? "" : "s");
   out << line;
   std::snprintf(line, sizeof line, "curves: %zu (%s), %zu body parts, %zu bumps pruned; curve skeleton: %zu nodes\n",
-                cs.curves.size(), cs.source == CurveSource::kLevels ? "geodesic rings" : "plane cuts", cs.part_count,
+                cs.curves.size(), curveSourceName(cs.source), cs.part_count,
                 cs.pruned_branches, cs.skeleton.nodeCount());
   out << line;
+  if (cs.source == CurveSource::kEdgeLoops) {
+    std::snprintf(line, sizeof line,
+                  "ray-and-fan: %zu circumferential, %zu axial, %zu undecided edges; %zu rings, %zu lines along the limbs\n",
+                  cs.circumferential_edges, cs.axial_edges, cs.unknown_edges, cs.edge_loop_rings, cs.axial_lines);
+    out << line;
+  }
   if (!cs.note.empty()) out << "note: " << cs.note << "\n";
   if (cs.unreached_vertices > 0) {
     out << "note: " << cs.unreached_vertices << " vertices lie in other connected components than the largest; "
@@ -160,6 +199,19 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
                   o.repeat, 1e3 * median(topology_s), 1e3 * fastest(topology_s), 1e3 * median(curves_s),
                   1e3 * fastest(curves_s), 1e3 * median(skeleton_s), 1e3 * fastest(skeleton_s), 1e3 * median(weights_s),
                   1e3 * fastest(weights_s));
+    out << line;
+    std::snprintf(line, sizeof line,
+                  "identification stages (median / fastest): edge distances %.3f / %.3f ms, coarse levels %.3f / %.3f ms, "
+                  "fast marching %.3f / %.3f ms, fine levels %.3f / %.3f ms\n",
+                  1e3 * median(edge_distance_s), 1e3 * fastest(edge_distance_s), 1e3 * median(coarse_s), 1e3 * fastest(coarse_s),
+                  1e3 * median(marching_s), 1e3 * fastest(marching_s), 1e3 * median(fine_s), 1e3 * fastest(fine_s));
+    out << line;
+    if (r.curve_skeleton.source == CurveSource::kEdgeLoops) {
+      std::snprintf(line, sizeof line, "edge loops (half-edge mesh, ray-and-fan test, loop walk): %.3f / %.3f ms\n",
+                    1e3 * median(loops_s), 1e3 * fastest(loops_s));
+    } else {
+      line[0] = '\0';
+    }
   } else {
     std::snprintf(line, sizeof line,
                   "time: mesh edges %.3f ms, curve (vertex) identification %.3f ms, skeleton creation %.3f ms, weights "

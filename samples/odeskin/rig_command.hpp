@@ -21,7 +21,8 @@ struct RigCommandOptions {
   std::filesystem::path gltf;                 // .glb, optional: mesh, skin and joints at the bind pose
   std::filesystem::path png;                  // .png, optional: curves and skeleton over the mesh (Vulkan)
   std::string template_kind = "auto";         // auto | humanoid | quadruped | none
-  std::string curves = "levels";              // levels (geodesic rings) | cuts (plane cuts of the parts)
+  std::string curves = "auto";                // auto (loops on quad meshes, else levels) | levels (geodesic rings) |
+                                              // cuts (plane cuts of the parts) | loops (quad edge loops, ray-and-fan)
   double angle_deg = 20.0;                    // the turn that makes a joint
   std::string up = "y";                       // the mesh's up axis (templates, picture)
   std::filesystem::path compare;              // a ground-truth .tgf: print the joint errors against it

@@ -70,7 +70,9 @@ std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution&
   if (!parseResolution(o.resolution, r)) {
     return "surface: --res '" + o.resolution + "': expected U,V samples per patch, integers in [2, 100000]";
   }
-  if (o.backend != "cpu" && o.backend != "vulkan") return "surface: --backend must be cpu or vulkan, got '" + o.backend + "'";
+  if (o.backend != "cpu" && o.backend != "vulkan" && o.backend != "auto") {
+    return "surface: --backend must be cpu, vulkan or auto, got '" + o.backend + "'";
+  }
   if (!o.shape.empty() && !parseShape(o.shape, shape)) {
     return "surface: --shape '" + o.shape + "': expected RHO,ETA,LAMBDA, three finite numbers";
   }
@@ -125,7 +127,8 @@ void printSummary(std::ostream& out, const SurfaceCommandOptions& o, const Netwo
   out << " (" << n.cardinalCount() << " set" << (n.cardinalCount() == 1 ? "" : "s") << " of cardinal functions)\n";
   char ms[32];
   std::snprintf(ms, sizeof ms, "%.3g", 1e3 * report.tessellate_seconds);
-  out << "tessellated on " << o.backend << " in " << ms << " ms" << (o.backend == "vulkan" ? " (dispatch and read back)" : "")
+  out << "tessellated on " << report.backend << " in " << ms << " ms"
+      << (report.backend == "vulkan" ? " (dispatch and read back)" : "")
       << "\n";
 }
 
@@ -152,13 +155,24 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   report.columns = network->columns();
   report.warnings = warnings.size();
   Result<SurfaceMesh> mesh = Status(internalError("surface: no backend ran"));
-  if (o.backend == "cpu") {
+  std::string backend = o.backend;
+  if (backend != "cpu") {
+    mesh = tessellateOnGpu(o, *network, resolution, report.tessellate_seconds);
+    // --backend auto: any Vulkan failure (no device, out of memory, device lost) means the CPU.
+    const StatusCode code = mesh.ok() ? StatusCode::kOk : mesh.status().code();
+    if (backend == "auto" && (code == StatusCode::kUnavailable || code == StatusCode::kDeviceError)) {
+      if (!console.quiet) console.err << "note: Vulkan failed (" << mesh.status().message() << "); tessellating on the CPU\n";
+      backend = "cpu";
+    } else if (backend == "auto") {
+      backend = "vulkan";
+    }
+  }
+  if (backend == "cpu") {
     const auto start = std::chrono::steady_clock::now();
     mesh = tessellateNetwork(*network, resolution);
     report.tessellate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  } else {
-    mesh = tessellateOnGpu(o, *network, resolution, report.tessellate_seconds);
   }
+  report.backend = backend;
   if (!mesh.ok()) {
     const Status& s = mesh.status();
     // Grid-size errors concern this network at this --res; device errors speak for themselves.

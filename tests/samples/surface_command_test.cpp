@@ -215,7 +215,7 @@ TEST(SurfaceCommand, BadOptionsAreUsageErrors) {
       {options("x.glb", "9"), "--res '9'"},
       {options("x.glb", "9,x"), "--res '9,x'"},
       {options("x.glb", "-3,9"), "--res '-3,9'"},
-      {backend, "--backend must be cpu or vulkan"},
+      {backend, "--backend must be cpu, vulkan or auto"},
       {shaped("1,3"), "--shape '1,3': expected RHO,ETA,LAMBDA"},
       {shaped("1,3,x"), "--shape '1,3,x'"},
       {shaped("1,3,1,2"), "--shape '1,3,1,2'"},

@@ -1,0 +1,696 @@
+// SPDX-License-Identifier: MIT
+// The built `odeskin` program run on a table of bad inputs, made in a scratch folder by the test:
+// every case must end with its exit status (1 bad input or runtime failure, 2 usage), never a
+// signal, with stderr exactly one line "odeskin: error: ..." that names the offending file or
+// option, and leave the output exactly as it was (a file already there untouched, no new file, no
+// temporary). Also: a write that fails part way (the file size limit standing in for a full disk),
+// usage errors, and the Vulkan fault hook (ODESKIN_VK_FAULT) on play, surface, demo and render
+// with --backend auto (falls back to the CPU, one note) and --backend vulkan (exit 1, one line).
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <csignal>
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/io/asset_file.hpp"
+#include "host/gpu_test_support.hpp"
+#include "samples/command_test_support.hpp"
+
+namespace odeskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- running the program -------------------------------------------------------------------------
+
+struct Outcome {
+  bool exited = false;  // false: ended by a signal (a crash or an abort)
+  int status = -1;      // exit status when exited, else the signal number
+  std::string out;
+  std::string err;
+};
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+struct RunOptions {
+  std::map<std::string, std::string> env;  // set in the child only
+  long file_size_limit = -1;               // RLIMIT_FSIZE bytes; SIGXFSZ ignored so writes fail instead
+  long address_space_limit = -1;           // RLIMIT_AS bytes: allocations beyond it fail (std::bad_alloc)
+};
+
+// Runs the program with `args` (stdout and stderr captured through files in `io_dir`).
+Outcome runOdeskin(const std::vector<std::string>& args, const fs::path& io_dir, const RunOptions& options = {}) {
+  fs::create_directories(io_dir);
+  const fs::path out_file = io_dir / "stdout.txt";
+  const fs::path err_file = io_dir / "stderr.txt";
+  std::vector<std::string> argv_text{ODESKIN_PROGRAM};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    for (const auto& [name, value] : options.env) ::setenv(name.c_str(), value.c_str(), 1);
+    const int out_fd = ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err_fd = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (out_fd < 0 || err_fd < 0) ::_exit(126);
+    ::dup2(out_fd, STDOUT_FILENO);
+    ::dup2(err_fd, STDERR_FILENO);
+    if (options.file_size_limit >= 0) {
+      std::signal(SIGXFSZ, SIG_IGN);  // inherited through exec: write() fails with EFBIG instead
+      const rlimit limit{static_cast<rlim_t>(options.file_size_limit), static_cast<rlim_t>(options.file_size_limit)};
+      ::setrlimit(RLIMIT_FSIZE, &limit);
+    }
+    if (options.address_space_limit >= 0) {
+      const rlimit limit{static_cast<rlim_t>(options.address_space_limit),
+                         static_cast<rlim_t>(options.address_space_limit)};
+      ::setrlimit(RLIMIT_AS, &limit);
+    }
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  Outcome outcome;
+  int wstatus = 0;
+  if (pid < 0 || ::waitpid(pid, &wstatus, 0) != pid) {
+    ADD_FAILURE() << "cannot run " << ODESKIN_PROGRAM;
+    return outcome;
+  }
+  outcome.exited = WIFEXITED(wstatus);
+  outcome.status = outcome.exited ? WEXITSTATUS(wstatus) : WTERMSIG(wstatus);
+  outcome.out = readText(out_file);
+  outcome.err = readText(err_file);
+  return outcome;
+}
+
+std::string commandLine(const std::vector<std::string>& args) {
+  std::string line = "odeskin";
+  for (const std::string& a : args) line += " " + a;
+  return line;
+}
+
+// Exit `status`, stderr one line "odeskin: error: ..." containing every part of `parts`.
+void expectOneErrorLine(const Outcome& r, int status, const std::vector<std::string>& parts, const std::string& what) {
+  ASSERT_TRUE(r.exited) << what << ": ended by signal " << r.status << "\nstderr: " << r.err;
+  EXPECT_EQ(r.status, status) << what << "\nstderr: " << r.err;
+  EXPECT_EQ(r.err.rfind("odeskin: error: ", 0), 0u) << what << "\nstderr: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << "\nstderr: " << r.err;
+  EXPECT_EQ(r.err.back(), '\n') << what;
+  for (const std::string& part : parts) EXPECT_NE(r.err.find(part), std::string::npos) << what << "\nstderr: " << r.err;
+}
+
+// Every file under `dir`, relative, with its content.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  if (!fs::exists(dir)) return files;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir)) {
+    files[fs::relative(e.path(), dir).string()] = e.is_regular_file() ? readText(e.path()) : "<dir>";
+  }
+  return files;
+}
+
+// ---- the inputs ------------------------------------------------------------------------------------
+
+const fs::path kCylinder = fs::path(ODESKIN_DATA_DIR) / "cylinder";
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& ls) {
+  std::string text;
+  for (const std::string& l : ls) text += l + "\n";
+  return text;
+}
+
+// `obj` with its first line starting with `prefix` replaced by `line` (or `line` appended).
+std::string replaceFirst(const std::string& obj, const std::string& prefix, const std::string& line) {
+  std::vector<std::string> ls = lines(obj);
+  for (std::string& l : ls) {
+    if (l.rfind(prefix, 0) == 0) {
+      l = line;
+      return joined(ls);
+    }
+  }
+  ls.push_back(line);
+  return joined(ls);
+}
+
+std::uint64_t readU64(const std::string& bytes, std::size_t at) {
+  std::uint64_t x = 0;
+  for (int i = 7; i >= 0; --i) x = (x << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(i)]);
+  return x;
+}
+
+void writeU64(std::string& bytes, std::size_t at, std::uint64_t x) {
+  for (int i = 0; i < 8; ++i) bytes[at + static_cast<std::size_t>(i)] = static_cast<char>((x >> (8 * i)) & 0xFFu);
+}
+
+// A consistent .odsk (checksum recomputed) whose REST section claims 2^60 positions: the reader
+// must refuse it before allocating.
+std::string hugeRestCount(std::string bytes) {
+  constexpr std::size_t kHeader = 32;
+  std::size_t pos = kHeader;
+  while (pos + 12 <= bytes.size()) {
+    const std::string tag = bytes.substr(pos, 4);
+    const std::uint64_t size = readU64(bytes, pos + 4);
+    if (tag == "REST") writeU64(bytes, pos + 12, std::uint64_t{1} << 60);
+    pos += 12 + static_cast<std::size_t>(size);
+  }
+  writeU64(bytes, 24, assetChecksum(std::string_view(bytes).substr(kHeader)));
+  return bytes;
+}
+
+// A four-vertex glTF (a tetrahedron) with its buffer beside it; `edit` changes the JSON.
+void writeGltf(const fs::path& path, const std::function<void(nlohmann::json&)>& edit) {
+  std::string bin;
+  const float positions[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const std::uint16_t indices[12] = {0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2};
+  bin.append(reinterpret_cast<const char*>(positions), sizeof positions);
+  bin.append(reinterpret_cast<const char*>(indices), sizeof indices);
+  writeText(path.parent_path() / (path.stem().string() + ".bin"), bin);
+  nlohmann::json doc = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"uri", path.stem().string() + ".bin"}, {"byteLength", bin.size()}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}}, {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 24}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {1, 1, 1}}},
+        {{"bufferView", 1}, {"componentType", 5123}, {"count", 12}, {"type", "SCALAR"}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0}};
+  edit(doc);
+  writeText(path, doc.dump());
+}
+
+// The scratch folder with every input, and a cylinder asset fitted by the program itself.
+class BadInputCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(testing::scratchDir("odeskin_bad_input_cli_", "inputs"));
+    const fs::path& d = *dir_;
+    const std::string pose1 = readText(kCylinder / "poses-1" / "cylinder-1.obj");
+    const std::string pose2 = readText(kCylinder / "poses-1" / "cylinder-2.obj");
+    writeText(d / "good1.obj", pose1);
+    writeText(d / "good2.obj", pose2);
+    writeText(d / "good3.obj", readText(kCylinder / "poses-1" / "cylinder-3.obj"));
+    writeText(d / "empty.obj", "");
+    writeText(d / "nan.obj", replaceFirst(pose2, "v ", "v nan 0 0"));
+    writeText(d / "inf.obj", replaceFirst(pose2, "v ", "v 0 inf 0"));
+    writeText(d / "tet.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n");
+    // Same vertices, the first face's corners rotated: the face lists differ.
+    {
+      std::vector<std::string> ls = lines(pose2);
+      for (std::string& l : ls) {
+        if (l.rfind("f ", 0) != 0) continue;
+        std::istringstream in(l.substr(2));
+        std::string a, b, c;
+        in >> a >> b >> c;
+        l = "f " + b + " " + c + " " + a;
+        break;
+      }
+      writeText(d / "faces_rotated.obj", joined(ls));
+    }
+    writeText(d / "degenerate1.obj", replaceFirst(pose1, "f ", "f 1 1 2"));
+    writeText(d / "degenerate2.obj", replaceFirst(pose2, "f ", "f 1 1 2"));
+    writeText(d / "bad_index.obj", replaceFirst(pose2, "f ", "f 1 2 99999"));
+    writeText(d / "unbound.obj", pose2 + "v 5 5 5\n");
+    writeText(d / "unbound1.obj", pose1 + "v 5 5 5\n");
+    // A third face on the edge 1-2 of the first face: non-manifold in every pose.
+    writeText(d / "nonmanifold1.obj", pose1 + "v 9 9 9\nf 1 2 421\n");
+    writeText(d / "nonmanifold2.obj", pose2 + "v 9 9 9\nf 1 2 421\n");
+    {
+      std::vector<std::string> ls = lines(pose2);
+      for (std::string& l : ls) {
+        if (l.rfind("v ", 0) == 0) l = "v 0 0 0";
+      }
+      writeText(d / "collapsed.obj", joined(ls));
+    }
+
+    // Weights (libigl .dmat: "cols rows", then column-major values) from the cylinder's.
+    const std::vector<std::string> dmat = lines(readText(kCylinder / "cylinder.DMAT"));
+    std::vector<std::string> doubled{dmat[0]};
+    for (std::size_t i = 1; i < dmat.size(); ++i) doubled.push_back(std::to_string(2.0 * std::stod(dmat[i])));
+    writeText(d / "sum_two.dmat", joined(doubled));
+    std::vector<std::string> extra = dmat;
+    extra[0] = "5 420";
+    for (int i = 0; i < 420; ++i) extra.push_back("0");
+    writeText(d / "extra_bone.dmat", joined(extra));
+    writeText(d / "huge.dmat", "4 99999999999\n1\n2\n3\n");
+    std::vector<std::string> nan_weight = dmat;
+    nan_weight[3] = "nan";
+    writeText(d / "nan_weight.dmat", joined(nan_weight));
+    std::vector<std::string> negative = dmat;
+    negative[3] = "-0.5";
+    writeText(d / "negative.dmat", joined(negative));
+
+    // glTF: good, and with a missing / mistyped / oversized accessor.
+    writeGltf(d / "tet.gltf", [](nlohmann::json&) {});
+    writeGltf(d / "missing_accessor.gltf", [](nlohmann::json& j) {
+      j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 7;
+    });
+    writeGltf(d / "no_position.gltf",
+              [](nlohmann::json& j) { j["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); });
+    writeGltf(d / "mistyped.gltf", [](nlohmann::json& j) { j["accessors"][0]["type"] = "VEC2"; });
+    writeGltf(d / "mistyped_component.gltf", [](nlohmann::json& j) { j["accessors"][0]["componentType"] = 5123; });
+    writeGltf(d / "huge_count.gltf", [](nlohmann::json& j) { j["accessors"][0]["count"] = 4000000000u; });
+    writeGltf(d / "huge_buffer.gltf", [](nlohmann::json& j) { j["buffers"][0]["byteLength"] = 1000000000000000ull; });
+    writeGltf(d / "cut.gltf", [](nlohmann::json&) {});
+    writeText(d / "cut.gltf", readText(d / "cut.gltf").substr(0, 200));
+
+    // Surface networks.
+    const fs::path networks = fs::path(ODESKIN_SOURCE_DIR) / "samples" / "surfaces" / "networks";
+    const std::string patch = readText(networks / "patch.json");
+    writeText(d / "patch.json", patch);
+    std::string columns = patch;
+    columns.replace(columns.find("\"columns\": 1,"), 13, "\"columns\": 1000000000,");
+    writeText(d / "huge_columns.json", columns);
+    writeText(d / "cut.json", patch.substr(0, patch.size() / 2));
+
+    // The asset, fitted by the program (a success case in its own right).
+    const Outcome fit = runOdeskin({"fit", (d / "good1.obj").string(), (d / "good2.obj").string(), "--bind",
+                                    (kCylinder / "cylinder.obj").string(), "--rig", (kCylinder / "cylinder.tgf").string(),
+                                    "--weights", (kCylinder / "cylinder.DMAT").string(), "-q", "-o",
+                                    (d / "cyl.odsk").string()},
+                                   d / "io" / "setup");
+    ASSERT_TRUE(fit.exited && fit.status == 0) << fit.err;
+    const std::string asset = readText(d / "cyl.odsk");
+    writeText(d / "truncated.odsk", asset.substr(0, asset.size() / 2));
+    std::string flipped = asset;
+    flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x10);
+    writeText(d / "flipped.odsk", flipped);
+    writeText(d / "huge_rest.odsk", hugeRestCount(asset));
+    writeText(d / "not_an_asset.odsk", pose1);
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static std::string in(const std::string& name) { return (*dir_ / name).string(); }
+  static fs::path dir() { return *dir_; }
+
+  static fs::path* dir_;
+};
+fs::path* BadInputCli::dir_ = nullptr;
+
+// One row: the arguments ("{out}" becomes the case's output path, which holds a file already),
+// the exit status, and the parts the error line must contain (the file first).
+struct BadCase {
+  std::string name;
+  std::vector<std::string> args;
+  std::string output;  // file name of the output, created beforehand with known content
+  int status;
+  std::vector<std::string> parts;
+};
+
+void runTable(const std::vector<BadCase>& cases, const fs::path& root) {
+  for (const BadCase& c : cases) {
+    const fs::path out_dir = root / c.name;
+    const fs::path output = out_dir / c.output;
+    writeText(output, "precious: written before the command ran\n");
+    const std::map<std::string, std::string> before = snapshot(out_dir);
+    std::vector<std::string> args = c.args;
+    for (std::string& a : args) {
+      if (const std::size_t at = a.find("{out}"); at != std::string::npos) a.replace(at, 5, output.string());
+    }
+    const Outcome r = runOdeskin(args, root / "io" / c.name);
+    expectOneErrorLine(r, c.status, c.parts, c.name + ": " + commandLine(args));
+    EXPECT_EQ(snapshot(out_dir), before) << c.name << ": the output folder changed";
+  }
+}
+
+TEST_F(BadInputCli, BadMeshesPosesAndWeightsFailNamingTheFile) {
+  const std::string w = "--weights", rig = (kCylinder / "cylinder.tgf").string(), bind = (kCylinder / "cylinder.obj").string();
+  auto fitWeights = [&](const std::string& weights) {
+    return std::vector<std::string>{"fit", in("good1.obj"), in("good2.obj"), "--bind", bind, "--rig", rig, w, in(weights),
+                                    "-o", "{out}"};
+  };
+  const std::vector<BadCase> cases{
+      {"fit_vertex_count", {"fit", in("good1.obj"), in("tet.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"tet.obj: 4 vertices but ", "good1.obj has 420"}},
+      {"fit_face_list", {"fit", in("good1.obj"), in("faces_rotated.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"faces_rotated.obj: face 1 is "}},
+      {"fit_empty", {"fit", in("good1.obj"), in("empty.obj"), "-o", "{out}"}, "x.odsk", 1, {"empty.obj: no vertices"}},
+      {"fit_nan", {"fit", in("good1.obj"), in("nan.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"nan.obj:", "vertex needs 3 finite coordinates"}},
+      {"fit_inf", {"fit", in("good1.obj"), in("inf.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"inf.obj:", "vertex needs 3 finite coordinates"}},
+      {"fit_degenerate_face", {"fit", in("degenerate1.obj"), in("degenerate2.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"degenerate1.obj: face 1 repeats a vertex"}},
+      {"fit_nonmanifold", {"fit", in("nonmanifold1.obj"), in("nonmanifold2.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"nonmanifold1.obj: face 801 makes the mesh non-manifold"}},
+      {"fit_face_index", {"fit", in("good1.obj"), in("bad_index.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"bad_index.obj:", "face index 99999"}},
+      {"fit_unbound_vertex", {"fit", in("good1.obj"), in("unbound.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"unbound.obj: 421 vertices but "}},
+      {"fit_collapsed", {"fit", in("good1.obj"), in("collapsed.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"fit: ", "good1.obj, ", "collapsed.obj: automatic rig: ", "collinear"}},
+      {"fit_weights_sum", fitWeights("sum_two.dmat"), "x.odsk", 1, {"sum_two.dmat: weights of vertex 0 sum to 2"}},
+      {"fit_weights_bone_out_of_range", fitWeights("extra_bone.dmat"), "x.odsk", 1,
+       {"extra_bone.dmat: weights are 420 x 5, expected 420 vertices x 4 bones"}},
+      {"fit_weights_huge", fitWeights("huge.dmat"), "x.odsk", 1, {"huge.dmat: header says 4 columns x 99999999999 rows"}},
+      {"fit_weights_nan", fitWeights("nan_weight.dmat"), "x.odsk", 1, {"nan_weight.dmat:", "not a finite number"}},
+      {"fit_weights_negative", fitWeights("negative.dmat"), "x.odsk", 1, {"negative.dmat: vertex", "< 0"}},
+      {"fit_resonant_material",
+       {"fit", in("good1.obj"), in("good2.obj"), "--material", "1,-10,46.957190843732,0", "-o", "{out}"}, "x.odsk", 1,
+       {"fit: --material '1,-10,46.957190843732,0': mode 0", "resonant"}},
+      {"fit_degenerate_material", {"fit", in("good1.obj"), in("good2.obj"), "--material", "0,0,0,0", "-o", "{out}"},
+       "x.odsk", 1, {"fit: --material '0,0,0,0': mode 0", "rho = eta = h = 0"}},
+      {"fit_missing_pose", {"fit", in("good1.obj"), in("absent.obj"), "-o", "{out}"}, "x.odsk", 1, {"absent.obj"}},
+      {"evaluate_vertex_count", {"evaluate", in("good1.obj"), in("tet.obj"), in("good2.obj"), "--keys", "0,2", "--json", "{out}"},
+       "x.json", 1, {"tet.obj: 4 vertices but "}},
+      {"evaluate_nan", {"evaluate", in("good1.obj"), in("nan.obj"), in("good2.obj"), "--keys", "0,2", "--json", "{out}"},
+       "x.json", 1, {"nan.obj:", "finite"}},
+      {"rig_empty", {"rig", in("empty.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "empty.obj: no vertices"}},
+      {"rig_nan", {"rig", in("nan.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "nan.obj:", "finite"}},
+      {"rig_collapsed", {"rig", in("collapsed.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "collapsed.obj: curve skeleton: ", "length 0"}},
+      {"reconstruct_empty", {"reconstruct", in("empty.obj"), "-o", "{out}"}, "x.obj", 1, {"empty.obj: no vertices"}},
+      {"reconstruct_nonmanifold", {"reconstruct", in("nonmanifold2.obj"), "-o", "{out}"}, "x.obj", 1,
+       {"nonmanifold2.obj: edge", "not manifold"}},
+      {"reconstruct_unbound", {"reconstruct", in("unbound1.obj"), "-o", "{out}"}, "x.obj", 1,
+       {"unbound1.obj: vertex 421 is in no face"}},
+      {"render_empty", {"render", in("empty.obj"), "-o", "{out}"}, "x.png", 1, {"empty.obj: no vertices"}},
+      {"render_nan", {"render", in("nan.obj"), "-o", "{out}"}, "x.png", 1, {"nan.obj:", "finite"}},
+  };
+  runTable(cases, dir() / "meshes");
+}
+
+TEST_F(BadInputCli, DamagedAssetsFailOnEveryVerbThatReadsThem) {
+  std::vector<BadCase> cases;
+  const std::vector<std::pair<std::string, std::string>> assets{
+      {"truncated.odsk", "truncated or padded"},
+      {"flipped.odsk", "checksum mismatch"},
+      {"huge_rest.odsk", "'REST'"},
+      {"not_an_asset.odsk", "not an odeskin asset"}};
+  for (const auto& [file, problem] : assets) {
+    const std::string stem = fs::path(file).stem().string();
+    cases.push_back({"play_" + stem, {"play", in(file), "--t", "0.5", "-o", "{out}"}, "x.obj", 1, {file + ": ", problem}});
+    cases.push_back({"export_" + stem, {"export", in(file), "-o", "{out}"}, "x.glb", 1, {file + ": ", problem}});
+    cases.push_back({"info_" + stem, {"info", in(file)}, "untouched.txt", 1, {file + ": ", problem}});
+    cases.push_back({"render_" + stem, {"render", in(file), "-o", "{out}"}, "x.png", 1, {file + ": ", problem}});
+  }
+  runTable(cases, dir() / "assets");
+}
+
+TEST_F(BadInputCli, MalformedGltfAndNetworksAreRefusedBeforeAllocating) {
+  const std::vector<BadCase> cases{
+      {"gltf_missing_accessor", {"render", in("missing_accessor.gltf"), "-o", "{out}"}, "x.png", 1,
+       {"missing_accessor.gltf: accessor 7", "does not exist"}},
+      {"gltf_no_position", {"render", in("no_position.gltf"), "-o", "{out}"}, "x.png", 1,
+       {"no_position.gltf: mesh 0 primitive 0 has no POSITION"}},
+      {"gltf_mistyped", {"render", in("mistyped.gltf"), "-o", "{out}"}, "x.png", 1,
+       {"mistyped.gltf: accessor 0", "type VEC2, expected VEC3"}},
+      {"gltf_mistyped_component", {"render", in("mistyped_component.gltf"), "-o", "{out}"}, "x.png", 1,
+       {"mistyped_component.gltf: accessor 0", "component type"}},
+      {"gltf_huge_count", {"render", in("huge_count.gltf"), "-o", "{out}"}, "x.png", 1,
+       {"huge_count.gltf: accessor 0", "run past the end of bufferView 0"}},
+      {"gltf_huge_buffer", {"fit", in("huge_buffer.gltf"), "--times", "0,1", "-o", "{out}"}, "x.odsk", 1,
+       {"huge_buffer.gltf: "}},
+      {"gltf_cut", {"fit", in("cut.gltf"), "--times", "0,1", "-o", "{out}"}, "x.odsk", 1, {"cut.gltf: ", "parse error"}},
+      {"gltf_unskinned_times", {"fit", in("tet.gltf"), "--times", "0,1", "-o", "{out}"}, "x.odsk", 1,
+       {"tet.gltf: node 0 has no skin"}},
+      {"surface_huge_columns", {"surface", in("huge_columns.json"), "-o", "{out}"}, "x.glb", 1,
+       {"huge_columns.json: columns: expected an integer in [1, 16777216]"}},
+      {"surface_huge_grid", {"surface", in("patch.json"), "--res", "100000,100000", "-o", "{out}"}, "x.glb", 1,
+       {"patch.json: tessellation: 100000 x 100000 vertices exceed the limit"}},
+      {"surface_cut_json", {"surface", in("cut.json"), "-o", "{out}"}, "x.glb", 1, {"cut.json"}},
+      {"blend_resonant",
+       {"blend", "--example", "3.16", "--beta", "39.47841760435743", "--gamma", "0", "-o", "{out}"}, "x.obj", 1,
+       {"blend: ", "resonant"}},
+      {"blend_alpha_zero", {"blend", "--example", "3.16", "--alpha", "0", "-o", "{out}"}, "x.obj", 1,
+       {"blend: ", "alpha = 0"}},
+  };
+  runTable(cases, dir() / "formats");
+}
+
+TEST_F(BadInputCli, UsageErrorsExitTwoWithOneLine) {
+  const std::vector<BadCase> cases{
+      {"terms_zero", {"fit", in("good1.obj"), in("good2.obj"), "--terms", "0", "-o", "{out}"}, "x.odsk", 2,
+       {"--terms", "(see odeskin fit --help)"}},
+      {"terms_huge", {"fit", in("good1.obj"), in("good2.obj"), "--terms", "1000", "-o", "{out}"}, "x.odsk", 2,
+       {"--terms", "1000"}},
+      {"material_nan", {"fit", in("good1.obj"), in("good2.obj"), "--material", "nan,1,1,1", "-o", "{out}"}, "x.odsk", 2,
+       {"--material", "'nan' is not a finite number"}},
+      {"play_time_outside", {"play", in("cyl.odsk"), "--t", "7", "-o", "{out}"}, "x.obj", 2,
+       {"--t 7 is outside [0, 1]", "cyl.odsk"}},
+      {"play_too_many_frames", {"play", in("cyl.odsk"), "--fps", "1000", "--seconds", "100000", "-o", "{out}_%04d.obj"},
+       "x.obj", 2, {"frames"}},
+      {"missing_option", {"fit", in("good1.obj"), in("good2.obj")}, "x.odsk", 2, {"--output is required"}},
+      {"unknown_option", {"play", in("cyl.odsk"), "--bogus"}, "x.obj", 2, {"--bogus", "(see odeskin play --help)"}},
+      {"unknown_verb", {"nosuchverb", in("cyl.odsk")}, "x.obj", 2, {"unknown command 'nosuchverb'"}},
+      {"no_verb", {}, "x.obj", 2, {"(see odeskin --help)"}},
+      {"render_size", {"render", in("good1.obj"), "--size", "100000x100000", "-o", "{out}"}, "x.png", 2,
+       {"--size '100000x100000'"}},
+      {"blend_grid", {"blend", "--example", "3.17", "--res", "100000,100000", "-o", "{out}"}, "x.obj", 2,
+       {"--res 100000,100000"}},
+      {"reconstruct_samples", {"reconstruct", in("good1.obj"), "--rows", "1000", "--cols", "1000", "--points", "1000",
+                               "-o", "{out}"}, "x.obj", 2, {"--rows 1000 --cols 1000 --points 1000"}},
+  };
+  runTable(cases, dir() / "usage");
+}
+
+TEST_F(BadInputCli, UnwritableOutputsFailWithoutPartialFiles) {
+  // A regular file where a folder should be: even root cannot create under it.
+  const fs::path blocker = dir() / "unwritable" / "blocker";
+  writeText(blocker, "a file, not a folder\n");
+  const std::string under = (blocker / "sub" / "x").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"fit", in("good1.obj"), in("good2.obj"), "-o", under + ".odsk"}, "blocker"},
+      {{"play", in("cyl.odsk"), "--t", "0.5", "-o", under + ".obj"}, "blocker"},
+      {{"export", in("cyl.odsk"), "-o", under + ".glb"}, "blocker"},
+      {{"surface", in("patch.json"), "-o", under + ".glb"}, "blocker"},
+      {{"blend", "--example", "3.17", "-o", under + ".obj"}, "blocker"},
+      {{"rig", in("good1.obj"), "-o", under + ".tgf"}, "blocker"},
+      {{"reconstruct", in("good1.obj"), "-o", under + ".obj"}, "blocker"},
+      {{"evaluate", in("good1.obj"), in("good2.obj"), in("good3.obj"), "--keys", "0,2", "--json", under + ".json"},
+       "blocker"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Outcome r = runOdeskin(cases[i].first, dir() / "io" / ("unwritable" + std::to_string(i)));
+    expectOneErrorLine(r, 1, {cases[i].second}, commandLine(cases[i].first));
+  }
+  EXPECT_EQ(snapshot(dir() / "unwritable").size(), 1u) << "only the blocker file may be there";
+  EXPECT_EQ(readText(blocker), "a file, not a folder\n");
+}
+
+// The file size limit makes the output's write fail part way, as a full disk would: the command
+// says so and neither a partial output nor its temporary file is left, and the old file survives.
+TEST_F(BadInputCli, AWriteThatFailsPartWayLeavesTheOldFile) {
+  const fs::path out_dir = dir() / "full_disk";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases{
+      {"x.odsk", {"fit", in("good1.obj"), in("good2.obj"), "-q", "-o", (out_dir / "x.odsk").string()}},
+      {"x.glb", {"export", in("cyl.odsk"), "-q", "-o", (out_dir / "x.glb").string()}},
+      {"x.obj", {"play", in("cyl.odsk"), "--t", "0.5", "-q", "-o", (out_dir / "x.obj").string()}},
+      {"s.glb", {"surface", in("patch.json"), "-q", "-o", (out_dir / "s.glb").string()}},
+  };
+  for (const auto& [name, args] : cases) {
+    writeText(out_dir / name, "precious\n");
+    const std::map<std::string, std::string> before = snapshot(out_dir);
+    RunOptions limited;
+    limited.file_size_limit = 4096;  // every output here is larger; stderr's one line is not
+    const Outcome r = runOdeskin(args, dir() / "io" / ("full_" + name), limited);
+    expectOneErrorLine(r, 1, {(out_dir / name).string(), "write failed"}, commandLine(args));
+    EXPECT_EQ(snapshot(out_dir), before) << name;
+  }
+}
+
+// Sanitizer runtimes reserve terabytes of address space up front, so RLIMIT_AS cannot be used there.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+// An input the limits accept but this machine (here: 1 GiB of address space) cannot hold ends
+// with std::bad_alloc caught in main: exit 1, one line, no output; never an abort.
+TEST_F(BadInputCli, RunningOutOfMemoryIsAnErrorNotACrash) {
+  if (kSanitized) GTEST_SKIP() << "RLIMIT_AS does not work under a sanitizer";
+  const fs::path out_dir = dir() / "out_of_memory";
+  RunOptions limited;
+  limited.address_space_limit = 1L << 30;
+  const std::vector<std::vector<std::string>> cases{
+      {"blend", "--example", "3.17", "--res", "5000,9000", "-o", (out_dir / "big.obj").string()},
+      {"surface", in("patch.json"), "--res", "8000,8000", "-o", (out_dir / "big.glb").string()}};
+  for (const std::vector<std::string>& args : cases) {
+    const Outcome r = runOdeskin(args, dir() / "io" / "out_of_memory", limited);
+    expectOneErrorLine(r, 1, {args[0] + ": out of memory"}, commandLine(args));
+  }
+  EXPECT_TRUE(snapshot(out_dir).empty());
+}
+
+TEST_F(BadInputCli, GoodInputsSucceed) {
+  const fs::path out = dir() / "good";
+  const std::vector<std::pair<std::vector<std::string>, fs::path>> cases{
+      {{"fit", in("good1.obj"), in("good2.obj"), "-q", "-o", (out / "auto.odsk").string()}, out / "auto.odsk"},
+      {{"play", in("cyl.odsk"), "--t", "0.5", "-q", "-o", (out / "mid.obj").string()}, out / "mid.obj"},
+      {{"export", in("cyl.odsk"), "-q", "-o", (out / "cyl.glb").string()}, out / "cyl.glb"},
+      {{"info", in("cyl.odsk")}, {}},
+      // A vertex in no face, in every pose: skinned by the automatic rig's bones like any other.
+      {{"fit", in("unbound1.obj"), in("unbound.obj"), "-q", "-o", (out / "unbound.odsk").string()}, out / "unbound.odsk"},
+      {{"surface", in("patch.json"), "-q", "-o", (out / "patch.glb").string()}, out / "patch.glb"},
+      {{"blend", "--example", "3.17", "-q", "-o", (out / "blend.obj").string()}, out / "blend.obj"},
+      // Weights that sum to one within the reader's tolerance, and a material with negative
+      // damping: accepted; the latter with one warning (MATH.md 5.4).
+      {{"fit", in("good1.obj"), in("good2.obj"), "--material", "1,-1,3,0", "-o", (out / "neg.odsk").string()},
+       out / "neg.odsk"},
+  };
+  for (const auto& [args, file] : cases) {
+    const Outcome r = runOdeskin(args, dir() / "io" / "good");
+    ASSERT_TRUE(r.exited) << commandLine(args);
+    EXPECT_EQ(r.status, 0) << commandLine(args) << "\n" << r.err;
+    if (!file.empty()) {
+      EXPECT_TRUE(fs::is_regular_file(file)) << file;
+    }
+    if (args[0] == "fit" && args[3] == "--material") {
+      EXPECT_EQ(r.err.rfind("warning: fit: --material '1,-1,3,0': eta/rho < 0", 0), 0u) << r.err;
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    } else if (std::find(args.begin(), args.end(), "-q") != args.end()) {
+      EXPECT_EQ(r.err, "") << commandLine(args);
+    }
+  }
+  // No temporary files beside the outputs.
+  for (const fs::directory_entry& e : fs::directory_iterator(out)) {
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+  }
+}
+
+// ---- Vulkan faults -----------------------------------------------------------------------------------
+
+struct Fault {
+  std::string name;     // ODESKIN_VK_FAULT
+  std::string message;  // what the line must say
+};
+
+const std::vector<Fault> kFaults{{"no-device", "no Vulkan device"},
+                                 {"device-create", "vkCreateDevice failed: VK_ERROR_INITIALIZATION_FAILED"},
+                                 {"out-of-memory", "vkAllocateMemory failed: VK_ERROR_OUT_OF_DEVICE_MEMORY"},
+                                 {"device-lost", "vkQueueSubmit failed: VK_ERROR_DEVICE_LOST"}};
+
+class VulkanFaults : public BadInputCli {
+ protected:
+  void SetUp() override {
+    // The faults replace a working device's calls; without one every fault reads "no Vulkan device".
+    const Outcome probe = runOdeskin({"play", in("cyl.odsk"), "--t", "0.5", "--backend", "vulkan", "-q", "-o",
+                                      (dir() / "probe" / "probe.obj").string()},
+                                     dir() / "io" / "probe");
+    if (probe.exited && probe.status == 0) return;
+    if (testing::gpuRequired()) FAIL() << "ODESKIN_REQUIRE_GPU=1 but no Vulkan device: " << probe.err;
+    GTEST_SKIP() << "no Vulkan device: " << probe.err;
+  }
+
+  // Every fault with --backend auto falls back (exit 0, the output written, one note) and with
+  // --backend vulkan fails (exit 1, one error line, the old output untouched).
+  // `output` is the -o argument, `written` the (first) file it makes.
+  void expectFallbackOrFailure(const std::string& verb, const std::vector<std::string>& args, const std::string& output,
+                               const std::string& written, const std::string& note) {
+    for (const Fault& fault : kFaults) {
+      RunOptions env;
+      env.env["ODESKIN_VK_FAULT"] = fault.name;
+      const fs::path out_dir = dir() / "faults" / (verb + "_" + fault.name);
+      for (const std::string backend : {"auto", "vulkan"}) {
+        fs::remove_all(out_dir);
+        writeText(out_dir / written, "precious\n");
+        std::vector<std::string> full = args;
+        full.insert(full.end(), {"--backend", backend, "-o", (out_dir / output).string()});
+        const Outcome r = runOdeskin(full, dir() / "io" / ("fault_" + verb), env);
+        const std::string what = "ODESKIN_VK_FAULT=" + fault.name + " " + commandLine(full);
+        ASSERT_TRUE(r.exited) << what << ": signal " << r.status;
+        if (backend == std::string("auto")) {
+          EXPECT_EQ(r.status, 0) << what << "\n" << r.err;
+          EXPECT_EQ(r.err.rfind("note: Vulkan failed (", 0), 0u) << what << "\n" << r.err;
+          EXPECT_NE(r.err.find(fault.message), std::string::npos) << what << "\n" << r.err;
+          EXPECT_NE(r.err.find(note), std::string::npos) << what << "\n" << r.err;
+          EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << "\n" << r.err;
+          EXPECT_NE(readText(out_dir / written), "precious\n") << what << ": no output written";
+        } else {
+          expectOneErrorLine(r, 1, {verb + ": ", fault.message}, what);
+          EXPECT_EQ(readText(out_dir / written), "precious\n") << what;
+          EXPECT_EQ(snapshot(out_dir).size(), 1u) << what;
+        }
+      }
+    }
+  }
+};
+
+TEST_F(VulkanFaults, PlayFallsBackOrFails) {
+  expectFallbackOrFailure("play", {"play", in("cyl.odsk"), "--fps", "4"}, "cyl_%02d.obj", "cyl_00.obj",
+                          "); playing on the CPU");
+}
+
+TEST_F(VulkanFaults, SurfaceFallsBackOrFails) {
+  expectFallbackOrFailure("surface", {"surface", in("patch.json")}, "patch.glb", "patch.glb",
+                          "); tessellating on the CPU");
+}
+
+TEST_F(VulkanFaults, RenderAndDemoSayWhatFailed) {
+  for (const Fault& fault : kFaults) {
+    RunOptions env;
+    env.env["ODESKIN_VK_FAULT"] = fault.name;
+    const fs::path out_dir = dir() / "faults" / ("render_" + fault.name);
+    // render has no CPU path: exit 1 and one line.
+    const std::vector<std::string> render{"render", in("good1.obj"), "-o", (out_dir / "x.png").string()};
+    expectOneErrorLine(runOdeskin(render, dir() / "io" / "fault_render", env), 1, {"render: ", fault.message},
+                       fault.name + ": " + commandLine(render));
+    EXPECT_FALSE(fs::exists(out_dir / "x.png"));
+    // demo --backend auto (its default) finishes on the CPU; --backend vulkan fails.
+    const std::vector<std::string> demo{"demo", "--frames", "2", "-o", (out_dir / "demo").string()};
+    const Outcome fallback = runOdeskin(demo, dir() / "io" / "fault_demo", env);
+    EXPECT_TRUE(fallback.exited && fallback.status == 0) << fault.name << "\n" << fallback.err;
+    // demo's notes go to stdout with its report.
+    EXPECT_NE(fallback.out.find("note: Vulkan failed (" + fault.message), std::string::npos) << fallback.out;
+    EXPECT_NE(fallback.out.find("); using the CPU backend"), std::string::npos) << fallback.out;
+    std::vector<std::string> demo_vulkan = demo;
+    demo_vulkan.insert(demo_vulkan.end(), {"--backend", "vulkan"});
+    expectOneErrorLine(runOdeskin(demo_vulkan, dir() / "io" / "fault_demo", env), 1, {"demo: ", fault.message},
+                       fault.name + ": " + commandLine(demo_vulkan));
+  }
+}
+
+TEST_F(VulkanFaults, AnUnknownFaultIsIgnoredWithAWarning) {
+  RunOptions env;
+  env.env["ODESKIN_VK_FAULT"] = "gremlins";
+  const std::vector<std::string> args{"play", in("cyl.odsk"), "--t", "0.5", "--backend", "vulkan", "-q", "-o",
+                                      (dir() / "faults" / "unknown.obj").string()};
+  const Outcome r = runOdeskin(args, dir() / "io" / "fault_unknown", env);
+  ASSERT_TRUE(r.exited);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("odeskin: warning: ODESKIN_VK_FAULT=gremlins ignored", 0), 0u) << r.err;
+}
+
+}  // namespace
+}  // namespace odeskin
