@@ -36,8 +36,8 @@ void WorkerArena::run(std::size_t count, std::size_t grain, Chunk chunk, const v
       chunk(context, 0, count);
       return;
     }
-    parallelFor(tbb::blocked_range<std::size_t>(0, count, grain),
-                [&](const tbb::blocked_range<std::size_t>& r) { chunk(context, r.begin(), r.end()); });
+    odeskin::parallelFor(tbb::blocked_range<std::size_t>(0, count, grain),
+                         [&](const tbb::blocked_range<std::size_t>& r) { chunk(context, r.begin(), r.end()); });
   });
 }
 
