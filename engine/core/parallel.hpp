@@ -34,11 +34,46 @@
 #endif
 
 #if ODESKIN_TSAN
+#include <dlfcn.h>
+
+#include <cstdint>
+
 extern "C" {
 // From <sanitizer/tsan_interface.h>, declared here so the header needs no sanitizer include path.
 void __tsan_acquire(void* addr);  // NOLINT(bugprone-reserved-identifier)
 void __tsan_release(void* addr);  // NOLINT(bugprone-reserved-identifier)
+// TSan's dynamic annotations: the calling thread's reads / writes are not recorded or checked.
+void AnnotateIgnoreReadsBegin(const char* file, int line);
+void AnnotateIgnoreReadsEnd(const char* file, int line);
+void AnnotateIgnoreWritesBegin(const char* file, int line);
+void AnnotateIgnoreWritesEnd(const char* file, int line);
 }
+#endif
+
+#if ODESKIN_TSAN
+// TBB's own join, for TSan. Every TBB algorithm ends with the caller in libtbb's
+// r1::execute_and_wait, which returns once the root wait_context's count is 0; the workers' last
+// accesses to that context (and to the rest of the algorithm's state on the caller's stack) come
+// after their chunks' join release, in TBB's fold_tree. TSan does not see libtbb read the count, so
+// when the caller's stack is later reused, those accesses look like races with odeskin's code. This
+// definition in the program takes the place of libtbb's for the calls TBB's headers make, calls the
+// real one, and then acquires the context's own synchronisation: the workers' decrements of the
+// count are instrumented atomic read-modify-writes (release) on it, so the caller is ordered after
+// every worker's last access, as it really is. Weak, so every translation unit may carry it.
+namespace tbb::detail::r1 {
+__attribute__((weak)) void execute_and_wait(d1::task& t, d1::task_group_context& t_ctx, d1::wait_context& wait_ctx,
+                                            d1::task_group_context& w_ctx) {
+  using Real = void (*)(d1::task&, d1::task_group_context&, d1::wait_context&, d1::task_group_context&);
+  static const auto real = reinterpret_cast<Real>(
+      dlsym(RTLD_NEXT, "_ZN3tbb6detail2r116execute_and_waitERNS0_2d14taskERNS2_18task_group_contextERNS2_12wait_contextES6_"));
+  real(t, t_ctx, wait_ctx, w_ctx);
+  // The count's offset in wait_context is TBB's private matter: acquire at every word of it.
+  auto* bytes = reinterpret_cast<char*>(&wait_ctx);
+  for (std::size_t offset = 0; offset < sizeof(d1::wait_context); offset += sizeof(std::uint64_t)) {
+    __tsan_acquire(bytes + offset);
+  }
+}
+}  // namespace tbb::detail::r1
 #endif
 
 namespace odeskin {
@@ -53,18 +88,62 @@ namespace parallel_detail {
 // across different no_sanitize attributes either), so every access the user's code makes is checked.
 #define ODESKIN_TSAN_UNCHECKED __attribute__((no_sanitize("thread")))
 
-// The two tokens of one parallel call. They live on the heap so that their addresses are fresh for
+// Whether this thread's memory accesses are ignored by TSan because it is in TBB's own code: from a
+// wrapper's TBB call to the first chunk it runs itself, and on a worker between chunks. TSan reports
+// a thread that ends with ignores on, and TBB's workers end in TBB: the destructor ends them.
+struct TbbIgnore {
+  bool on = false;
+  TbbIgnore() = default;
+  TbbIgnore(const TbbIgnore&) = delete;
+  TbbIgnore& operator=(const TbbIgnore&) = delete;
+  ODESKIN_TSAN_UNCHECKED void begin() {
+    if (on) return;
+    AnnotateIgnoreReadsBegin(__FILE__, __LINE__);
+    AnnotateIgnoreWritesBegin(__FILE__, __LINE__);
+    on = true;
+  }
+  ODESKIN_TSAN_UNCHECKED void end() {
+    if (!on) return;
+    AnnotateIgnoreWritesEnd(__FILE__, __LINE__);
+    AnnotateIgnoreReadsEnd(__FILE__, __LINE__);
+    on = false;
+  }
+  ODESKIN_TSAN_UNCHECKED ~TbbIgnore() { end(); }
+};
+inline thread_local TbbIgnore tbb_ignore;
+
+ODESKIN_TSAN_UNCHECKED inline void enterTbb() { tbb_ignore.begin(); }
+ODESKIN_TSAN_UNCHECKED inline void leaveTbb() { tbb_ignore.end(); }
+
+// One parallel call. The caller releases "fork" and enters TBB (ignored); each chunk leaves TBB,
+// acquires fork, runs the user's code (checked), releases "join" and enters TBB again; the caller
+// leaves TBB and acquires join. The tokens live on the heap so that their addresses are fresh for
 // every call: TSan keys its synchronisation objects by address and drops them when the memory is
 // freed (not when a stack frame is left, where a later call's token would inherit an earlier one's).
 class ForkJoin {
  public:
-  ODESKIN_TSAN_UNCHECKED ForkJoin() : tokens_(new Tokens) { __tsan_release(&tokens_->fork); }
+  ODESKIN_TSAN_UNCHECKED ForkJoin() : tokens_(new Tokens) {
+    __tsan_release(&tokens_->fork);
+    enterTbb();
+  }
   ForkJoin(const ForkJoin&) = delete;
   ForkJoin& operator=(const ForkJoin&) = delete;
-  ~ForkJoin() { delete tokens_; }
-  ODESKIN_TSAN_UNCHECKED void enter() const { __tsan_acquire(&tokens_->fork); }
-  ODESKIN_TSAN_UNCHECKED void leave() const { __tsan_release(&tokens_->join); }
-  ODESKIN_TSAN_UNCHECKED void join() const { __tsan_acquire(&tokens_->join); }
+  ODESKIN_TSAN_UNCHECKED ~ForkJoin() {
+    leaveTbb();  // when TBB's call threw, join() did not run
+    delete tokens_;
+  }
+  ODESKIN_TSAN_UNCHECKED void enter() const {
+    leaveTbb();
+    __tsan_acquire(&tokens_->fork);
+  }
+  ODESKIN_TSAN_UNCHECKED void leave() const {
+    __tsan_release(&tokens_->join);
+    enterTbb();
+  }
+  ODESKIN_TSAN_UNCHECKED void join() const {
+    leaveTbb();
+    __tsan_acquire(&tokens_->join);
+  }
 
  private:
   struct Tokens {
