@@ -3,15 +3,19 @@
 // task_arena::execute), through wrappers that ThreadSanitizer can follow.
 //
 // Debian's libtbb is not built with -fsanitize=thread: TBB hands a task to a worker and joins it
-// through atomics and futex waits inside libtbb.so, which TSan does not see, so every write a
-// parallel body makes and the caller reads after the join looks like a race. Under TSan these
-// wrappers state the two edges TBB provides (docs/reliability/threads.md):
-//   fork: the caller releases a per-call "fork" token before the TBB call; every chunk (task)
-//         acquires it when it starts;
-//   join: every chunk releases a separate per-call "join" token when it ends; the caller acquires
-//         it after the TBB call returns.
-// The tokens differ, so no chunk synchronises with another through them: a race between two
-// chunks of one loop is still reported. Without TSan each wrapper is exactly the TBB call.
+// through atomics and futex waits inside libtbb.so, which TSan does not see, so TBB's own task
+// objects and every write a parallel body makes and the caller reads after the join look like
+// races. Under TSan these wrappers (docs/reliability/threads.md):
+//   fork: release a per-call "fork" token before the TBB call; every chunk (task) acquires it
+//         before the user's code runs;
+//   join: every chunk releases a separate per-call "join" token after the user's code; the caller
+//         acquires it after the TBB call returns;
+//   turn TSan's access checks off while a thread runs TBB's own code (from the TBB call to the
+//         chunks, and between chunks on a worker) and back on for the user's code in every chunk;
+// and execute_and_wait below orders the caller after TBB's last accesses to its stack.
+// The tokens differ, so no chunk synchronises with another through them, and the user's code is
+// always checked: a race between two chunks of one loop is still reported. Without TSan each
+// wrapper is exactly the TBB call.
 #pragma once
 
 #include <cstddef>
