@@ -8,7 +8,6 @@
 #include <optional>
 #include <string>
 
-#include <tbb/parallel_invoke.h>
 
 #include "../mesh/adjacency.hpp"
 #include "../mesh/face_fans.hpp"
@@ -19,6 +18,7 @@
 #include "part_segmentation.hpp"
 #include "plane_cuts.hpp"
 #include "vertex_binding.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -96,17 +96,17 @@ Result<CurveSet> buildIsoCurves(std::span<const Vec3> rest, const FaceList& face
   double mean_edge = 0.0;
   Segmentation seg;
   CutMesh cut_mesh;
-  tbb::parallel_invoke([&] { simple_loops = simpleManifoldBoundaryLoops(faces, rest.size()); },
-                       [&] {
-                         adjacency = vertexAdjacency(faces, rest.size());
-                         mean_edge = meanEdgeLength(rest, adjacency);
-                         // Patches smaller than two curves' worth of points cannot carry a curve of their own.
-                         seg = segmentParts(rest, adjacency, skeleton, influences, 2 * min_points,
-                                            std::max<std::size_t>(3, min_points / 2));
-                       },
-                       [&] {
-                         if (!loops) cut_mesh = buildCutMesh(faces, rest.size());
-                       });
+  parallelInvoke([&] { simple_loops = simpleManifoldBoundaryLoops(faces, rest.size()); },
+                 [&] {
+                   adjacency = vertexAdjacency(faces, rest.size());
+                   mean_edge = meanEdgeLength(rest, adjacency);
+                   // Patches smaller than two curves' worth of points cannot carry a curve of their own.
+                   seg = segmentParts(rest, adjacency, skeleton, influences, 2 * min_points,
+                                      std::max<std::size_t>(3, min_points / 2));
+                 },
+                 [&] {
+                   if (!loops) cut_mesh = buildCutMesh(faces, rest.size());
+                 });
   if (!simple_loops) ODESKIN_TRY(polyMesh());
   if (!(mean_edge > 0.0)) return degenerate("iso-curves: every edge of the mesh has length 0");
   const double spacing = options.spacing > 0.0 ? options.spacing : kDefaultSpacingEdges * mean_edge;

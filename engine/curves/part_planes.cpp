@@ -10,7 +10,8 @@
 
 #include <glm/geometric.hpp>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
+
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -344,12 +345,12 @@ CurveLayout planeCutCurves(std::span<const Vec3> rest, const CutMesh& mesh, cons
   }
   tbb::enumerable_thread_specific<PartPlanner> planners(
       [&] { return PartPlanner(rest, mesh, adjacency, seg, options, seam_cuts); });
-  tbb::parallel_for(std::size_t{0}, asked.size(), [&](std::size_t k) {
+  parallelFor(std::size_t{0}, asked.size(), [&](std::size_t k) {
     const std::uint32_t s = asked[k];
     seam_cuts[s] = planners.local().seamCut(s, static_cast<std::uint32_t>(asker[s]));
   });
   std::vector<PartPlan> plans(seg.parts.size());
-  tbb::parallel_for(std::size_t{0}, seg.parts.size(), [&](std::size_t p) {
+  parallelFor(std::size_t{0}, seg.parts.size(), [&](std::size_t p) {
     plans[p] = planners.local().plan(static_cast<std::uint32_t>(p));
   });
 

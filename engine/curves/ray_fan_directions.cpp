@@ -10,8 +10,9 @@
 #include <Eigen/Dense>
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <unsupported/Eigen/BVH>
+
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -287,7 +288,7 @@ RayFanDirections rayFanDirections(const PolyMesh& mesh, const RayFanOptions& opt
   const Tree tree(ids.begin(), ids.end(), triangles.boxes.begin(), triangles.boxes.end());
 
   std::vector<Vec3> raw(count, Vec3(0.0));
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 64), [&](const tbb::blocked_range<std::size_t>& range) {
+  parallelFor(tbb::blocked_range<std::size_t>(0, count, 64), [&](const tbb::blocked_range<std::size_t>& range) {
     std::vector<int> skip;
     std::vector<Vec3> points;
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
@@ -299,7 +300,7 @@ RayFanDirections rayFanDirections(const PolyMesh& mesh, const RayFanOptions& opt
   for (const char m : out.measured) out.measured_vertices += m ? 1 : 0;
 
   // One-ring smoothing: the principal direction of sum a a^T over the vertex and its neighbours.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256), [&](const tbb::blocked_range<std::size_t>& range) {
+  parallelFor(tbb::blocked_range<std::size_t>(0, count, 256), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
       std::size_t n = 0;

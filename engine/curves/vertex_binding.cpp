@@ -11,9 +11,9 @@
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include "median_split.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -546,7 +546,7 @@ std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexA
       ranges.emplace_back(middle, last);
     }
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, clusters.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+  parallelFor(tbb::blocked_range<std::size_t>(0, clusters.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<std::uint32_t> candidates;
     SeedCache seeds;
     for (std::size_t c = r.begin(); c < r.end(); ++c) {
@@ -589,7 +589,7 @@ std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexA
       }
     }
   });
-  tbb::parallel_for(std::size_t{0}, unconnected.size(), [&](std::size_t k) {
+  parallelFor(std::size_t{0}, unconnected.size(), [&](std::size_t k) {
     bindings[unconnected[k]] = binder.nearestCurve(rest[unconnected[k]]);
   });
   return bindings;

@@ -11,10 +11,10 @@
 #include <utility>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "simd_deform_layout.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 
@@ -319,14 +319,14 @@ void runBlocks(simd_deform::BlockRangeFn fn, const simd_deform::Frame& frame, st
     return;
   }
   auto loop = [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, kGrainBlocks),
-                      [&](const tbb::blocked_range<std::size_t>& r) { fn(frame, r.begin(), r.end()); });
+    parallelFor(tbb::blocked_range<std::size_t>(0, blocks, kGrainBlocks),
+                [&](const tbb::blocked_range<std::size_t>& r) { fn(frame, r.begin(), r.end()); });
   };
   if (threads == 0) {
     loop();
   } else {
     tbb::task_arena arena(static_cast<int>(threads));
-    arena.execute(loop);
+    arenaExecute(arena, loop);
   }
 }
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "fourier_deform_fast_job.hpp"
+#include "../core/parallel.hpp"
 
 #include <cmath>
 #include <string>
@@ -10,7 +11,6 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 namespace odeskin {
@@ -175,14 +175,14 @@ void parallelRange(std::size_t count, unsigned threads, const Body& body) {
     return;
   }
   auto loop = [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+    parallelFor(tbb::blocked_range<std::size_t>(0, count, kGrain),
+                [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
   };
   if (threads == 0) {
     loop();
   } else {
     tbb::task_arena arena(static_cast<int>(threads));
-    arena.execute(loop);
+    arenaExecute(arena, loop);
   }
 }
 

@@ -11,8 +11,6 @@
 
 #include <Eigen/SVD>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "../kernels/dual_quaternion.hpp"
 #include "../kernels/fourier_deform_job.hpp"
@@ -20,6 +18,7 @@
 #include "deform_player.hpp"
 #include "fourier_fit.hpp"
 #include "time_basis.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -75,7 +74,7 @@ Influences conditionedInfluences(const FitInput& in, const FitOptions& opt, std:
   }
   const std::size_t v_count = in.rest_positions.size();
   std::vector<char> singular(v_count, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, v_count, kVertexGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+  parallelFor(tbb::blocked_range<std::size_t>(0, v_count, kVertexGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) singular[i] = illConditioned(view, keys, i) ? 1 : 0;
   });
   Influences out;
@@ -159,8 +158,8 @@ std::vector<Vec3> keyResiduals(const FitInput& in, const FitOptions& opt, const 
   const std::vector<DualQuaternion> dual = toDualQuaternions(bones);
   const InfluencesView influences(weights);
   std::vector<Vec3> residuals(in.rest_positions.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, residuals.size(), kVertexGrain),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
+  parallelFor(tbb::blocked_range<std::size_t>(0, residuals.size(), kVertexGrain),
+              [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) {
       const SkinTransform skin = skinTransform(opt.skinning, influences, bones, dual, i);
       const Vec3 posed = in.poses[k][i] - skin.apply(in.rest_positions[i]);
@@ -244,7 +243,7 @@ Status fitSegmentCurves(const FitInput& in, const FitOptions& opt, const std::ve
   const std::size_t c_count = in.curves.size();
   std::vector<Status> failed(c_count, okStatus());
   std::vector<char> reduced_curve(c_count, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c_count, 4), [&](const tbb::blocked_range<std::size_t>& r) {
+  parallelFor(tbb::blocked_range<std::size_t>(0, c_count, 4), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<Vec3> values;
     for (std::size_t c = r.begin(); c < r.end(); ++c) {
       const IsoCurve& curve = in.curves[c];
@@ -375,7 +374,7 @@ Result<double> playKey(const DeformAsset& asset, const DeformPlayer& player, std
   }
   const InfluencesView influences(asset.influences);
   const auto modes = static_cast<std::size_t>(asset.modes);
-  return tbb::parallel_reduce(
+  return parallelReduce(
       tbb::blocked_range<std::size_t>(0, asset.vertexCount(), kVertexGrain), 0.0,
       [&](const tbb::blocked_range<std::size_t>& r, double worst) {
         std::vector<double> computed(2 * modes);
@@ -481,7 +480,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   stage = Clock::now();
 
   std::vector<std::optional<CurveFitPlan>> plans(in.curves.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.curves.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+  parallelFor(tbb::blocked_range<std::size_t>(0, in.curves.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t c = r.begin(); c < r.end(); ++c) {
       plans[c].emplace(in.curves[c].v, opt.modes, in.curves[c].closed, opt.adaptive_modes);
     }
@@ -503,7 +502,7 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
   const auto modes = static_cast<std::size_t>(opt.modes);
   // The harmonics serve the playback of the keys too, kept for it unless they take much memory.
   std::vector<double> table(v_count * 2 * modes * sizeof(double) <= kHarmonicsTableBytes ? v_count * 2 * modes : 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, v_count, kVertexGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+  parallelFor(tbb::blocked_range<std::size_t>(0, v_count, kVertexGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<double> computed(2 * modes);
     for (std::size_t i = r.begin(); i < r.end(); ++i) {
       const CurveBinding& b = in.bindings[i];

@@ -15,7 +15,6 @@
 #include <cmath>
 #include <string>
 
-#include <tbb/parallel_for.h>
 
 #include "../kernels/lbs_job.hpp"
 #include "../offline/residual_fit.hpp"
@@ -24,6 +23,7 @@
 #include "rigid_clusters.hpp"
 #include "vertex_weight_fit.hpp"
 #include "weight_rows.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -86,7 +86,7 @@ void measure(const MotionData& m, const Rig& rig, AutoRigReport& report) {
   std::vector<double> worst(poses, 0.0);
   std::vector<double> error_sum(poses, 0.0);
   std::vector<double> motion_sum(poses, 0.0);
-  tbb::parallel_for(std::size_t{0}, poses, [&](std::size_t k) {
+  parallelFor(std::size_t{0}, poses, [&](std::size_t k) {
     std::vector<BoneTransform> bones;
     for (const RigidTransform& t : rig.key_poses[k]) bones.push_back(t.matrix());
     for (std::size_t i = 0; i < m.vertexCount(); ++i) {
@@ -147,7 +147,7 @@ Result<Rig> autoRig(std::span<const Vec3> rest, const FaceList& faces, const std
     prior = std::move(fitted);
     smoothRows(prior, adjacency, kReSmoothing, 0.5);
     const BoneFitProblem problem = makeBoneFitProblem(rest, rig.influences, rig.skeleton.parents);
-    tbb::parallel_for(std::size_t{0}, poses.size(), [&](std::size_t k) {
+    parallelFor(std::size_t{0}, poses.size(), [&](std::size_t k) {
       refineBoneTransforms(problem, poses[k], transforms[k], kBoneSweeps);
     });
   }

@@ -21,11 +21,11 @@
 #include <limits>
 #include <string>
 
-#include <tbb/parallel_for.h>
 
 #include "../mesh/adjacency.hpp"
 #include "../offline/residual_fit.hpp"
 #include "weight_rows.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -89,7 +89,7 @@ Result<Influences> distanceWeights(std::span<const Vec3> rest, const FaceList& f
   const std::size_t bones = skeleton.boneCount();
 
   std::vector<WeightRow> rows(rest.size());
-  tbb::parallel_for(std::size_t{0}, rest.size(), [&](std::size_t i) {
+  parallelFor(std::size_t{0}, rest.size(), [&](std::size_t i) {
     std::vector<double> distance(bones);
     std::size_t nearest = 0;
     for (std::size_t b = 0; b < bones; ++b) {

@@ -11,9 +11,9 @@
 #include <string>
 
 #include <Eigen/Dense>
-#include <tbb/parallel_for.h>
 
 #include "bone_fit.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -120,7 +120,7 @@ Result<std::vector<std::vector<RigidTransform>>> fitTransforms(std::span<const V
   ODESKIN_TRY(checkBoneFitInputs(rest, poses, influences, skeleton));
   const BoneFitProblem problem = makeBoneFitProblem(rest, influences, skeleton.parents);
   std::vector<std::vector<RigidTransform>> out(poses.size());
-  tbb::parallel_for(std::size_t{0}, poses.size(), [&](std::size_t k) {
+  parallelFor(std::size_t{0}, poses.size(), [&](std::size_t k) {
     out[k] = initialBoneTransforms(problem, poses[k]);
     if (sweeps > 0) refineBoneTransforms(problem, poses[k], out[k], sweeps);
   });

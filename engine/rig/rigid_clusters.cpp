@@ -22,10 +22,10 @@
 #include <numeric>
 #include <optional>
 
-#include <tbb/parallel_for.h>
 
 #include "cluster_connectivity.hpp"
 #include "kabsch.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -100,7 +100,7 @@ double vertexError(const MotionData& m, std::span<const BoneTransform> matrices,
 
 void assignBest(const MotionData& m, std::span<const BoneTransform> matrices, std::size_t clusters,
                 std::vector<std::uint32_t>& labels) {
-  tbb::parallel_for(std::size_t{0}, m.vertexCount(), [&](std::size_t i) {
+  parallelFor(std::size_t{0}, m.vertexCount(), [&](std::size_t i) {
     std::uint32_t best = labels[i];
     double best_error = vertexError(m, matrices, best, i, std::numeric_limits<double>::infinity());
     for (std::size_t c = 0; c < clusters; ++c) {
@@ -118,7 +118,7 @@ void assignBest(const MotionData& m, std::span<const BoneTransform> matrices, st
 void computeErrors(const MotionData& m, const Transforms& t, Clustering& out) {
   const std::vector<BoneTransform> matrices = matricesOf(t);
   out.vertex_error.resize(m.vertexCount());
-  tbb::parallel_for(std::size_t{0}, m.vertexCount(), [&](std::size_t i) {
+  parallelFor(std::size_t{0}, m.vertexCount(), [&](std::size_t i) {
     out.vertex_error[i] = vertexError(m, matrices, out.labels[i], i, std::numeric_limits<double>::infinity());
   });
   const double total = std::accumulate(out.vertex_error.begin(), out.vertex_error.end(), 0.0);
@@ -162,7 +162,7 @@ void lloyd(const MotionData& m, int iterations, Clustering& c) {
     std::vector<std::vector<std::uint32_t>> members(clusters);
     for (std::uint32_t i = 0; i < m.vertexCount(); ++i) members[c.labels[i]].push_back(i);
     std::vector<char> failed(clusters, 0);
-    tbb::parallel_for(std::size_t{0}, clusters, [&](std::size_t b) {
+    parallelFor(std::size_t{0}, clusters, [&](std::size_t b) {
       std::optional<std::vector<RigidTransform>> fit;
       if (members[b].size() >= kMinClusterSize) fit = fitMembers(m, members[b]);
       if (!fit) {
@@ -206,7 +206,7 @@ void finalise(const MotionData& m, const std::vector<RigidTransform>& whole, Clu
     std::vector<std::vector<std::uint32_t>> members(clusters);
     for (std::uint32_t i = 0; i < m.vertexCount(); ++i) members[c.labels[i]].push_back(i);
     std::vector<char> keep(clusters, 0);
-    tbb::parallel_for(std::size_t{0}, clusters, [&](std::size_t b) {
+    parallelFor(std::size_t{0}, clusters, [&](std::size_t b) {
       if (members[b].size() < kMinClusterSize) return;
       if (auto fit = fitMembers(m, members[b])) {
         keep[b] = 1;

@@ -8,12 +8,12 @@
 // when more than max_influences weights stay positive, the largest are kept and the problem is
 // solved again on them (SSDR's sparsity step).
 #include "vertex_weight_fit.hpp"
+#include "../core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
-#include <tbb/parallel_for.h>
 
 namespace odeskin {
 namespace {
@@ -90,7 +90,7 @@ std::vector<WeightRow> fitVertexWeights(const MotionData& m, const std::vector<s
   const auto rows = static_cast<Eigen::Index>(3 * poses);
   std::vector<WeightRow> out(m.vertexCount());
   const double floor = 1e-24 * m.box * m.box * static_cast<double>(poses);
-  tbb::parallel_for(std::size_t{0}, m.vertexCount(), [&](std::size_t i) {
+  parallelFor(std::size_t{0}, m.vertexCount(), [&](std::size_t i) {
     WeightRow candidates = prior[i];
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const BoneWeight& a, const BoneWeight& b) { return a.weight > b.weight; });

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "weight_rows.hpp"
+#include "../core/parallel.hpp"
 
 #include <algorithm>
 
-#include <tbb/parallel_for.h>
 
 namespace odeskin {
 
@@ -29,7 +29,7 @@ Status checkFaces(const FaceList& faces, std::size_t vertex_count, const std::st
 void smoothRows(std::vector<WeightRow>& rows, const VertexAdjacency& adjacency, int iterations, double lambda) {
   std::vector<WeightRow> next(rows.size());
   for (int it = 0; it < iterations; ++it) {
-    tbb::parallel_for(std::size_t{0}, rows.size(), [&](std::size_t i) {
+    parallelFor(std::size_t{0}, rows.size(), [&](std::size_t i) {
       const auto ring = adjacency.of(static_cast<std::uint32_t>(i));
       WeightRow& out = next[i];
       out.clear();

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "worker_arena.hpp"
+#include "../core/parallel.hpp"
 
 #include <algorithm>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 namespace odeskin {
@@ -31,13 +31,13 @@ void WorkerArena::run(std::size_t count, std::size_t grain, Chunk chunk, const v
     return;
   }
   // Inside the arena even for one chunk, so the chunk's own nested loops use its threads.
-  impl_->arena.execute([&] {
+  arenaExecute(impl_->arena, [&] {
     if (count <= grain) {
       chunk(context, 0, count);
       return;
     }
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
-                      [&](const tbb::blocked_range<std::size_t>& r) { chunk(context, r.begin(), r.end()); });
+    odeskin::parallelFor(tbb::blocked_range<std::size_t>(0, count, grain),
+                         [&](const tbb::blocked_range<std::size_t>& r) { chunk(context, r.begin(), r.end()); });
   });
 }
 

@@ -6,9 +6,9 @@
 #include <string>
 
 #include <Eigen/Dense>
-#include <tbb/parallel_for.h>
 
 #include "mesh_network_deviation.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -116,7 +116,7 @@ Result<MeshNetwork> MeshNetwork::extract(std::span<const Vec3> positions, const 
     m.boundary_offsets_.push_back(m.boundary_offsets_.back() + std::size_t{n} * (1 + s.offsets.size()));
   }
   m.points_.resize(m.boundary_offsets_.back());
-  tbb::parallel_for(std::uint32_t{0}, rows + 1, [&](std::uint32_t b) {
+  parallelFor(std::uint32_t{0}, rows + 1, [&](std::uint32_t b) {
     const DerivativeStencil& s = m.stencils_[b == 0 ? 0 : b == rows ? 2 : 1];
     const double u = static_cast<double>(b) / rows;
     std::size_t at = m.boundary_offsets_[b];

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "mesh_network_deviation.hpp"
+#include "../core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include <tbb/parallel_for.h>
 
 namespace odeskin {
 namespace {
@@ -37,7 +37,7 @@ NetworkParameter networkParameter(const Network& network, Vec2 uv) {
 
 std::vector<Vec3> evaluateAtParameters(const Network& network, std::span<const Vec2> uv) {
   std::vector<Vec3> out(uv.size());
-  tbb::parallel_for(std::size_t{0}, uv.size(), [&](std::size_t i) {
+  parallelFor(std::size_t{0}, uv.size(), [&](std::size_t i) {
     const NetworkParameter p = networkParameter(network, uv[i]);
     out[i] = network.evaluate(p.row, p.column, p.u, p.v).s;
   });
@@ -81,7 +81,7 @@ MeshDeviation measureDeviation(const Network& network, std::span<const Vec2> uv,
   const std::size_t n = positions.size();
   std::vector<Vec3> surface(n);
   std::vector<double> parametric(n), nearest(n);
-  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+  parallelFor(std::size_t{0}, n, [&](std::size_t i) {
     const NetworkParameter p = networkParameter(network, uv[i]);
     surface[i] = network.evaluate(p.row, p.column, p.u, p.v).s;
     parametric[i] = glm::distance(surface[i], positions[i]);

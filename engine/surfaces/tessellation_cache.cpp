@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "tessellation_cache.hpp"
+#include "../core/parallel.hpp"
 
 #include <algorithm>
 
-#include <tbb/parallel_for.h>
 
 namespace odeskin {
 namespace {
@@ -119,7 +119,7 @@ std::uint32_t NetworkTessellation::update() {
   }
   tables_ = std::move(tables);
   table_of_patch_ = std::move(now);
-  tbb::parallel_for(std::size_t{0}, dirty.size(), [&](std::size_t i) { tessellatePatch(dirty[i]); });
+  parallelFor(std::size_t{0}, dirty.size(), [&](std::size_t i) { tessellatePatch(dirty[i]); });
   std::fill(dirty_patches_.begin(), dirty_patches_.end(), 0);
   std::fill(dirty_boundaries_.begin(), dirty_boundaries_.end(), 0);
   return static_cast<std::uint32_t>(dirty.size());
