@@ -37,7 +37,7 @@ sanitize=(-DODESKIN_SANITIZE=address,undefined "${launcher[@]}")
 # The Google Benchmark programs (bench/) run no test; they are built by scripts/build.sh (the demo's
 # plain build), and skipping them here keeps CI within its time.
 ODESKIN_BUILD_DIR="$asan" "$root/scripts/build.sh" "${sanitize[@]}" -DODESKIN_BUILD_BENCH=OFF
-ODESKIN_BUILD_DIR="$asan" "$root/scripts/analyze.sh" --cppcheck-only  # static analysis of our code (docs/reliability/analysis.md)
+ODESKIN_BUILD_DIR="$asan" "$root/scripts/analyze.sh" --cppcheck-only  # static analysis of our code (docs/reliability.md, "Static analysis")
 
 # engine/ must never see Vulkan (STYLE.md): check the sources and that the engine configures and
 # builds on its own with the host switched off.
@@ -54,5 +54,5 @@ export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 export ODESKIN_REQUIRE_GPU="${ODESKIN_REQUIRE_GPU:-1}"
 ctest --test-dir "$asan" --output-on-failure -j "$jobs"
 
-# libFuzzer on every file reader, 15 s per target after replaying tests/fuzz/regressions (docs/reliability/fuzzing.md).
-"$root/scripts/fuzz.sh" --seconds-per-target 15 --unoptimised
+# libFuzzer on every file reader, 10 s per target after replaying tests/fuzz/regressions (docs/reliability.md, "Fuzzing").
+"$root/scripts/fuzz.sh" --seconds-per-target 10 --unoptimised
