@@ -1,4 +1,4 @@
-# libFuzzer build (tests/fuzz, scripts/fuzz.sh; docs/reliability/fuzzing.md): clang only. Every
+# libFuzzer build (tests/fuzz, scripts/fuzz.sh; docs/reliability.md, "Fuzzing"): clang only. Every
 # library the fuzz targets link is compiled with coverage instrumentation, AddressSanitizer and
 # UBSan, and undefined behaviour aborts (a finding, not a log line); libstdc++'s assertions turn an
 # out-of-range operator[] into a finding too. Only the fuzz targets link libFuzzer's main.

@@ -29,7 +29,7 @@ if(ODESKIN_SANITIZE)
   endif()
   if("address" IN_LIST odeskin_sanitizers OR "undefined" IN_LIST odeskin_sanitizers)
     # GCC 12 compiles ASan + UBSan at -O3 for 2.2 to 4 times the CPU time of a plain -O3 build, at
-    # -O1 for 1.6 to 1.9 times (docs/reliability/sanitizers.md), and CI builds everything this way on
+    # -O1 for 1.6 to 1.9 times (docs/reliability.md, "Sanitizers"), and CI builds everything this way on
     # two cores, so these builds optimise at -O1 (it comes after the build type's -O3 and wins).
     list(APPEND odeskin_sanitize_flags -O1)
   endif()

@@ -2,7 +2,7 @@
 # Static analysis of odeskin's own code: cppcheck, then clang-tidy (configured by the checked-in
 # .clang-tidy), over every translation unit in the build's compile_commands.json. Exits non-zero on
 # any finding. Needs a configured and built tree (scripts/build.sh), since sources include the SPIR-V
-# headers generated into the build folder. See docs/reliability/analysis.md.
+# headers generated into the build folder. See docs/reliability.md, "Static analysis".
 #
 #   scripts/analyze.sh                    cppcheck and clang-tidy on everything
 #   scripts/analyze.sh --cppcheck-only    cppcheck only (the part scripts/test.sh runs)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of tests/fuzz with clang (build-fuzz/), assembles their seed corpus
-# and runs each target for a bounded time (docs/reliability/fuzzing.md).
+# and runs each target for a bounded time (docs/reliability.md, "Fuzzing").
 #   scripts/fuzz.sh [--seconds-per-target S] [--jobs J] [--targets "obj gltf ..."] [--unoptimised]
 # S: seconds of fuzzing per target (default 20; CI uses 15, a long run e.g. 3600). J: parallel
 # fuzzing processes per target (libFuzzer -fork; default 1). Targets: obj tgf dmat odsk gltf network.

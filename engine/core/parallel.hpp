@@ -5,7 +5,7 @@
 // Debian's libtbb is not built with -fsanitize=thread: TBB hands a task to a worker and joins it
 // through atomics and futex waits inside libtbb.so, which TSan does not see, so TBB's own task
 // objects and every write a parallel body makes and the caller reads after the join look like
-// races. Under TSan these wrappers (docs/reliability/threads.md):
+// races. Under TSan these wrappers (docs/reliability.md, "ThreadSanitizer"):
 //   fork: release a per-call "fork" token before the TBB call; every chunk (task) acquires it
 //         before the user's code runs;
 //   join: every chunk releases a separate per-call "join" token after the user's code; the caller

@@ -10,7 +10,7 @@
 // The CI configuration plays the cylinder (420 vertices, 3 segments), so that the run stays well
 // under a minute under AddressSanitizer on 2 cores. The long run is the same program:
 //   ODESKIN_SOAK_MESH=cat ODESKIN_SOAK_INSTANCES=1000 ODESKIN_SOAK_FRAMES=2000 build/tests/soak_test
-// (docs/reliability/determinism.md has the measured numbers).
+// (docs/reliability.md, "Determinism and load" has the measured numbers).
 #include <chrono>
 #include <cstdio>
 
