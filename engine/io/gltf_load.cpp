@@ -55,9 +55,9 @@ Result<tinygltf::Model> runLoader(const std::string& source,
                                   const std::function<bool(tinygltf::Model&, std::string&, std::string&)>& load) {
   tinygltf::Model model;
   std::string err;
-  std::string warn;
   bool ok = false;
   try {
+    std::string warn;  // tinygltf's warnings: nothing odeskin reports
     ok = load(model, err, warn);
   } catch (const std::exception& e) {
     err = e.what();

@@ -33,8 +33,10 @@ Result<PictureLayout> layoutPicture(const PictureSpec& spec) {
   layout.bar_style.bar_width = std::int64_t{11} * layout.text_scale;
   layout.bar_style.tick_length = std::int64_t{3} * layout.text_scale;
 
-  const std::int64_t label_height =
-      spec.label_lines == 0 ? 0 : static_cast<std::int64_t>(spec.label_lines) * kLinePitch * layout.text_scale + std::int64_t{4} * layout.text_scale;
+  std::int64_t label_height = 0;
+  if (spec.label_lines != 0) {
+    label_height = (static_cast<std::int64_t>(spec.label_lines) * kLinePitch + 4) * layout.text_scale;
+  }
   const std::int64_t bar_width = spec.heat_max ? colourBarWidth(*spec.heat_max, layout.bar_style) : 0;
   layout.width = spec.width != 0 ? spec.width
                                  : static_cast<std::uint32_t>(spec.panels * spec.panel_width_hint +
@@ -53,7 +55,7 @@ Result<PictureLayout> layoutPicture(const PictureSpec& spec) {
   // Columns left over by the integer division are shared out as a margin on both sides.
   const std::int64_t spare = panels_width - panel_width * static_cast<std::int64_t>(spec.panels);
   for (std::size_t i = 0; i < spec.panels; ++i) layout.panel_left.push_back(spare / 2 + static_cast<std::int64_t>(i) * panel_width);
-  layout.label_top = panel_height + std::int64_t{2} * layout.text_scale;
+  layout.label_top = panel_height + 2 * static_cast<std::int64_t>(layout.text_scale);
   if (spec.heat_max) {
     layout.bar_left = panels_width;
     // Room above the bar for its two title lines, and a shorter bar than the panel, as in a figure.

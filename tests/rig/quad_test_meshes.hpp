@@ -180,7 +180,7 @@ inline QuadTestMesh quadT(int half, int stem, int steps) {
     return static_cast<std::uint32_t>(keys.size() - 1);
   };
   FaceList faces;
-  auto quad = [&](std::array<std::array<int, 3>, 4> c) {
+  auto quad = [&](const std::array<std::array<int, 3>, 4>& c) {
     for (const auto& p : c) faces.indices.push_back(vertex(p[0], p[1], p[2]));
     faces.face_offsets.push_back(static_cast<std::uint32_t>(faces.indices.size()));
   };
