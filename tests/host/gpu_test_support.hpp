@@ -28,9 +28,13 @@ inline bool gpuRequired() {
 
 class GpuTest : public ::testing::Test {
  protected:
+  // Whether the instance asks for the validation layer (the environment's ODESKIN_VALIDATION=1
+  // turns it on regardless).
+  virtual bool wantsValidation() const { return vk::Instance::validationLayerInstalled(); }
+
   void SetUp() override {
     vk::InstanceOptions options;
-    options.validation = vk::Instance::validationLayerInstalled();
+    options.validation = wantsValidation();
     options.debug_log = &log_;
     Result<vk::Instance> instance = vk::Instance::create(options);
     if (!instance.ok()) return noDevice(instance.status());

@@ -14,11 +14,14 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "engine/core/status.hpp"
+#include "engine/runtime/deform_runtime.hpp"
 #include "runtime_fixtures.hpp"
 
 namespace odeskin::testing {
@@ -100,6 +103,37 @@ inline void placedBones(const RuntimeAsset& asset, double t, const Vec3& offset,
     m.row1.w += static_cast<float>(offset.y);
     m.row2.w += static_cast<float>(offset.z);
   }
+}
+
+// Frame `frame`'s state of every instance, set as an engine sets it each frame; the engine-bone
+// instances' palettes are written into `engine_bones` (instances x B, instance k's at k * B). No
+// allocation.
+inline Status setInstances(DeformRuntime& rt, const RuntimeAsset& asset, const SoakClock& clock,
+                           std::uint32_t instances, std::uint64_t frame, std::span<gpu::BoneMatrix> engine_bones) {
+  const std::size_t b = asset.boneCount();
+  for (std::uint32_t k = 0; k < instances; ++k) {
+    const double t = clock.time(k, frame);
+    InstanceState state = InstanceState::atTime(t).withPreset(clock.preset(k));
+    if (SoakClock::engineBones(k)) {
+      std::span<gpu::BoneMatrix> own = engine_bones.subspan(k * b, b);
+      placedBones(asset, t, SoakClock::place(k), own);
+      state = state.withBones(own);
+    }
+    ODESKIN_TRY(rt.setInstance(k, state));
+  }
+  return okStatus();
+}
+
+// The bones instance k was given by "the engine", or none when it plays the asset's own.
+inline std::span<const gpu::BoneMatrix> givenBones(std::span<const gpu::BoneMatrix> engine_bones, std::size_t b,
+                                                   std::uint32_t k) {
+  return SoakClock::engineBones(k) ? engine_bones.subspan(k * b, b) : std::span<const gpu::BoneMatrix>();
+}
+
+// The instance the j-th check of frame f compares: a different handful each time, engine-bone
+// instances among them.
+inline std::uint32_t checkedInstance(const SoakConfig& config, std::uint64_t f, std::uint32_t j) {
+  return static_cast<std::uint32_t>((f / config.check_every * 13 + j * 29 + 3 * j) % config.instances);
 }
 
 // The double-precision reference (DeformPlayer time bases, FourierDeformJob) of every preset,

@@ -76,17 +76,8 @@ TEST(Soak, CpuRuntimeTenThousandFramesOfAHundredInstances) {
     }
     // What an engine does every frame: set each instance, submit, read the bounds to cull.
     const testing::AllocationCount before = testing::allocationsSoFar();
-    for (std::uint32_t k = 0; k < config.instances; ++k) {
-      const double t = clock.time(k, f);
-      InstanceState state = InstanceState::atTime(t).withPreset(clock.preset(k));
-      if (SoakClock::engineBones(k)) {
-        std::span<gpu::BoneMatrix> own = std::span(engine_bones).subspan(k * b, b);
-        testing::placedBones(*asset, t, SoakClock::place(k), own);
-        state = state.withBones(own);
-      }
-      const Status set = rt.setInstance(k, state);
-      ASSERT_TRUE(set.ok()) << "frame " << f << ": " << set.toString();
-    }
+    const Status set = testing::setInstances(rt, *asset, clock, config.instances, f, engine_bones);
+    ASSERT_TRUE(set.ok()) << "frame " << f << ": " << set.toString();
     Result<std::uint64_t> frame = rt.submitFrame();
     ASSERT_TRUE(frame.ok()) << "frame " << f << ": " << frame.status().toString();
     ASSERT_EQ(*frame, f + 1);
@@ -115,11 +106,8 @@ TEST(Soak, CpuRuntimeTenThousandFramesOfAHundredInstances) {
       ASSERT_EQ(testing::boundsMiss(bounds[k], mine), 0.0) << "frame " << f << " instance " << k;
     }
     for (std::uint32_t j = 0; j < config.checked_instances; ++j) {
-      // A different handful each time, engine-bone instances among them.
-      const std::uint32_t k = static_cast<std::uint32_t>((f / config.check_every * 13 + j * 29 + 3 * j) % config.instances);
-      const std::span<const gpu::BoneMatrix> given =
-          SoakClock::engineBones(k) ? std::span<const gpu::BoneMatrix>(engine_bones).subspan(k * b, b)
-                                    : std::span<const gpu::BoneMatrix>();
+      const std::uint32_t k = testing::checkedInstance(config, f, j);
+      const std::span<const gpu::BoneMatrix> given = testing::givenBones(engine_bones, b, k);
       const double gap = reference.gap(clock.time(k, f), clock.preset(k), given, all->subspan(k * v, v)) / box;
       EXPECT_LT(gap, kRelativeTolerance) << "frame " << f << " instance " << k;
       worst = std::max(worst, gap);

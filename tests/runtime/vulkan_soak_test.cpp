@@ -40,42 +40,13 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Like GpuTest, but the validation layer stays off unless ODESKIN_VALIDATION=1 asks for it: the
+// GpuTest with the validation layer off unless ODESKIN_VALIDATION=1 asks for it: the
 // layer allocates with operator new on every call it checks (a few dozen per frame), which would
 // hide the runtime's own count. vulkan_runtime_test runs the same runtime under the layer.
-class VulkanSoak : public ::testing::Test {
+class VulkanSoak : public testing::GpuTest {
  protected:
-  void SetUp() override {
-    vk::InstanceOptions options;
-    options.debug_log = &log_;
-    Result<vk::Instance> instance = vk::Instance::create(options);
-    if (!instance.ok()) return noDevice(instance.status());
-    instance_.emplace(std::move(instance).value());
-    Result<vk::Device> device = vk::Device::create(*instance_, "auto");
-    if (!device.ok()) return noDevice(device.status());
-    device_.emplace(std::move(device).value());
-  }
-  void TearDown() override {
-    if (!device_) return;
-    device_.reset();
-    instance_.reset();
-    for (const std::string& message : log_.messages()) ADD_FAILURE() << "Vulkan: " << message;
-  }
-  vk::Device& device() { return *device_; }
+  bool wantsValidation() const override { return false; }
   bool validation() const { return instance_ && instance_->validationEnabled(); }
-
- private:
-  void noDevice(const Status& status) {
-    if (testing::gpuRequired()) {
-      FAIL() << "ODESKIN_REQUIRE_GPU=1 but no Vulkan device: " << status.toString();
-    } else {
-      GTEST_SKIP() << "no Vulkan device: " << status.toString();
-    }
-  }
-
-  vk::DebugLog log_;
-  std::optional<vk::Instance> instance_;
-  std::optional<vk::Device> device_;
 };
 
 TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
@@ -123,17 +94,8 @@ TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
     }
     const bool check = f % config.check_every == 0 || f + 1 == config.frames;
     const testing::AllocationCount before = testing::allocationsSoFar();
-    for (std::uint32_t k = 0; k < config.instances; ++k) {
-      const double t = clock.time(k, f);
-      InstanceState state = InstanceState::atTime(t).withPreset(clock.preset(k));
-      if (SoakClock::engineBones(k)) {
-        std::span<gpu::BoneMatrix> own = std::span(engine_bones).subspan(k * b, b);
-        testing::placedBones(*asset, t, SoakClock::place(k), own);
-        state = state.withBones(own);
-      }
-      const Status set = rt.setInstance(k, state);
-      ASSERT_TRUE(set.ok()) << "frame " << f << ": " << set.toString();
-    }
+    const Status set = testing::setInstances(rt, *asset, clock, config.instances, f, engine_bones);
+    ASSERT_TRUE(set.ok()) << "frame " << f << ": " << set.toString();
     Result<std::uint64_t> frame = rt.submitFrame();
     ASSERT_TRUE(frame.ok()) << "frame " << f << ": " << frame.status().toString();
     ASSERT_EQ(*frame, f + 1);
@@ -161,11 +123,9 @@ TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
       ASSERT_EQ(testing::boundsMiss(bounds[k], positions), 0.0) << "frame " << f << " instance " << k;
     }
     for (std::uint32_t j = 0; j < config.checked_instances; ++j) {
-      const std::uint32_t k = static_cast<std::uint32_t>((f / config.check_every * 13 + j * 29 + 3 * j) % config.instances);
+      const std::uint32_t k = testing::checkedInstance(config, f, j);
       ASSERT_TRUE(rt.readPositions(*frame, k, positions).ok());
-      const std::span<const gpu::BoneMatrix> given =
-          SoakClock::engineBones(k) ? std::span<const gpu::BoneMatrix>(engine_bones).subspan(k * b, b)
-                                    : std::span<const gpu::BoneMatrix>();
+      const std::span<const gpu::BoneMatrix> given = testing::givenBones(engine_bones, b, k);
       const double gap = reference.gap(clock.time(k, f), clock.preset(k), given, positions) / box;
       EXPECT_LT(gap, kRelativeTolerance) << "frame " << f << " instance " << k;
       worst = std::max(worst, gap);
