@@ -158,6 +158,51 @@ double triangleUpdate(const Vec3& a, const Vec3& b, const Vec3& c, double ta, do
   return t >= std::max(ta, tb) ? t : kUnreached;
 }
 
+// The mean edge length, or 1 without edges.
+double meanEdge(const MeshTopology& mesh) {
+  double sum = 0.0;
+  for (const double l : mesh.edge_lengths) sum += l;
+  return mesh.edge_lengths.empty() ? 1.0 : sum / static_cast<double>(mesh.edge_lengths.size());
+}
+
+// Vertices queued by value in buckets `width` wide, each bucket popped in any order (last in,
+// first out). Each bucket is a stack threaded through one pool of entries, so that thousands of
+// buckets cost no allocation of their own. A push below the bucket being popped lands in it.
+class BucketQueue {
+ public:
+  BucketQueue(double width, std::size_t expected_pushes) : width_(width) {
+    vertex_.reserve(expected_pushes);
+    next_.reserve(expected_pushes);
+  }
+
+  void push(std::uint32_t v, double value) {
+    const auto b = static_cast<std::size_t>(value / width_);
+    if (b >= heads_.size()) heads_.resize(b + 1 + heads_.size() / 2, kEnd);
+    std::uint32_t& head = heads_[std::max(b, current_)];
+    vertex_.push_back(v);
+    next_.push_back(head);
+    head = static_cast<std::uint32_t>(vertex_.size() - 1);
+  }
+
+  // Takes the next vertex into `v`; false once the queue is empty.
+  bool pop(std::uint32_t& v) {
+    while (current_ < heads_.size() && heads_[current_] == kEnd) ++current_;
+    if (current_ == heads_.size()) return false;
+    const std::uint32_t top = heads_[current_];
+    v = vertex_[top];
+    heads_[current_] = next_[top];
+    return true;
+  }
+
+ private:
+  static constexpr std::uint32_t kEnd = std::numeric_limits<std::uint32_t>::max();
+  double width_;
+  std::size_t current_ = 0;
+  std::vector<std::uint32_t> heads_;
+  std::vector<std::uint32_t> vertex_;
+  std::vector<std::uint32_t> next_;
+};
+
 }  // namespace
 
 std::vector<double> surfaceDistance(const MeshTopology& mesh, std::span<const Vec3> positions,
@@ -169,46 +214,23 @@ std::vector<double> surfaceDistance(const MeshTopology& mesh, std::span<const Ve
   // edge wide, each popped in any order. Vertices within a bucket are fixed out of order by less
   // than its width, an error far below the level spacing (2 edges), for a queue without a heap.
   constexpr double kBucketEdges = 0.05;
-  double mean_edge = 0.0;
-  for (const double l : mesh.edge_lengths) mean_edge += l;
-  mean_edge = mesh.edge_lengths.empty() ? 1.0 : mean_edge / static_cast<double>(mesh.edge_lengths.size());
-  const double width = mean_edge > 0.0 ? kBucketEdges * mean_edge : 1.0;
-  // Each bucket a stack threaded through one pool of entries (last in, first out), so that the
-  // thousands of buckets cost no allocation of their own.
-  constexpr std::uint32_t kEnd = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> heads;
-  std::vector<std::uint32_t> entry_vertex;
-  std::vector<std::uint32_t> entry_next;
-  entry_vertex.reserve(4 * v_count);
-  entry_next.reserve(4 * v_count);
-  std::size_t current = 0;
-  auto push = [&](std::uint32_t w, double value) {
-    const auto b = static_cast<std::size_t>(value / width);
-    if (b >= heads.size()) heads.resize(b + 1 + heads.size() / 2, kEnd);
-    std::uint32_t& head = heads[std::max(b, current)];
-    entry_vertex.push_back(w);
-    entry_next.push_back(head);
-    head = static_cast<std::uint32_t>(entry_vertex.size() - 1);
-  };
+  const double mean_edge = meanEdge(mesh);
+  BucketQueue queue(mean_edge > 0.0 ? kBucketEdges * mean_edge : 1.0, 4 * v_count);
   for (std::size_t i = 0; i < sources.size(); ++i) {
     const std::uint32_t s = sources[i];
     assert(s < v_count);
     const double d0 = initial.empty() ? 0.0 : initial[i];
     if (d0 < distance[s]) distance[s] = d0;
   }
-  for (const std::uint32_t s : sources) push(s, distance[s]);
+  for (const std::uint32_t s : sources) queue.push(s, distance[s]);
   auto offer = [&](std::uint32_t w, double candidate) {
     if (candidate < distance[w]) {
       distance[w] = candidate;
-      push(w, candidate);
+      queue.push(w, candidate);
     }
   };
-  while (true) {
-    while (current < heads.size() && heads[current] == kEnd) ++current;
-    if (current == heads.size()) break;
-    const std::uint32_t top = heads[current];
-    const std::uint32_t u = entry_vertex[top];
-    heads[current] = entry_next[top];
+  std::uint32_t u = 0;
+  while (queue.pop(u)) {
     if (fixed[u]) continue;
     const double d = distance[u];
     fixed[u] = 1;
@@ -245,39 +267,18 @@ std::vector<double> edgeDistance(const MeshTopology& mesh, std::span<const std::
   // drops after it was relaxed, so the result is the same fixed point d(w) = min over neighbours
   // u of d(u) + |uw| (floating-point addition is monotone, so that minimum is reached bit for bit
   // whatever the order).
-  double mean_edge = 0.0;
-  for (const double l : mesh.edge_lengths) mean_edge += l;
-  mean_edge = mesh.edge_lengths.empty() ? 1.0 : mean_edge / static_cast<double>(mesh.edge_lengths.size());
-  const double width = mean_edge > 0.0 ? 0.2 * mean_edge : 1.0;
-  constexpr std::uint32_t kEnd = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> heads;
-  std::vector<std::uint32_t> entry_vertex;
-  std::vector<std::uint32_t> entry_next;
-  entry_vertex.reserve(2 * v_count);
-  entry_next.reserve(2 * v_count);
+  const double mean_edge = meanEdge(mesh);
+  BucketQueue queue(mean_edge > 0.0 ? 0.2 * mean_edge : 1.0, 2 * v_count);
   std::vector<double> relaxed_at(v_count, kUnreached);  // the distance each vertex was last relaxed with
-  std::size_t current = 0;
-  auto push = [&](std::uint32_t w, double value) {
-    const auto b = static_cast<std::size_t>(value / width);
-    if (b >= heads.size()) heads.resize(b + 1 + heads.size() / 2, kEnd);
-    std::uint32_t& head = heads[std::max(b, current)];
-    entry_vertex.push_back(w);
-    entry_next.push_back(head);
-    head = static_cast<std::uint32_t>(entry_vertex.size() - 1);
-  };
   for (const std::uint32_t s : sources) {
     assert(s < v_count);
     if (distance[s] > 0.0) {
       distance[s] = 0.0;
-      push(s, 0.0);
+      queue.push(s, 0.0);
     }
   }
-  while (true) {
-    while (current < heads.size() && heads[current] == kEnd) ++current;
-    if (current == heads.size()) break;
-    const std::uint32_t top = heads[current];
-    const std::uint32_t u = entry_vertex[top];
-    heads[current] = entry_next[top];
+  std::uint32_t u = 0;
+  while (queue.pop(u)) {
     const double d = distance[u];
     if (!(d < relaxed_at[u])) continue;
     relaxed_at[u] = d;
@@ -286,7 +287,7 @@ std::vector<double> edgeDistance(const MeshTopology& mesh, std::span<const std::
       const double candidate = d + mesh.vertex_edge_lengths[k];
       if (candidate < distance[w]) {
         distance[w] = candidate;
-        push(w, candidate);
+        queue.push(w, candidate);
       }
     }
   }
