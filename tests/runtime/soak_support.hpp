@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -218,5 +219,13 @@ inline double cpuSeconds() {
 }
 
 inline double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
+
+inline double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Sampled instances may differ from the double reference by this much of the box (the fast path's
+// tolerance).
+constexpr double kSoakRelativeTolerance = 1e-5;
 
 }  // namespace odeskin::testing

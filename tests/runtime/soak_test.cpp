@@ -26,15 +26,10 @@ namespace {
 using testing::SoakClock;
 using testing::SoakConfig;
 
-constexpr double kRelativeTolerance = 1e-5;
 // The resident set may grow by this much after the warm-up: no per-frame array of even the
 // cylinder's 100 instances (42,000 vertices, 0.7 MB of positions) could hide below it for long,
 // while allocator and thread-stack noise stays under it.
 constexpr double kResidentGrowthMiB = 2.0;
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 TEST(Soak, CpuRuntimeTenThousandFramesOfAHundredInstances) {
   const SoakConfig config = SoakConfig::fromEnvironment(SoakConfig{});
@@ -109,14 +104,14 @@ TEST(Soak, CpuRuntimeTenThousandFramesOfAHundredInstances) {
       const std::uint32_t k = testing::checkedInstance(config, f, j);
       const std::span<const gpu::BoneMatrix> given = testing::givenBones(engine_bones, b, k);
       const double gap = reference.gap(clock.time(k, f), clock.preset(k), given, all->subspan(k * v, v)) / box;
-      EXPECT_LT(gap, kRelativeTolerance) << "frame " << f << " instance " << k;
+      EXPECT_LT(gap, testing::kSoakRelativeTolerance) << "frame " << f << " instance " << k;
       worst = std::max(worst, gap);
       ++checks;
     }
-    check_seconds += secondsSince(check_start);
+    check_seconds += testing::secondsSince(check_start);
   }
-  const double total = secondsSince(start);
-  const double measured = secondsSince(steady);
+  const double total = testing::secondsSince(start);
+  const double measured = testing::secondsSince(steady);
   const std::size_t resident_end = testing::residentBytes();
   const testing::AllocationCount counted_end = testing::allocationsSoFar();
   const double growth = testing::mib(static_cast<double>(resident_end) - static_cast<double>(resident_start));

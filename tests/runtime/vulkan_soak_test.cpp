@@ -31,14 +31,9 @@ namespace {
 using testing::SoakClock;
 using testing::SoakConfig;
 
-constexpr double kRelativeTolerance = 1e-5;
 // Allowed growth of the resident set after the warm-up (see soak_test.cpp); the sampled checks'
 // staging reads come and go, and the driver's own pools may round up a little.
 constexpr double kResidentGrowthMiB = 4.0;
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // GpuTest with the validation layer off unless ODESKIN_VALIDATION=1 asks for it: the
 // layer allocates with operator new on every call it checks (a few dozen per frame), which would
@@ -127,15 +122,15 @@ TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
       ASSERT_TRUE(rt.readPositions(*frame, k, positions).ok());
       const std::span<const gpu::BoneMatrix> given = testing::givenBones(engine_bones, b, k);
       const double gap = reference.gap(clock.time(k, f), clock.preset(k), given, positions) / box;
-      EXPECT_LT(gap, kRelativeTolerance) << "frame " << f << " instance " << k;
+      EXPECT_LT(gap, testing::kSoakRelativeTolerance) << "frame " << f << " instance " << k;
       worst = std::max(worst, gap);
       ++checks;
     }
-    check_seconds += secondsSince(check_start);
+    check_seconds += testing::secondsSince(check_start);
   }
   ASSERT_TRUE(rt.wait().ok());
-  const double total = secondsSince(start);
-  const double measured = secondsSince(steady) - check_seconds;
+  const double total = testing::secondsSince(start);
+  const double measured = testing::secondsSince(steady) - check_seconds;
   const std::size_t resident_end = testing::residentBytes();
   const double growth = testing::mib(static_cast<double>(resident_end) - static_cast<double>(resident_start));
   const std::uint64_t measured_frames = config.frames - config.warm_up;
