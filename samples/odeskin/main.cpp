@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
-#include <map>
 #include <new>
 #include <string>
 
@@ -31,8 +30,12 @@ namespace {
 
 constexpr double kDemoEndTolerance = 1e-5;  // frame 0 / last frame vs start.obj / end.obj, of the box
 
-const std::map<std::string, odeskin::Backend> kBackends{
-    {"auto", odeskin::Backend::kAuto}, {"cpu", odeskin::Backend::kCpu}, {"vulkan", odeskin::Backend::kVulkan}};
+// The --backend names; CLI11 has already checked the name against the same list.
+odeskin::Backend backendNamed(const std::string& name) {
+  if (name == "cpu") return odeskin::Backend::kCpu;
+  if (name == "vulkan") return odeskin::Backend::kVulkan;
+  return odeskin::Backend::kAuto;
+}
 
 int fail(const odeskin::Status& status) {
   std::cerr << "odeskin: error: " << status.message() << "\n";
@@ -429,7 +432,7 @@ int run(int argc, char** argv, std::string& verb) {
     return status.ok() ? 0 : fail(status);
   }
   if (demo_cmd->parsed()) {
-    demo.backend = kBackends.at(demo_backend);
+    demo.backend = backendNamed(demo_backend);
     demo.device = device;
     demo.residual_space = residual == "posed" ? odeskin::ResidualSpace::kPosed : odeskin::ResidualSpace::kBind;
     return runDemoCommand(demo);
@@ -438,7 +441,7 @@ int run(int argc, char** argv, std::string& verb) {
     if (t_opt->count() > 0) play.t = play_t;
     if (fps_opt->count() > 0) play.fps = play_fps;
     if (seconds_opt->count() > 0) play.seconds = play_seconds;
-    play.playback.backend = kBackends.at(play_backend);
+    play.playback.backend = backendNamed(play_backend);
     play.playback.device = device;
     return odeskin::runPlayCommand(play, console);
   }
@@ -479,6 +482,13 @@ int run(int argc, char** argv, std::string& verb) {
   return 2;
 }
 
+// Reports what escaped a verb without allocating (the failure may be bad_alloc).
+int reportEscaped(const std::string& verb, const char* problem, const char* detail) noexcept {
+  std::fflush(stdout);  // std::cout is synchronised with stdio, so its output goes first
+  std::fprintf(stderr, "odeskin: error: %s%s%s%s\n", verb.c_str(), verb.empty() ? "" : ": ", problem, detail);
+  return 1;
+}
+
 }  // namespace
 
 // Nothing the engine throws (it reports Status) is expected here; the catch turns what the standard
@@ -486,17 +496,13 @@ int run(int argc, char** argv, std::string& verb) {
 // into exit status 1 and the usual one line, never an abort.
 int main(int argc, char** argv) {
   std::string verb;
-  std::string problem;
   try {
     return run(argc, argv, verb);
   } catch (const std::bad_alloc&) {
-    problem = "out of memory (the input is too large for this machine)";
+    return reportEscaped(verb, "out of memory (the input is too large for this machine)", "");
   } catch (const std::exception& e) {
-    problem = std::string("unexpected failure: ") + e.what();
+    return reportEscaped(verb, "unexpected failure: ", e.what());
   } catch (...) {
-    problem = "unexpected failure (an unknown exception)";
+    return reportEscaped(verb, "unexpected failure (an unknown exception)", "");
   }
-  std::cout.flush();
-  std::fprintf(stderr, "odeskin: error: %s%s\n", verb.empty() ? "" : (verb + ": ").c_str(), problem.c_str());
-  return 1;
 }

@@ -13,8 +13,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 #include <vector>
@@ -290,7 +292,9 @@ int run(const SampleOptions& o) {
 }  // namespace
 }  // namespace odeskin
 
-int main(int argc, char** argv) {
+namespace {
+
+int parseAndRun(int argc, char** argv) {
   odeskin::SampleOptions o;
   CLI::App app("odeskin_runtime_sample: many instances of one asset deformed every frame, with timings");
   app.add_option("asset", o.asset, "A .odsk asset (default: fit the cat from --data/cat-poses)");
@@ -311,4 +315,21 @@ int main(int argc, char** argv) {
     return 2;
   }
   return odeskin::run(o);
+}
+
+}  // namespace
+
+// A failure to allocate (1,000 instances of a big asset) or a library's exception ends the sample
+// with one line and status 1, not an abort.
+int main(int argc, char** argv) {
+  try {
+    return parseAndRun(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "odeskin_runtime_sample: error: out of memory\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "odeskin_runtime_sample: error: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "odeskin_runtime_sample: error: an unknown exception\n");
+  }
+  return 1;
 }
