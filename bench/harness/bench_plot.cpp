@@ -73,12 +73,16 @@ struct LogAxes {
 void drawAxes(Image& image, const LogAxes& a, const std::string& title, const std::string& x_label,
               const std::string& y_label) {
   const Rgba8 grid{220, 220, 220, 255}, ink{40, 40, 40, 255};
-  for (double d = a.x_lo; d <= a.x_hi + 1e-9; d += 1.0) {
+  // Decades are whole exponents (the axes' ends are floors and ceilings).
+  const auto decades = [](double lo, double hi) { return static_cast<int>(std::lround(hi - lo)); };
+  for (int k = 0; k <= decades(a.x_lo, a.x_hi); ++k) {
+    const double d = a.x_lo + k;
     const double x = kLeft + (d - a.x_lo) / (a.x_hi - a.x_lo) * a.pw;
     visual::fillRect(image, std::lround(x), kTop, 1, static_cast<std::int64_t>(a.ph), grid);
     visual::drawText(image, std::lround(x) - 12, kTop + static_cast<std::int64_t>(a.ph) + 10, decadeLabel(d), ink, 2);
   }
-  for (double d = a.y_lo; d <= a.y_hi + 1e-9; d += 1.0) {
+  for (int k = 0; k <= decades(a.y_lo, a.y_hi); ++k) {
+    const double d = a.y_lo + k;
     const double y = kTop + a.ph - (d - a.y_lo) / (a.y_hi - a.y_lo) * a.ph;
     visual::fillRect(image, kLeft, std::lround(y), static_cast<std::int64_t>(a.pw), 1, grid);
     visual::drawText(image, 20, std::lround(y) - 6, decadeLabel(d), ink, 2);
@@ -212,39 +216,21 @@ Status writePlot(const std::filesystem::path& path, const BenchReport& report, i
       y_hi = std::max(y_hi, std::log10(y));
     }
   }
-  x_lo = std::floor(x_lo), x_hi = std::max(std::ceil(x_hi), x_lo + 1.0);
-  y_lo = std::floor(y_lo), y_hi = std::max(std::ceil(y_hi), y_lo + 1.0);
+  LogAxes axes;
+  axes.x_lo = std::floor(x_lo), axes.x_hi = std::max(std::ceil(x_hi), axes.x_lo + 1.0);
+  axes.y_lo = std::floor(y_lo), axes.y_hi = std::max(std::ceil(y_hi), axes.y_lo + 1.0);
   Image image(kWidth, kHeight, Rgba8{255, 255, 255, 255});
-  const double pw = kWidth - kLeft - kRight, ph = kHeight - kTop - kBottom;
-  auto px = [&](double v) { return kLeft + (std::log10(v) - x_lo) / (x_hi - x_lo) * pw; };
-  auto py = [&](double v) { return kTop + ph - (std::log10(v) - y_lo) / (y_hi - y_lo) * ph; };
-  const Rgba8 grid{220, 220, 220, 255}, ink{40, 40, 40, 255};
-  for (double d = x_lo; d <= x_hi + 1e-9; d += 1.0) {
-    const double x = kLeft + (d - x_lo) / (x_hi - x_lo) * pw;
-    visual::fillRect(image, std::lround(x), kTop, 1, static_cast<std::int64_t>(ph), grid);
-    visual::drawText(image, std::lround(x) - 12, kTop + static_cast<std::int64_t>(ph) + 10,
-                     decadeLabel(d), ink, 2);
-  }
-  for (double d = y_lo; d <= y_hi + 1e-9; d += 1.0) {
-    const double y = kTop + ph - (d - y_lo) / (y_hi - y_lo) * ph;
-    visual::fillRect(image, kLeft, std::lround(y), static_cast<std::int64_t>(pw), 1, grid);
-    visual::drawText(image, 20, std::lround(y) - 6, decadeLabel(d), ink, 2);
-  }
-  visual::fillRect(image, kLeft, kTop, 1, static_cast<std::int64_t>(ph), ink);
-  visual::fillRect(image, kLeft, kTop + static_cast<std::int64_t>(ph), static_cast<std::int64_t>(pw), 1, ink);
-  std::string title = "vertices per second vs vertices (log-log); ";
-  title += report.device;
-  visual::drawText(image, kLeft, 16, title, ink, 2);
-  visual::drawText(image, kLeft + static_cast<std::int64_t>(pw) / 2 - 40, kHeight - 24, "vertices", ink, 2);
+  drawAxes(image, axes, "vertices per second vs vertices (log-log); " + report.device, "vertices", "vertices/s");
+  const Rgba8 ink{40, 40, 40, 255};
   std::size_t index = 0;
   std::int64_t legend_y = kTop;
   for (const auto& [label, s] : series) {
     const Rgba8 colour = seriesColour(index++);
     for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
-      drawLine(image, px(s.points[i].first), py(s.points[i].second), px(s.points[i + 1].first),
-               py(s.points[i + 1].second), colour, s.dash);
+      drawLine(image, axes.px(s.points[i].first), axes.py(s.points[i].second), axes.px(s.points[i + 1].first),
+               axes.py(s.points[i + 1].second), colour, s.dash);
     }
-    for (const auto& [x, y] : s.points) visual::fillRect(image, std::lround(px(x)) - 3, std::lround(py(y)) - 3, 7, 7, colour);
+    for (const auto& [x, y] : s.points) visual::fillRect(image, std::lround(axes.px(x)) - 3, std::lround(axes.py(y)) - 3, 7, 7, colour);
     const double legend_line_y = static_cast<double>(legend_y + 6);
     drawLine(image, kWidth - kRight + 15, legend_line_y, kWidth - kRight + 45, legend_line_y, colour, s.dash);
     visual::drawText(image, kWidth - kRight + 52, legend_y, s.label, ink, 1);

@@ -87,9 +87,9 @@ inline void foldCurve(const Layout& layout, const Frame& f, std::uint32_t curve,
 // The folded coefficients of the last two curves a worker used. Blocks come sorted by pair, so
 // runs like (a, a), (a, a+1), (a+1, a+1) fold each curve once per worker and frame.
 struct FoldCache {
+  alignas(64) float coefficients[2][kMaxCurveFloats];
   std::uint32_t curve[2] = {kPaddingLane, kPaddingLane};
   std::uint32_t last = 0;
-  alignas(64) float coefficients[2][kMaxCurveFloats];
 
   // The slot holding `curve`, folding it into the slot other than `keep` (-1: the least recent).
   std::uint32_t slot(const Layout& layout, const Frame& f, std::uint32_t c, int keep) {
@@ -108,8 +108,8 @@ template <std::uint32_t kL, bool kTwoCurves>
 [[gnu::always_inline]] inline P3<kL> series(const float* lanes, const float* a, const float* b,
                                             std::uint32_t modes_used, std::uint32_t m_count, bool trend) {
   using V = Vf<kL>;
-  const V c1 = load<kL>(lanes + kCos * kBlockLanes);
-  const V s1 = load<kL>(lanes + kSin * kBlockLanes);
+  const V c1 = load<kL>(lanes + rowOffset(kCos));
+  const V s1 = load<kL>(lanes + rowOffset(kSin));
   V ax = splat<kL>(a[0]), ay = splat<kL>(a[1]), az = splat<kL>(a[2]);
   V ax_sin{}, ay_sin{}, az_sin{};
   V bx{}, by{}, bz{}, bx_sin{}, by_sin{}, bz_sin{};
@@ -119,13 +119,13 @@ template <std::uint32_t kL, bool kTwoCurves>
     bz = splat<kL>(b[2]);
   }
   if (trend) {
-    const V v = load<kL>(lanes + kV * kBlockLanes);
-    const float* a_trend = a + 3 * (m_count - 1);
+    const V v = load<kL>(lanes + rowOffset(kV));
+    const float* a_trend = a + 3 * std::size_t{m_count - 1};
     ax = v * splat<kL>(a_trend[0]) + ax;
     ay = v * splat<kL>(a_trend[1]) + ay;
     az = v * splat<kL>(a_trend[2]) + az;
     if constexpr (kTwoCurves) {
-      const float* b_trend = b + 3 * (m_count - 1);
+      const float* b_trend = b + 3 * std::size_t{m_count - 1};
       bx = v * splat<kL>(b_trend[0]) + bx;
       by = v * splat<kL>(b_trend[1]) + by;
       bz = v * splat<kL>(b_trend[2]) + bz;
@@ -138,7 +138,7 @@ template <std::uint32_t kL, bool kTwoCurves>
   V sn = s1;
   constexpr bool kSplit = !kTwoCurves || kMaxLanes == 16;
   for (std::uint32_t n = 1; n <= modes_used; ++n) {
-    const float* an = a + 3 * (2 * n - 1);  // cos xyz, then sin xyz
+    const float* an = a + std::size_t{3} * (2 * n - 1);  // cos xyz, then sin xyz
     if constexpr (kSplit) {
       ax = cn * splat<kL>(an[0]) + ax;
       ay = cn * splat<kL>(an[1]) + ay;
@@ -152,7 +152,7 @@ template <std::uint32_t kL, bool kTwoCurves>
       az = sn * splat<kL>(an[5]) + (cn * splat<kL>(an[2]) + az);
     }
     if constexpr (kTwoCurves) {
-      const float* bn = b + 3 * (2 * n - 1);
+      const float* bn = b + std::size_t{3} * (2 * n - 1);
       if constexpr (kSplit) {
         bx = cn * splat<kL>(bn[0]) + bx;
         by = cn * splat<kL>(bn[1]) + by;
@@ -175,7 +175,7 @@ template <std::uint32_t kL, bool kTwoCurves>
   }
   P3<kL> s{ax + ax_sin, ay + ay_sin, az + az_sin};
   if constexpr (kTwoCurves) {
-    const V w = load<kL>(lanes + kW * kBlockLanes);
+    const V w = load<kL>(lanes + rowOffset(kW));
     s.x = w * ((bx + bx_sin) - s.x) + s.x;
     s.y = w * ((by + by_sin) - s.y) + s.y;
     s.z = w * ((bz + bz_sin) - s.z) + s.z;
@@ -363,17 +363,17 @@ struct DeformSub {
     const float* lanes = layout.lane_rows.data() + b * kLaneRows * kBlockLanes + offset;
     const float* seg = layout.segment_rows.data() + segment_block * kSegmentRows * kBlockLanes + offset;
     P3<kL> r = series<kL, kTwoCurves>(lanes, a, c, modes_used, layout.coefficientsPerCurve(), trend);
-    r.x += load<kL>(seg + kBaseX * kBlockLanes);
-    r.y += load<kL>(seg + kBaseY * kBlockLanes);
-    r.z += load<kL>(seg + kBaseZ * kBlockLanes);
+    r.x += load<kL>(seg + rowOffset(kBaseX));
+    r.y += load<kL>(seg + rowOffset(kBaseY));
+    r.z += load<kL>(seg + rowOffset(kBaseZ));
     if (has_remainder) {
       const V g = splat<kL>(remainder_weight);
-      r.x = g * load<kL>(seg + kRemX * kBlockLanes) + r.x;
-      r.y = g * load<kL>(seg + kRemY * kBlockLanes) + r.y;
-      r.z = g * load<kL>(seg + kRemZ * kBlockLanes) + r.z;
+      r.x = g * load<kL>(seg + rowOffset(kRemX)) + r.x;
+      r.y = g * load<kL>(seg + rowOffset(kRemY)) + r.y;
+      r.z = g * load<kL>(seg + rowOffset(kRemZ)) + r.z;
     }
-    const P3<kL> rest{load<kL>(lanes + kRestX * kBlockLanes), load<kL>(lanes + kRestY * kBlockLanes),
-                      load<kL>(lanes + kRestZ * kBlockLanes)};
+    const P3<kL> rest{load<kL>(lanes + rowOffset(kRestX)), load<kL>(lanes + rowOffset(kRestY)),
+                      load<kL>(lanes + rowOffset(kRestZ))};
     P3<kL> out;
     if constexpr (kBindSpace) {
       out = skin<kL, kDualQuaternion>(layout, f, block, lane0, offset,
@@ -423,7 +423,7 @@ void deformRangeOf(const Frame& f, std::size_t begin, std::size_t end) {
   }
 }
 
-void deformRange(const Frame& f, std::size_t begin, std::size_t end) {
+inline void deformRange(const Frame& f, std::size_t begin, std::size_t end) {
   const bool dq = f.layout->skinning == SkinningMode::kDualQuaternion;
   const bool bind = f.layout->residual_space == ResidualSpace::kBind;
   if (dq) {
@@ -444,8 +444,8 @@ struct SkinSub {
   [[gnu::always_inline]] inline void run(std::uint32_t offset, std::uint32_t valid) const {
     const std::size_t lane0 = b * kBlockLanes + offset;
     const float* lanes = layout.lane_rows.data() + b * kLaneRows * kBlockLanes + offset;
-    const P3<kL> rest{load<kL>(lanes + kRestX * kBlockLanes), load<kL>(lanes + kRestY * kBlockLanes),
-                      load<kL>(lanes + kRestZ * kBlockLanes)};
+    const P3<kL> rest{load<kL>(lanes + rowOffset(kRestX)), load<kL>(lanes + rowOffset(kRestY)),
+                      load<kL>(lanes + rowOffset(kRestZ))};
     store<kL>(layout, f, lane0, valid, skin<kL, kDualQuaternion>(layout, f, block, lane0, offset, rest));
   }
 };
@@ -458,7 +458,7 @@ void skinRangeOf(const Frame& f, std::size_t begin, std::size_t end) {
   }
 }
 
-void skinRange(const Frame& f, std::size_t begin, std::size_t end) {
+inline void skinRange(const Frame& f, std::size_t begin, std::size_t end) {
   if (f.layout->skinning == SkinningMode::kDualQuaternion) {
     skinRangeOf<true>(f, begin, end);
   } else {
@@ -466,4 +466,4 @@ void skinRange(const Frame& f, std::size_t begin, std::size_t end) {
   }
 }
 
-BlockFunctions blockFunctions() { return BlockFunctions{&deformRange, &skinRange}; }
+inline BlockFunctions blockFunctions() { return BlockFunctions{&deformRange, &skinRange}; }

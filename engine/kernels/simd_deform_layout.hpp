@@ -36,6 +36,8 @@ inline constexpr std::uint32_t kPaddingLane = 0xFFFFFFFFu;
 enum LaneRow : std::uint32_t { kCos, kSin, kV, kW, kRestX, kRestY, kRestZ, kLaneRows };
 // Rows per (segment, block): the base residual r^s and the sparse remainder (zero where none).
 enum SegmentRow : std::uint32_t { kBaseX, kBaseY, kBaseZ, kRemX, kRemY, kRemZ, kSegmentRows };
+// Where row `row` of a block starts, in floats from the block's first (a pointer offset, so size_t).
+constexpr std::size_t rowOffset(std::uint32_t row) { return std::size_t{row} * kBlockLanes; }
 
 template <typename T>
 struct AlignedAllocator {

@@ -206,6 +206,7 @@ Result<AnimationSkeleton> buildAnimationSkeleton(const CurveSkeleton& cs, const 
   std::vector<double> node_bend(n_count, 0.0);
   for (const Chain& chain : chainsOf(adjacent)) chainBends(chain, cs, poses, o, bends, node_bend);
   std::vector<std::uint32_t> bend_nodes;
+  bend_nodes.reserve(bends.size());
   for (const Bend& b : bends) bend_nodes.push_back(b.node);
 
   const SkeletonTreeView view{cs.positions, cs.radii, adjacent};

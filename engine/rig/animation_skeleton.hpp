@@ -60,13 +60,12 @@ struct AnimationSkeletonOptions {
 // poses: the curve skeleton's node positions on each example pose (curveSkeletonPositions), the
 // bind mesh's first; one pose is the bind mesh alone. kInvalidArgument for no nodes, poses of the
 // wrong size, an angle outside (0, 180), window_radii <= 0 or a zero up axis.
-Result<AnimationSkeleton> buildAnimationSkeleton(const CurveSkeleton& curve_skeleton,
-                                                 const std::vector<std::vector<Vec3>>& poses,
-                                                 const AnimationSkeletonOptions& options = {});
+Result<AnimationSkeleton> buildAnimationSkeleton(const CurveSkeleton& cs, const std::vector<std::vector<Vec3>>& poses,
+                                                 const AnimationSkeletonOptions& o = {});
 
 // One bone per non-root joint, from its parent joint (the head, its pivot) to it (the tail); the
 // bone's parent is the bone ending at its head (-1 when the head is the root joint), as libigl's
 // directed_edge_parents reads a .tgf. Bone names are the joints' names.
-Skeleton toSkeleton(const AnimationSkeleton& skeleton);
+Skeleton toSkeleton(const AnimationSkeleton& a);
 
 }  // namespace odeskin

@@ -180,7 +180,7 @@ double Ode4Cardinal::chooseBasis() {
 Ode4Cardinal::Pair Ode4Cardinal::seriesPair(int first, double t) const {
   // Y(t) = sum a_n t^n/n!, Y'(t) = sum a_{n+1} t^n/n! for Y_first and Y_{first+2}.
   const auto& a = series_[static_cast<std::size_t>(first)];
-  const auto& b = series_[static_cast<std::size_t>(first + 2)];
+  const auto& b = series_[static_cast<std::size_t>(first) + 2];
   Pair out;
   double term = 1.0;  // t^n / n!
   for (std::size_t n = 0; n < static_cast<std::size_t>(kSeriesTerms); ++n) {

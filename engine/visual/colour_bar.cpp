@@ -98,6 +98,7 @@ void drawColourBar(Image& image, std::int64_t x, std::int64_t top, std::int64_t 
   // The top of the bar is labelled too when the last round tick sits well below it, so the scale's
   // end is always readable.
   std::vector<std::pair<double, std::string>> labels;
+  labels.reserve(ticks.size() + 1);
   for (double t : ticks) labels.emplace_back(t, tickLabel(t, step));
   const double top_value = heat_max * kPercent;
   if (!ticks.empty() && ticks.back() < 0.9 * top_value) {

@@ -60,7 +60,7 @@ GridError solveAndCompare(const Material& material, std::uint32_t points, std::u
   Result<FdCurveSystem> sys = FdCurveSystem::create(material, points, steps);
   EXPECT_TRUE(sys.ok()) << sys.status().toString();
   const std::vector<Mode> m = modes();
-  std::vector<Vec3> target(points), rate(points), out((steps + 1) * points), end_rates(points);
+  std::vector<Vec3> target(points), rate(points), out(std::size_t{steps + 1} * points), end_rates(points);
   for (std::uint32_t j = 0; j < points; ++j) {
     const double v = static_cast<double>(j) / points;
     target[j] = field(m, v, false);
@@ -122,7 +122,7 @@ TEST(FdCurveSystem, SecondOrderConvergenceToTheAnalyticTimeBasis) {
 TEST(FdCurveSystem, HitsTheTargetAndStartsAtRest) {
   Result<FdCurveSystem> sys = FdCurveSystem::create(skinMaterial(), 16, 20);
   ASSERT_TRUE(sys.ok());
-  std::vector<Vec3> target(16), out(21 * 16);
+  std::vector<Vec3> target(16), out(std::size_t{21} * 16);
   for (std::uint32_t j = 0; j < 16; ++j) target[j] = Vec3(std::sin(0.3 * j), 1.0, -0.5 * j);
   ASSERT_TRUE(sys->solve(target, {}, out).ok());
   for (std::uint32_t j = 0; j < 16; ++j) {
@@ -136,7 +136,7 @@ TEST(FdCurveSystem, StaticMaterialBlendsLinearlyInTime) {
   Result<FdCurveSystem> sys = FdCurveSystem::create(staticMaterial(), 10, 8);
   ASSERT_TRUE(sys.ok());
   EXPECT_TRUE(sys->rateIgnored());
-  std::vector<Vec3> target(10), out(9 * 10), force(10);
+  std::vector<Vec3> target(10), out(std::size_t{9} * 10), force(10);
   for (std::uint32_t j = 0; j < 10; ++j) target[j] = Vec3(j, 2.0, -1.0);
   ASSERT_TRUE(sys->solve(target, {}, out, force).ok());
   for (std::uint32_t n = 0; n <= 8; ++n) {
@@ -154,7 +154,7 @@ TEST(FdCurveSystem, RejectsBadInput) {
   EXPECT_EQ(FdCurveSystem::create(nan, 8, 8).status().code(), StatusCode::kInvalidArgument);
   Result<FdCurveSystem> sys = FdCurveSystem::create(skinMaterial(), 8, 4);
   ASSERT_TRUE(sys.ok());
-  std::vector<Vec3> target(8), out(5 * 8), wrong(7);
+  std::vector<Vec3> target(8), out(std::size_t{5} * 8), wrong(7);
   EXPECT_EQ(sys->solve(wrong, {}, out).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(sys->solve(target, wrong, out).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(sys->solve(target, {}, wrong).code(), StatusCode::kInvalidArgument);

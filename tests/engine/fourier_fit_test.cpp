@@ -206,6 +206,7 @@ TEST(FourierFitProperties, RssNonIncreasingInN) {
       v.back() = 1.0;
     }
     std::vector<glm::dvec3> points;
+    points.reserve(v.size());
     for (double vj : v) {
       // Open curves get a linear trend, which the p0 + slope v part absorbs.
       points.push_back(wobblyCurve(vj) + (closed ? glm::dvec3(0.0) : glm::dvec3(vj, 0.0, 0.0)));
@@ -301,6 +302,7 @@ TEST(FourierFitProperties, ArcLengthParameters) {
 TEST(FourierFitInvalid, ModeCountOutOfRange) {
   const std::vector<double> v = jitteredParameters(200);
   std::vector<glm::dvec3> points;
+  points.reserve(v.size());
   for (double vj : v) points.push_back(wobblyCurve(vj));
   for (const int modes : {0, -1, kMaxFourierModes + 1}) {
     const Result<FourierFit> fit = fitFourier(v, points, modes, true);
@@ -313,6 +315,7 @@ TEST(FourierFitInvalid, ModeCountOutOfRange) {
 TEST(FourierFitInvalid, BadSpans) {
   const std::vector<double> v = jitteredParameters(9);
   std::vector<glm::dvec3> points;
+  points.reserve(v.size());
   for (double vj : v) points.push_back(wobblyCurve(vj));
 
   const std::vector<double> short_v(v.begin(), v.end() - 1);
@@ -350,6 +353,7 @@ TEST(FourierFitInvalid, RankDeficiency) {
   // Too few samples for 2N+1 (closed) or 2N (open interior) unknowns.
   const std::vector<double> v5 = {0.0, 0.2, 0.4, 0.6, 0.8};
   std::vector<glm::dvec3> p5;
+  p5.reserve(v5.size());
   for (double vj : v5) p5.push_back(wobblyCurve(vj));
   const Result<FourierFit> closed = fitFourier(v5, p5, 3, true);
   EXPECT_EQ(closed.status().code(), StatusCode::kIllPosed);

@@ -132,7 +132,7 @@ std::vector<double> sample(const Channel& c, double t, std::size_t n) {
   const double td = c.input[k + 1] - c.input[k];
   const double s = (t - c.input[k]) / td;
   std::vector<double> out(n);
-  const std::vector<double> v0 = value(k), v1 = value(k + 1);
+  std::vector<double> v0 = value(k), v1 = value(k + 1);
   if (c.interpolation == "STEP") return v0;
   if (c.interpolation == "LINEAR") {
     if (c.path == "rotation") {
@@ -241,7 +241,7 @@ class GltfPlayback {
       glm::dmat4 local = trs(t[n], r[n], s[n]);
       if (node.matrix.size() == 16) {
         for (int c = 0; c < 4; ++c) {
-          for (int row = 0; row < 4; ++row) local[c][row] = node.matrix[static_cast<std::size_t>(4 * c + row)];
+          for (int row = 0; row < 4; ++row) local[c][row] = node.matrix[4 * static_cast<std::size_t>(c) + static_cast<std::size_t>(row)];
         }
       }
       world[n] = parents_[n] < 0 ? local : worldOf(static_cast<std::size_t>(parents_[n])) * local;
@@ -360,7 +360,8 @@ class GltfExportTest : public testing::TempDirTest {
     const double box = report->box;
     const double t_end = static_cast<double>(asset.segments.size());
     double worst = 0.0, worst_t = 0.0, worst_key = 0.0;
-    for (double t = 0.0; t <= t_end + 1e-9; t += 0.125) {
+    for (std::size_t eighth = 0; eighth <= 8 * asset.segments.size(); ++eighth) {  // every 1/8 of a segment
+      const double t = 0.125 * static_cast<double>(eighth);
       for (const double at : {t, std::min(t + 0.0371, t_end)}) {  // keys, and times off the key grid
         const std::vector<Vec3> expected = playerPositions(asset, at);
         const std::vector<Vec3> played = gltf.positionsAt(at * asset.segment_seconds);

@@ -70,12 +70,24 @@ Outcome runOdeskin(const std::vector<std::string>& args, const fs::path& io_dir,
   std::vector<std::string> argv_text{ODESKIN_PROGRAM};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
+  argv.reserve(argv_text.size() + 1);
   for (std::string& a : argv_text) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // The child's environment is built here, before fork: between fork and exec only async-signal-safe
+  // calls are allowed, and setenv is not one (it allocates, and another thread may hold malloc's lock).
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e != nullptr; ++e) {
+    const std::string entry(*e);
+    if (!options.env.contains(entry.substr(0, entry.find('=')))) env_text.push_back(entry);
+  }
+  for (const auto& [name, value] : options.env) env_text.push_back(name + "=" + value);
+  std::vector<char*> envp;
+  envp.reserve(env_text.size() + 1);
+  for (std::string& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
 
   const pid_t pid = ::fork();
   if (pid == 0) {
-    for (const auto& [name, value] : options.env) ::setenv(name.c_str(), value.c_str(), 1);
     const int out_fd = ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err_fd = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (out_fd < 0 || err_fd < 0) ::_exit(126);
@@ -91,7 +103,7 @@ Outcome runOdeskin(const std::vector<std::string>& args, const fs::path& io_dir,
                          static_cast<rlim_t>(options.address_space_limit)};
       ::setrlimit(RLIMIT_AS, &limit);
     }
-    ::execv(argv[0], argv.data());
+    ::execve(argv[0], argv.data(), envp.data());
     ::_exit(127);
   }
   Outcome outcome;

@@ -19,7 +19,7 @@ namespace odeskin::testing {
 
 // A fresh folder per process: ctest runs each test of a file as its own process, in parallel.
 inline std::filesystem::path scratchDir(const std::string& prefix, const std::string& name) {
-  const std::filesystem::path dir =
+  std::filesystem::path dir =
       std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
