@@ -17,18 +17,20 @@ namespace {
 // The slab of a value (values are >= 0 and finite here).
 std::uint32_t slabOf(double value, double spacing) { return static_cast<std::uint32_t>(std::floor(value / spacing)); }
 
-// The length-weighted centroid from the contour's points already placed (point(i): point i).
+// The length-weighted centroid from the contour's points already placed (point(i): point i); the
+// contour's length (the same sum, in the same order) into `length` if given.
 template <typename Point>
-Vec3 centroidOf(const LevelContour& contour, const Point& point) {
+Vec3 centroidOf(const LevelContour& contour, const Point& point, double* length = nullptr) {
   Vec3 sum(0.0);
   double total = 0.0;
   for (const auto& s : contour.segments) {
     const Vec3 a = point(s[0]);
     const Vec3 b = point(s[1]);
-    const double length = glm::length(b - a);
-    sum += 0.5 * length * (a + b);
-    total += length;
+    const double segment = glm::length(b - a);
+    sum += 0.5 * segment * (a + b);
+    total += segment;
   }
+  if (length != nullptr) *length = total;
   if (total > 0.0) return sum / total;
   Vec3 mean(0.0);
   for (std::size_t i = 0; i < contour.points.size(); ++i) mean += point(static_cast<std::uint32_t>(i));
@@ -139,17 +141,17 @@ MeshTopology meshTopology(std::span<const Vec3> positions, const FaceList& faces
 namespace {
 
 // The planar front through A (at ta) and B (at tb) reaching C, if its characteristic through C
-// crosses the edge AB (upwind); +infinity otherwise.
-double triangleUpdate(const Vec3& a, const Vec3& b, const Vec3& c, double ta, double tb) {
-  const Vec3 ab = b - a;
-  const double length = glm::length(ab);
-  if (!(length > 0.0)) return kUnreached;
-  const Vec3 ex = ab / length;
+// crosses the edge AB (upwind); +infinity otherwise. `length` is |B - A| (the corner-step table's
+// length of that edge: the same number glm::length(b - a) gives, the difference's sign aside).
+// The cheap rejections come first; every rejection gives +infinity whatever its order.
+double triangleUpdate(const Vec3& a, const Vec3& b, const Vec3& c, double ta, double tb, double length) {
+  const double d = tb - ta;
+  if (!(length > 0.0) || std::abs(d) >= length) return kUnreached;
+  const Vec3 ex = (b - a) / length;
   const Vec3 ac = c - a;
   const double xc = glm::dot(ac, ex);
   const double yc = glm::length(ac - xc * ex);
-  const double d = tb - ta;
-  if (!(yc > 0.0) || std::abs(d) >= length) return kUnreached;
+  if (!(yc > 0.0)) return kUnreached;
   const double gx = d / length;
   const double gy = std::sqrt(1.0 - gx * gx);
   const double foot = xc - yc / gy * gx;
@@ -244,7 +246,13 @@ std::vector<double> surfaceDistance(const MeshTopology& mesh, std::span<const Ve
       if (fixed[c]) continue;
       const std::uint32_t o = step.other;
       double candidate = d + step.length;
-      if (fixed[o]) candidate = std::min(candidate, triangleUpdate(positions[u], positions[o], positions[c], d, distance[o]));
+      // A planar update is never below max(d, distance[o]): where that cannot improve c, skip it
+      // (offer takes only a candidate below distance[c]). Step k ^ 1 is the same triangle's other
+      // corner: its length is |o - u|.
+      if (fixed[o] && std::max(d, distance[o]) < distance[c]) {
+        candidate = std::min(candidate, triangleUpdate(positions[u], positions[o], positions[c], d, distance[o],
+                                                       mesh.vertex_corner_steps[k ^ 1U].length));
+      }
       offer(c, candidate);
     }
     // Edges without a triangle at u (a wire edge of a non-manifold fan) still carry the front.
@@ -318,107 +326,139 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
   LevelGraph graph;
   graph.spacing = spacing;
   const std::size_t t_count = mesh.triangles.size();
+  const std::size_t e_count = mesh.edges.size();
   // Slabs per vertex (kUnreachedSlab where f is infinite), computed once.
   constexpr std::uint32_t kUnreachedSlab = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> vertex_slab(f.size());
   for (std::size_t v = 0; v < f.size(); ++v) vertex_slab[v] = std::isfinite(f[v]) ? slabOf(f[v], spacing) : kUnreachedSlab;
-  std::vector<char> reached_triangle(t_count, 0);
-  auto reached = [&](std::uint32_t t) { return reached_triangle[t] != 0; };
 
-  // Pieces: triangle t owns one piece per slab in [lo[t], hi[t]].
-  std::vector<std::uint32_t> lo(t_count, 0), hi(t_count, 0), base(t_count + 1, 0);
+  // Pieces: triangle t owns one piece per slab in [lo[t], lo[t] + base[t + 1] - base[t]); a
+  // triangle with a corner unreached owns none.
+  std::vector<std::uint32_t> lo(t_count, 0), base(t_count + 1, 0);
   for (std::uint32_t t = 0; t < t_count; ++t) {
     const auto& tri = mesh.triangles[t];
     const std::uint32_t a = vertex_slab[tri[0]], b = vertex_slab[tri[1]], c = vertex_slab[tri[2]];
     std::uint32_t count = 0;
     if (a != kUnreachedSlab && b != kUnreachedSlab && c != kUnreachedSlab) {
-      reached_triangle[t] = 1;
       lo[t] = std::min({a, b, c});
-      hi[t] = std::max({a, b, c});
-      count = hi[t] - lo[t] + 1;
+      count = std::max({a, b, c}) - lo[t] + 1;
     }
     base[t + 1] = base[t] + count;
   }
+  auto reached = [&](std::uint32_t t) { return base[t + 1] != base[t]; };
   auto piece = [&](std::uint32_t t, std::uint32_t slab) { return base[t] + slab - lo[t]; };
-  DisjointSets pieces(base[t_count]);
-  // Neighbouring triangles' pieces of a slab meet where their shared edge meets the slab.
-  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
-    const auto [t0, t1] = mesh.edge_triangles[e];
-    if (t1 < 0) continue;
-    const auto a = static_cast<std::uint32_t>(t0);
-    const auto b = static_cast<std::uint32_t>(t1);
-    if (!reached(a) || !reached(b)) continue;
-    const std::uint32_t su = vertex_slab[mesh.edges[e][0]];
-    const std::uint32_t sv = vertex_slab[mesh.edges[e][1]];
-    for (std::uint32_t s = std::min(su, sv); s <= std::max(su, sv); ++s) pieces.unite(piece(a, s), piece(b, s));
-  }
-  std::vector<std::uint32_t> region_of_root(base[t_count], LevelGraph::kNoRegion);
-  auto regionOf = [&](std::uint32_t t, std::uint32_t slab) {
-    const std::uint32_t root = pieces.find(piece(t, slab));
-    if (region_of_root[root] == LevelGraph::kNoRegion) {
-      region_of_root[root] = static_cast<std::uint32_t>(graph.regions.size());
-      graph.regions.emplace_back().slab = slab;
-    }
-    return region_of_root[root];
-  };
-  graph.vertex_region.assign(positions.size(), LevelGraph::kNoRegion);
-  for (std::uint32_t t = 0; t < t_count; ++t) {
-    if (!reached(t)) continue;
-    for (std::uint32_t s = lo[t]; s <= hi[t]; ++s) regionOf(t, s);
-    for (const std::uint32_t v : mesh.triangles[t]) {
-      if (graph.vertex_region[v] == LevelGraph::kNoRegion) graph.vertex_region[v] = regionOf(t, vertex_slab[v]);
-    }
-  }
-  for (std::uint32_t v = 0; v < positions.size(); ++v) {
-    if (graph.vertex_region[v] != LevelGraph::kNoRegion) graph.regions[graph.vertex_region[v]].vertices.push_back(v);
-  }
 
-  // Crossings: edge e meets level s (f = s * spacing) for s in (slab(min f), slab(max f)].
-  std::vector<std::uint32_t> crossing_base(mesh.edges.size() + 1, 0);
-  std::vector<std::uint32_t> edge_lo(mesh.edges.size(), 0);
-  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+  // One pass over the edges: neighbouring triangles' pieces of a slab meet where their shared edge
+  // meets the slab, and edge e crosses level s (f = s * spacing) for s in (slab(min f), slab(max f)].
+  DisjointSets pieces(base[t_count]);
+  std::vector<std::uint32_t> crossing_base(e_count + 1, 0);
+  std::vector<std::uint32_t> edge_lo(e_count, 0);
+  for (std::size_t e = 0; e < e_count; ++e) {
     const std::uint32_t su = vertex_slab[mesh.edges[e][0]];
     const std::uint32_t sv = vertex_slab[mesh.edges[e][1]];
     std::uint32_t count = 0;
     if (su != kUnreachedSlab && sv != kUnreachedSlab) {
       edge_lo[e] = std::min(su, sv);
       count = std::max(su, sv) - edge_lo[e];
+      const auto [t0, t1] = mesh.edge_triangles[e];
+      if (t1 >= 0 && reached(static_cast<std::uint32_t>(t0)) && reached(static_cast<std::uint32_t>(t1))) {
+        const auto a = static_cast<std::uint32_t>(t0);
+        const auto b = static_cast<std::uint32_t>(t1);
+        for (std::uint32_t s = edge_lo[e]; s <= edge_lo[e] + count; ++s) pieces.unite(piece(a, s), piece(b, s));
+      }
     }
     crossing_base[e + 1] = crossing_base[e] + count;
   }
-  std::vector<std::uint32_t> crossing_edge(crossing_base.back());
-  for (std::uint32_t e = 0; e < mesh.edges.size(); ++e) {
-    for (std::uint32_t c = crossing_base[e]; c < crossing_base[e + 1]; ++c) crossing_edge[c] = e;
+  pieces.flatten();
+
+  // Regions numbered in the order the triangles first meet them (pieces, then corners).
+  std::vector<std::uint32_t> region_of_root(base[t_count], LevelGraph::kNoRegion);
+  graph.vertex_region.assign(positions.size(), LevelGraph::kNoRegion);
+  for (std::uint32_t t = 0; t < t_count; ++t) {
+    for (std::uint32_t p = base[t]; p < base[t + 1]; ++p) {
+      std::uint32_t& region = region_of_root[pieces.parent[p]];
+      if (region == LevelGraph::kNoRegion) {
+        region = static_cast<std::uint32_t>(graph.regions.size());
+        graph.regions.emplace_back().slab = lo[t] + p - base[t];
+      }
+    }
+    if (!reached(t)) continue;
+    for (const std::uint32_t v : mesh.triangles[t]) {
+      if (graph.vertex_region[v] == LevelGraph::kNoRegion) graph.vertex_region[v] = region_of_root[pieces.parent[piece(t, vertex_slab[v])]];
+    }
   }
+  auto regionOf = [&](std::uint32_t t, std::uint32_t slab) { return region_of_root[pieces.parent[piece(t, slab)]]; };
+  {
+    std::vector<std::uint32_t> sizes(graph.regions.size(), 0);
+    for (const std::uint32_t r : graph.vertex_region) {
+      if (r != LevelGraph::kNoRegion) ++sizes[r];
+    }
+    for (std::size_t r = 0; r < sizes.size(); ++r) graph.regions[r].vertices.reserve(sizes[r]);
+  }
+  for (std::uint32_t v = 0; v < positions.size(); ++v) {
+    if (graph.vertex_region[v] != LevelGraph::kNoRegion) graph.regions[graph.vertex_region[v]].vertices.push_back(v);
+  }
+
+  // Segments: one per level strictly inside a reached triangle's slab range, between the
+  // crossings of that level on two of its edges.
+  const std::uint32_t crossing_count = crossing_base.back();
   auto crossing = [&](std::uint32_t e, std::uint32_t s) { return crossing_base[e] + s - edge_lo[e] - 1; };
   auto crosses = [&](std::uint32_t e, std::uint32_t s) {
     return s > edge_lo[e] && s <= edge_lo[e] + (crossing_base[e + 1] - crossing_base[e]);
   };
   struct Segment {
-    std::uint32_t c0, c1, triangle, level;
+    std::uint32_t e0, e1, triangle, level;
   };
   std::vector<Segment> segments;
-  DisjointSets links(crossing_base.back());
+  DisjointSets links(crossing_count);
   for (std::uint32_t t = 0; t < t_count; ++t) {
-    if (!reached(t)) continue;
-    for (std::uint32_t s = lo[t] + 1; s <= hi[t]; ++s) {
+    if (base[t + 1] - base[t] < 2) continue;
+    const std::uint32_t hi = lo[t] + (base[t + 1] - base[t]) - 1;
+    for (std::uint32_t s = lo[t] + 1; s <= hi; ++s) {
       std::uint32_t found[2] = {0, 0};
       int n = 0;
       for (const std::uint32_t e : mesh.triangle_edges[t]) {
-        if (crosses(e, s) && n < 2) found[n++] = crossing(e, s);
+        if (crosses(e, s) && n < 2) found[n++] = e;
       }
       assert(n == 2);
-      links.unite(found[0], found[1]);
+      links.unite(crossing(found[0], s), crossing(found[1], s));
       segments.push_back({found[0], found[1], t, s});
     }
   }
-  std::vector<std::uint32_t> contour_of_root(crossing_base.back(), LevelGraph::kNoRegion);
-  std::vector<std::uint32_t> point_of_crossing(crossing_base.back(), LevelGraph::kNoRegion);
-  std::vector<std::uint32_t> uses(crossing_base.back(), 0);
-  auto pointOf = [&](LevelContour& contour, std::uint32_t c) {
+  links.flatten();
+
+  // Contours numbered in the order the segments first meet them, their sizes counted before they
+  // are filled.
+  std::vector<std::uint32_t> contour_of_root(crossing_count, LevelGraph::kNoRegion);
+  std::vector<std::uint32_t> segment_counts;
+  for (const Segment& seg : segments) {
+    const std::uint32_t root = links.parent[crossing(seg.e0, seg.level)];
+    if (contour_of_root[root] == LevelGraph::kNoRegion) {
+      contour_of_root[root] = static_cast<std::uint32_t>(graph.contours.size());
+      LevelContour& created = graph.contours.emplace_back();
+      created.level = seg.level;
+      created.lower = regionOf(seg.triangle, seg.level - 1);
+      created.upper = regionOf(seg.triangle, seg.level);
+      segment_counts.push_back(0);
+    }
+    ++segment_counts[contour_of_root[root]];
+  }
+  {
+    std::vector<std::uint32_t> point_counts(graph.contours.size(), 0);
+    for (std::uint32_t c = 0; c < crossing_count; ++c) {
+      const std::uint32_t contour = contour_of_root[links.parent[c]];
+      if (contour != LevelGraph::kNoRegion) ++point_counts[contour];
+    }
+    for (std::size_t c = 0; c < graph.contours.size(); ++c) {
+      graph.contours[c].points.reserve(point_counts[c]);
+      graph.contours[c].segments.reserve(segment_counts[c]);
+    }
+  }
+  std::vector<std::uint32_t> point_of_crossing(crossing_count, LevelGraph::kNoRegion);
+  std::vector<std::uint32_t> uses(crossing_count, 0);
+  auto pointOf = [&](LevelContour& contour, std::uint32_t e, std::uint32_t s) {
+    const std::uint32_t c = crossing(e, s);
     if (point_of_crossing[c] == LevelGraph::kNoRegion) {
-      const std::uint32_t e = crossing_edge[c];
-      const std::uint32_t s = c - crossing_base[e] + edge_lo[e] + 1;
       std::uint32_t a = mesh.edges[e][0];
       std::uint32_t b = mesh.edges[e][1];
       if (f[a] > f[b]) std::swap(a, b);
@@ -431,31 +471,28 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
     return point_of_crossing[c];
   };
   for (const Segment& seg : segments) {
-    const std::uint32_t root = links.find(seg.c0);
-    if (contour_of_root[root] == LevelGraph::kNoRegion) {
-      contour_of_root[root] = static_cast<std::uint32_t>(graph.contours.size());
-      LevelContour& created = graph.contours.emplace_back();
-      created.level = seg.level;
-      created.lower = regionOf(seg.triangle, seg.level - 1);
-      created.upper = regionOf(seg.triangle, seg.level);
-    }
-    LevelContour& contour = graph.contours[contour_of_root[root]];
-    const std::uint32_t p0 = pointOf(contour, seg.c0);
-    const std::uint32_t p1 = pointOf(contour, seg.c1);
+    LevelContour& contour = graph.contours[contour_of_root[links.parent[crossing(seg.e0, seg.level)]]];
+    const std::uint32_t p0 = pointOf(contour, seg.e0, seg.level);
+    const std::uint32_t p1 = pointOf(contour, seg.e1, seg.level);
     contour.segments.push_back({p0, p1});
   }
-  for (std::size_t c = 0; c < uses.size(); ++c) {
-    if (uses[c] == 1) graph.contours[contour_of_root[links.find(static_cast<std::uint32_t>(c))]].closed = false;
+  for (std::uint32_t c = 0; c < crossing_count; ++c) {
+    if (uses[c] == 1) graph.contours[contour_of_root[links.parent[c]]].closed = false;
   }
-  std::vector<Vec3> at;  // a contour's points on `positions`, computed once for its three sums
+  {
+    std::vector<std::uint32_t> sizes(graph.regions.size(), 0);
+    for (const LevelContour& contour : graph.contours) {
+      ++sizes[contour.lower];
+      ++sizes[contour.upper];
+    }
+    for (std::size_t r = 0; r < sizes.size(); ++r) graph.regions[r].contours.reserve(sizes[r]);
+  }
+  std::vector<Vec3> at;  // a contour's points on `positions`, computed once for its sums
   for (std::uint32_t c = 0; c < graph.contours.size(); ++c) {
     LevelContour& contour = graph.contours[c];
     at.clear();
     for (const CurvePoint& p : contour.points) at.push_back(curvePointPosition(positions, p));
-    contour.centroid = centroidOf(contour, [&](std::uint32_t i) { return at[i]; });
-    double length = 0.0;
-    for (const auto& s : contour.segments) length += glm::length(at[s[1]] - at[s[0]]);
-    contour.length = length;
+    contour.centroid = centroidOf(contour, [&](std::uint32_t i) { return at[i]; }, &contour.length);
     double radius = 0.0;
     for (const Vec3& p : at) radius += glm::length(p - contour.centroid);
     contour.radius = contour.points.empty() ? 0.0 : radius / static_cast<double>(contour.points.size());

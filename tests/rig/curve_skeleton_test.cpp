@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/core/disjoint_sets.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_skeleton_levels.hpp"
 #include "rig_test_meshes.hpp"
@@ -70,6 +71,21 @@ TEST(CurveSkeleton, TopologyOfACube) {
       EXPECT_EQ(e[1], std::max(a, b));
     }
   }
+}
+
+TEST(CurveSkeleton, FlattenedSetsPointAtTheirSmallestMember) {
+  // The level graph reads parent[] directly after flatten(): it must be find() for every member,
+  // and that root the smallest member, whatever order the unions came in.
+  DisjointSets sets(40);
+  const std::uint32_t pairs[][2] = {{39, 7}, {7, 21}, {21, 30}, {5, 38}, {38, 30}, {12, 13}, {13, 2}, {33, 34}, {34, 35}};
+  for (const auto& p : pairs) sets.unite(p[0], p[1]);
+  DisjointSets reference = sets;
+  sets.flatten();
+  for (std::uint32_t x = 0; x < 40; ++x) EXPECT_EQ(sets.parent[x], reference.find(x)) << x;
+  for (const std::uint32_t x : {39u, 7u, 21u, 30u, 38u}) EXPECT_EQ(sets.parent[x], 5u);
+  EXPECT_EQ(sets.parent[13], 2u);
+  EXPECT_EQ(sets.parent[35], 33u);
+  EXPECT_EQ(sets.parent[17], 17u);
 }
 
 TEST(CurveSkeleton, FastMarchingBeatsEdgePathsOnAGrid) {
