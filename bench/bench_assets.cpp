@@ -45,7 +45,8 @@ std::vector<VerifiedSize>& verifiedList() {
 // Setup failures are not benchmark results: stop the whole program with the reason.
 [[noreturn]] void fail(const std::string& what) {
   std::fprintf(stderr, "odeskin_deform_bench: %s\n", what.c_str());
-  std::exit(3);
+  std::fflush(nullptr);
+  std::_Exit(3);  // not exit(): a benchmark thread may still be running, and exit() is not thread-safe
 }
 
 template <typename T>

@@ -98,7 +98,7 @@ void runDeform(benchmark::State& state, BenchAsset& b, Backend backend) {
     double gpu_seconds = 0.0;
     const GpuDeformFrame frame{b.segment, b.gpu_bones, b.gpu_basis};
     timeLoop(state, [&] {
-      const Status status = b.gpu_deformer->run(frame);
+      Status status = b.gpu_deformer->run(frame);
       gpu_seconds += b.gpu_deformer->lastGpuSeconds();
       return status;
     });
@@ -131,7 +131,7 @@ void runLbs(benchmark::State& state, BenchAsset& b, Backend backend) {
     double gpu_seconds = 0.0;
     const GpuLbsFrame frame{b.gpu_bones};
     timeLoop(state, [&] {
-      const Status status = b.gpu_lbs->run(frame);
+      Status status = b.gpu_lbs->run(frame);
       gpu_seconds += b.gpu_lbs->lastGpuSeconds();
       return status;
     });

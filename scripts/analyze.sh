@@ -21,9 +21,11 @@ case "${1:-}" in
   --cppcheck-only) run_cppcheck=1; run_tidy=0; shift ;;
   --clang-tidy-only) run_cppcheck=0; run_tidy=1; shift ;;
 esac
-# clang-tidy file filters: regexes on the absolute path; by default all of our sources.
+# clang-tidy file filters: regexes on the absolute path; by default all of our sources, less
+# engine/visual/stb_png.cpp, which only compiles Debian's stb_image_write implementation (upstream
+# code: the analyzer finds a leak on an out-of-memory path inside stbi_write_png_to_mem).
 filters=("$@")
-((${#filters[@]} > 0)) || filters=("^$root/(engine|host|samples|bench|tests)/")
+((${#filters[@]} > 0)) || filters=("^$root/(engine|host|samples|bench|tests)/(?!visual/stb_png\\.cpp$)")
 
 if [[ ! -f "$build/compile_commands.json" ]]; then
   echo "odeskin: $build/compile_commands.json is missing; build first (scripts/build.sh)" >&2

@@ -63,7 +63,7 @@ Status checkSizes(const PackedDeformData& d) {
     return invalid("segment_vertices has " + str(d.segment_vertices.size()) + ", expected segment_count x vertex_count");
   }
   if (d.curve_materials.size() != d.curve_count) return invalid("curve_materials size differs from curve_count");
-  if (d.coefficients.size() != d.segment_count * d.curve_count * m_count) {
+  if (d.coefficients.size() != std::size_t{d.segment_count} * d.curve_count * m_count) {
     return invalid("coefficients has " + str(d.coefficients.size()) + ", expected segment_count x curve_count x (2N+2)");
   }
   if (!d.rates.empty() && d.rates.size() != d.coefficients.size()) return invalid("rates size differs from coefficients");
@@ -235,7 +235,7 @@ void fillCoefficients(const PackedDeformData& d, Layout& out) {
     out.curve_trends[sc] = nonzero(trend) || nonzero(trend + 1) || nonzero(trend + 2) ? 1 : 0;
     for (std::uint32_t n = d.modes; n >= 1; --n) {
       bool any = false;
-      for (std::size_t e = (sc * m_count + 2 * n - 1) * 3; e < (sc * m_count + 2 * n + 1) * 3; ++e) any = any || nonzero(e);
+      for (std::size_t e = (sc * m_count + 2 * std::size_t{n} - 1) * 3; e < (sc * m_count + 2 * std::size_t{n} + 1) * 3; ++e) any = any || nonzero(e);
       if (any) {
         out.curve_modes[sc] = n;
         break;

@@ -18,9 +18,9 @@ constexpr std::size_t kFloatBytes = 4;
 
 std::string bytesText(std::uintmax_t bytes) {
   char text[64];
-  if (bytes < 10 * 1024) {
+  if (bytes < std::uintmax_t{10} * 1024) {
     std::snprintf(text, sizeof text, "%ju B", bytes);
-  } else if (bytes < 10 * 1024 * 1024) {
+  } else if (bytes < std::uintmax_t{10} * 1024 * 1024) {
     std::snprintf(text, sizeof text, "%ju B (%.1f KiB)", bytes, static_cast<double>(bytes) / 1024.0);
   } else {
     std::snprintf(text, sizeof text, "%ju B (%.1f MiB)", bytes, static_cast<double>(bytes) / (1024.0 * 1024.0));

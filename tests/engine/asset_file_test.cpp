@@ -162,7 +162,7 @@ std::vector<std::pair<std::string, std::string>> sections(const std::string& fil
 }
 
 std::filesystem::path scratchDir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("odeskin_asset_file_test_" + name);
+  std::filesystem::path dir = std::filesystem::temp_directory_path() / ("odeskin_asset_file_test_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

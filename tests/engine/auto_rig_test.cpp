@@ -238,6 +238,7 @@ TEST(AutoRig, BadInput) {
   }
   // A mesh whose vertices lie on one line has no rotation to find.
   std::vector<Vec3> line;
+  line.reserve(10);
   for (int i = 0; i < 10; ++i) line.push_back(Vec3(0.1 * i, 0.0, 0.0));
   std::vector<Vec3> moved = line;
   for (Vec3& p : moved) p += Vec3(0.0, 1.0, 0.0);

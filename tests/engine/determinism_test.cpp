@@ -13,6 +13,8 @@
 // "4 threads" is forced with tbb::global_control and a tbb::task_arena even on a 2-core machine;
 // a probe checks that more than one thread really ran, else the comparison would prove nothing.
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -305,16 +307,17 @@ TEST(Determinism, FastJobIsBitIdenticalAcrossThreadsAndWithinTolerance) {
   std::printf("fast job: max |fast - reference| / box = %.2e over %zu frames\n", worst, frames.size());
 }
 
-// Restores ODESKIN_CPU_KERNEL_ARCH (which caps the instruction set CpuRuntime's kernels pick).
+// Restores ODESKIN_CPU_KERNEL_ARCH (which caps the instruction set CpuRuntime's kernels pick). The
+// environment is changed between runs, while no other thread of the test reads it, hence the NOLINTs.
 class ArchCap {
  public:
   explicit ArchCap(const char* arch) {
     if (const char* old = std::getenv("ODESKIN_CPU_KERNEL_ARCH")) old_ = old;
-    setenv("ODESKIN_CPU_KERNEL_ARCH", arch, 1);
+    setenv("ODESKIN_CPU_KERNEL_ARCH", arch, 1);  // NOLINT(concurrency-mt-unsafe)
   }
   ~ArchCap() {
-    if (old_) setenv("ODESKIN_CPU_KERNEL_ARCH", old_->c_str(), 1);
-    else unsetenv("ODESKIN_CPU_KERNEL_ARCH");
+    if (old_) setenv("ODESKIN_CPU_KERNEL_ARCH", old_->c_str(), 1);  // NOLINT(concurrency-mt-unsafe)
+    else unsetenv("ODESKIN_CPU_KERNEL_ARCH");                         // NOLINT(concurrency-mt-unsafe)
   }
   ArchCap(const ArchCap&) = delete;
   ArchCap& operator=(const ArchCap&) = delete;
@@ -370,7 +373,10 @@ RuntimeFrame runtimeFrame(const RuntimeAsset& asset, unsigned threads, std::uint
 bool sameBounds(const std::vector<InstanceBounds>& a, const std::vector<InstanceBounds>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t k = 0; k < a.size(); ++k) {
-    if (std::memcmp(&a[k].min, &b[k].min, sizeof(glm::vec3)) != 0 || std::memcmp(&a[k].max, &b[k].max, sizeof(glm::vec3)) != 0) return false;
+    // Bits, not values: -0 and +0 (or two NaNs) must not pass as the same result.
+    using Bits = std::array<std::uint32_t, 3>;
+    if (std::bit_cast<Bits>(a[k].min) != std::bit_cast<Bits>(b[k].min)) return false;
+    if (std::bit_cast<Bits>(a[k].max) != std::bit_cast<Bits>(b[k].max)) return false;
   }
   return true;
 }

@@ -100,7 +100,7 @@ TEST_F(SurfaceTessellatorTest, CardinalTableForEveryVectorShape) {
       for (std::uint32_t i = 0; i < samples; ++i) {
         const Ode6Values ref = n.cardinalAt(0).evaluate(static_cast<double>(i) / (samples - 1));
         for (std::size_t k = 0; k < 6; ++k) {
-          worst = std::max(worst, std::abs(table[6 * i + k] - ref[k]) / (1.0 + std::abs(ref[k])));
+          worst = std::max(worst, std::abs(table[6 * std::size_t{i} + k] - ref[k]) / (1.0 + std::abs(ref[k])));
         }
       }
       EXPECT_LE(worst, kParity) << c.at("note") << ", " << samples << " samples";

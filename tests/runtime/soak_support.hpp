@@ -49,7 +49,7 @@ struct SoakConfig {
     return n;
   }
 
-  static SoakConfig fromEnvironment(SoakConfig defaults) {
+  static SoakConfig fromEnvironment(const SoakConfig& defaults) {
     SoakConfig c = defaults;
     if (const char* mesh = std::getenv("ODESKIN_SOAK_MESH"); mesh != nullptr && *mesh != '\0') c.mesh = mesh;
     c.instances = static_cast<std::uint32_t>(number("ODESKIN_SOAK_INSTANCES", c.instances));
@@ -92,7 +92,7 @@ struct SoakClock {
   }
   std::uint32_t preset(std::uint32_t k) const { return k % presets; }
   static bool engineBones(std::uint32_t k) { return k % 4 == 3; }
-  static Vec3 place(std::uint32_t k) { return Vec3(1.5 * (k % 10), 0.0, 1.5 * (k / 10)); }
+  static Vec3 place(std::uint32_t k) { return Vec3(1.5 * (k % 10), 0.0, 1.5 * static_cast<double>(k / 10)); }
 };
 
 // The asset's interpolated bones at `t`, translated to `offset` (no allocation).
@@ -134,7 +134,7 @@ inline std::span<const gpu::BoneMatrix> givenBones(std::span<const gpu::BoneMatr
 // The instance the j-th check of frame f compares: a different handful each time, engine-bone
 // instances among them.
 inline std::uint32_t checkedInstance(const SoakConfig& config, std::uint64_t f, std::uint32_t j) {
-  return static_cast<std::uint32_t>((f / config.check_every * 13 + j * 29 + 3 * j) % config.instances);
+  return static_cast<std::uint32_t>((f / config.check_every * 13 + std::uint64_t{j} * 29 + std::uint64_t{j} * 3) % config.instances);
 }
 
 // The double-precision reference (DeformPlayer time bases, FourierDeformJob) of every preset,

@@ -44,7 +44,7 @@ double worstConstraintError(const Patch& patch) {
       const PatchPoint p = patch.evaluate(end, v);
       const Vec3 got[3] = {p.s, p.s_u, p.s_uu};
       for (std::size_t j = 0; j < 3; ++j) {
-        const double error = glm::length(got[j] - patch.curves()[3 * end + j](v, 0));
+        const double error = glm::length(got[j] - patch.curves()[3 * static_cast<std::size_t>(end) + j](v, 0));
         worst = std::max(worst, error / (std::pow(w, static_cast<double>(j)) * size));
       }
     }

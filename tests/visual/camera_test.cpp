@@ -99,6 +99,7 @@ TEST(Camera, FramePointsIsTightCentredAndInside) {
 TEST(Camera, TurntableKeepsTheDistanceAndFramesEveryAngle) {
   const std::vector<Vec3> points = randomCloud(7, Vec3(2.0, 0.5, 0.4), Vec3(0.0, 1.0, 0.0));
   std::vector<double> azimuths;
+  azimuths.reserve(12);
   for (int f = 0; f < 12; ++f) azimuths.push_back(30.0 * f);
   Result<std::vector<Camera>> cameras = turntableCameras(points, 4.0 / 3.0, ViewSpec{}, azimuths);
   ASSERT_TRUE(cameras.ok()) << cameras.status().toString();
