@@ -44,7 +44,8 @@ using Clock = std::chrono::steady_clock;
 
 [[noreturn]] void fail(const std::string& what) {
   std::fprintf(stderr, "odeskin_fd_fps_report: %s\n", what.c_str());
-  std::exit(1);
+  std::fflush(nullptr);
+  std::_Exit(1);  // not exit(), which is not thread-safe
 }
 
 template <typename T>
@@ -104,6 +105,7 @@ Row measure(const Dataset& set, int frames, int repeats) {
   row.segments = asset.segments.size();
   // Frame f at global time t = f (K - 1) / (F - 1): the whole animation, keys included.
   std::vector<std::pair<std::uint32_t, double>> at;
+  at.reserve(static_cast<std::size_t>(frames));
   for (int f = 0; f < frames; ++f) {
     at.push_back(player.locate(static_cast<double>(f) * static_cast<double>(row.segments) / (frames - 1)));
   }

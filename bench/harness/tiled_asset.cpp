@@ -18,6 +18,7 @@ std::vector<T> tiled(const std::vector<T>& source, std::size_t count) {
 Influences tiledInfluences(const Influences& source, std::size_t count) {
   Influences out;
   const std::size_t v = source.vertexCount();
+  if (v == 0) return out;  // nothing to tile
   out.offsets.reserve(count + 1);
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t s = i % v;

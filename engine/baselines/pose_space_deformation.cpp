@@ -80,7 +80,7 @@ Result<PoseSpaceDeformation> PoseSpaceDeformation::create(BaselineRig rig, const
   const InfluencesView view(rig.influences());
   for (std::size_t k = 0; k < keys.size(); ++k) {
     rig.keyBones(k, bones);
-    poseSpaceCoordinates(bones, parents, scales, std::span<double>(examples).subspan(k * 3 * bone_count, 3 * bone_count));
+    poseSpaceCoordinates(bones, parents, scales, std::span<double>(examples).subspan(k * 3 * bone_count, std::size_t{3} * bone_count));
     const std::vector<DualQuaternion> dual = toDualQuaternions(bones);
     for (std::size_t i = 0; i < v_count; ++i) {
       const SkinTransform skin = skinTransform(mode, view, bones, dual, i);

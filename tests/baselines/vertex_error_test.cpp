@@ -32,6 +32,7 @@ TEST(VertexError, BoxComesFromTheGroundTruthOnly) {
   // A deformed mesh ten times larger must not change Lbox.
   const std::vector<Vec3> truth = box();
   std::vector<Vec3> deformed;
+  deformed.reserve(truth.size());
   for (const Vec3& p : truth) deformed.push_back(10.0 * p);
   Result<VertexError> e = vertexError(deformed, truth);
   ASSERT_TRUE(e.ok());

@@ -408,7 +408,7 @@ TEST(CpuDeformKernel, PerFrameInputsAreValidated) {
 TEST(CpuDeformKernel, BadPackedDataIsRejectedAtCreate) {
   const PackedDeformData good = testing::randomPackedData(packedOptions());
   ASSERT_TRUE(CpuDeformKernel::create(good).ok());
-  auto expectCode = [&](PackedDeformData d, StatusCode code, const std::string& names) {
+  auto expectCode = [&](const PackedDeformData& d, StatusCode code, const std::string& names) {
     Result<CpuDeformKernel> k = CpuDeformKernel::create(d);
     ASSERT_FALSE(k.ok()) << names;
     EXPECT_EQ(k.status().code(), code) << k.status().toString();

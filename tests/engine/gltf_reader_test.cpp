@@ -124,7 +124,7 @@ fs::path tempDir() {
 }
 
 fs::path write(const tinygltf::Model& model, const std::string& name, bool binary) {
-  const fs::path path = tempDir() / name;
+  fs::path path = tempDir() / name;
   tinygltf::TinyGLTF writer;
   EXPECT_TRUE(writer.WriteGltfSceneToFile(&model, path.string(), true, true, true, binary)) << path;
   return path;
@@ -348,7 +348,7 @@ Tube makeTube(const TubeOptions& o = {}) {
   tinygltf::Skin skin;
   skin.joints = {1, 2};
   std::vector<double> ibm(32, 0.0);
-  for (int k = 0; k < 4; ++k) ibm[static_cast<std::size_t>(5 * k)] = ibm[static_cast<std::size_t>(16 + 5 * k)] = 1.0;
+  for (std::size_t k = 0; k < 4; ++k) ibm[5 * k] = ibm[16 + 5 * k] = 1.0;
   ibm[16 + 13] = -1.0;  // column 3, row 1 of joint 1's matrix: translate (0, -1, 0)
   skin.inverseBindMatrices = b.accessor(ibm, kFloatType, TINYGLTF_TYPE_MAT4);
   b.model.skins.push_back(skin);
