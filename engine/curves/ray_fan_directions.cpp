@@ -151,9 +151,8 @@ double sectionLength(const PolyMesh& mesh, VertexHandle v, const FanPlane& plane
   const double back = glm::length(far - plane.origin);
   auto side = [&](VertexHandle u) { return u == v ? 0.0 : plane.side(point(mesh, u)); };
   auto crossed = [&](Halfedge h) { return (side(mesh.from_vertex_handle(h)) >= 0.0) != (side(mesh.to_vertex_handle(h)) >= 0.0); };
-  auto where = [&](Halfedge h) {
-    const double a = side(mesh.from_vertex_handle(h));
-    const double b = side(mesh.to_vertex_handle(h));
+  // The crossing point on edge h, given the sides of its ends.
+  auto where = [&](Halfedge h, double a, double b) {
     const double t = a / (a - b);
     return (1.0 - t) * point(mesh, mesh.from_vertex_handle(h)) + t * point(mesh, mesh.to_vertex_handle(h));
   };
@@ -167,28 +166,39 @@ double sectionLength(const PolyMesh& mesh, VertexHandle v, const FanPlane& plane
   if (!start.is_valid()) return kInfinity;
   if (mesh.is_boundary(start)) start = mesh.opposite_halfedge_handle(start);
   const auto start_edge = mesh.edge_handle(start);
+  // The sides of the current edge's ends are carried from face to face: one side() per new corner.
+  double from_side = side(mesh.from_vertex_handle(start));
+  double to_side = side(mesh.to_vertex_handle(start));
   points.clear();
-  points.push_back(where(start));
+  points.push_back(where(start, from_side, to_side));
   double length = 0.0;
   Halfedge h = start;
   for (std::size_t steps = 0; steps <= mesh.n_faces(); ++steps) {
     // The exit paired with the entry: crossings alternate in sign round a face, and a +- entry
     // pairs with the next crossing, a -+ entry with the previous one (symmetric, so a face with
     // four crossings is walked consistently from either side).
-    // One side() per corner: the walk round the face carries the side of the vertex it left.
-    const bool forward = side(mesh.from_vertex_handle(h)) >= 0.0;
+    const bool forward = from_side >= 0.0;
     Halfedge exit = h;
-    bool left_positive = forward ? side(mesh.to_vertex_handle(h)) >= 0.0 : forward;
+    double left_side = forward ? to_side : from_side;  // the corner the walk round the face left
+    bool left_positive = forward ? to_side >= 0.0 : false;
+    double new_side = 0.0;
     for (;;) {
       exit = forward ? mesh.next_halfedge_handle(exit) : mesh.prev_halfedge_handle(exit);
       if (exit == h) return kInfinity;
-      const bool positive = side(forward ? mesh.to_vertex_handle(exit) : mesh.from_vertex_handle(exit)) >= 0.0;
+      new_side = side(forward ? mesh.to_vertex_handle(exit) : mesh.from_vertex_handle(exit));
+      const bool positive = new_side >= 0.0;
       if (positive != left_positive) break;
       left_positive = positive;
+      left_side = new_side;
     }
-    const Vec3 x = where(exit);
+    // exit runs from the corner left to the new one (forward), or from the new one to it.
+    const double exit_from = forward ? left_side : new_side;
+    const double exit_to = forward ? new_side : left_side;
+    const Vec3 x = where(exit, exit_from, exit_to);
     length += glm::length(x - points.back());
     if (length + glm::length(x - far) + back > cap) return kInfinity;
+    from_side = exit_to;  // h becomes the exit's opposite
+    to_side = exit_from;
     h = mesh.opposite_halfedge_handle(exit);
     if (mesh.edge_handle(h) == start_edge) {
       length += glm::length(points.front() - x);
