@@ -18,8 +18,8 @@
 // Closed edge loops (edge_loops.hpp) whose edges are mostly circumferential are then the rings
 // around the limbs, the iso-parametric curves; loops mostly axial run along the limbs.
 // Since a loop's class is a majority anyway, RayFanOptions::loop_samples walks the loops first and
-// runs the test only at a few vertices spread along each (the rig's mode: on a tube about 1 vertex
-// in 12), and every edge takes its loop's class.
+// runs the test only at a few vertices spread along each (the rig's mode: 1 vertex in 7 to 14 on
+// the test tubes), and every edge takes its loop's class.
 #pragma once
 
 #include <cstdint>
@@ -50,7 +50,7 @@ struct RayFanOptions {
   // the maximal straight edge loops (edgeLoops) first, and the test only at vertices spread along
   // each loop until it has k decided votes (or no untested vertex left); a tested vertex votes for
   // every loop through it, each loop takes the majority of its votes and each edge its loop's class
-  // (every edge is on one loop). Same classes on the test meshes, about 1/10 of the rays on a tube.
+  // (every edge is on one loop). Same classes on the test meshes with 1/7 to 1/14 of the rays.
   int loop_samples = 0;
 };
 
