@@ -16,19 +16,29 @@ constexpr double kAcrossAxis = 0.5;
 using Halfedge = PolyMesh::HalfedgeHandle;
 
 // Interior valence 4 or boundary valence 3, and only quads around: "straight on" is defined.
-bool regular(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
-  const unsigned valence = mesh.valence(v);
-  if (valence != (mesh.is_boundary(v) ? 3u : 4u)) return false;
-  for (auto f : mesh.vf_range(v)) {
-    if (mesh.valence(f) != 4) return false;
+// Once per vertex (a walk asks at every step, and each vertex is on two walks).
+std::vector<char> regularVertices(const PolyMesh& mesh) {
+  std::vector<char> quad(mesh.n_faces(), 0);
+  for (auto f : mesh.faces()) quad[static_cast<std::size_t>(f.idx())] = mesh.valence(f) == 4 ? 1 : 0;
+  std::vector<char> regular(mesh.n_vertices(), 0);
+  for (auto v : mesh.vertices()) {
+    const bool boundary = mesh.is_boundary(v);
+    unsigned valence = 0;
+    bool quads = true;
+    for (auto h : mesh.voh_range(v)) {
+      ++valence;
+      const auto f = mesh.face_handle(h);
+      quads = quads && (!f.is_valid() || quad[static_cast<std::size_t>(f.idx())]);
+    }
+    regular[static_cast<std::size_t>(v.idx())] = quads && valence == (boundary ? 3u : 4u) ? 1 : 0;
   }
-  return true;
+  return regular;
 }
 
 // The half-edge that continues `h` straight on through its end vertex, or an invalid handle.
-Halfedge straightOn(const PolyMesh& mesh, Halfedge h) {
+Halfedge straightOn(const PolyMesh& mesh, const std::vector<char>& regular, Halfedge h) {
   const PolyMesh::VertexHandle v = mesh.to_vertex_handle(h);
-  if (!regular(mesh, v)) return Halfedge();
+  if (!regular[static_cast<std::size_t>(v.idx())]) return Halfedge();
   if (mesh.is_boundary(v)) {
     // Along a boundary the walk follows the boundary; an interior edge ends there.
     if (mesh.is_boundary(h)) return mesh.next_halfedge_handle(h);
@@ -51,35 +61,41 @@ double quadFraction(const FaceList& faces) {
 
 std::vector<EdgeLoop> edgeLoops(const PolyMesh& mesh) {
   std::vector<EdgeLoop> loops;
+  const std::vector<char> regular = regularVertices(mesh);
   std::vector<char> seen(mesh.n_edges(), 0);
   auto vertex = [&](Halfedge h) { return static_cast<std::uint32_t>(mesh.to_vertex_handle(h).idx()); };
+  auto edge = [&](Halfedge h) { return static_cast<std::uint32_t>(mesh.edge_handle(h).idx()); };
   std::vector<std::uint32_t> back;
+  std::vector<std::uint32_t> back_edges;
   for (auto e : mesh.edges()) {
     if (seen[static_cast<std::size_t>(e.idx())]) continue;
     seen[static_cast<std::size_t>(e.idx())] = 1;
     const Halfedge h0 = mesh.halfedge_handle(e, 0);
     EdgeLoop loop;
     loop.vertices = {static_cast<std::uint32_t>(mesh.from_vertex_handle(h0).idx()), vertex(h0)};
-    for (Halfedge h = straightOn(mesh, h0); h.is_valid(); h = straightOn(mesh, h)) {
+    loop.edges = {static_cast<std::uint32_t>(e.idx())};
+    for (Halfedge h = straightOn(mesh, regular, h0); h.is_valid(); h = straightOn(mesh, regular, h)) {
       if (h == h0) {
         loop.closed = true;
         loop.vertices.pop_back();  // the start vertex again
         break;
       }
-      const auto edge = static_cast<std::size_t>(mesh.edge_handle(h).idx());
-      if (seen[edge]) break;
-      seen[edge] = 1;
+      if (seen[edge(h)]) break;
+      seen[edge(h)] = 1;
       loop.vertices.push_back(vertex(h));
+      loop.edges.push_back(edge(h));
     }
     if (!loop.closed) {
       back.clear();
-      for (Halfedge h = straightOn(mesh, mesh.opposite_halfedge_handle(h0)); h.is_valid(); h = straightOn(mesh, h)) {
-        const auto edge = static_cast<std::size_t>(mesh.edge_handle(h).idx());
-        if (seen[edge]) break;
-        seen[edge] = 1;
+      back_edges.clear();
+      for (Halfedge h = straightOn(mesh, regular, mesh.opposite_halfedge_handle(h0)); h.is_valid(); h = straightOn(mesh, regular, h)) {
+        if (seen[edge(h)]) break;
+        seen[edge(h)] = 1;
         back.push_back(vertex(h));
+        back_edges.push_back(edge(h));
       }
       loop.vertices.insert(loop.vertices.begin(), back.rbegin(), back.rend());
+      loop.edges.insert(loop.edges.begin(), back_edges.rbegin(), back_edges.rend());
     }
     loops.push_back(std::move(loop));
   }

@@ -19,9 +19,13 @@ namespace odeskin {
 double quadFraction(const FaceList& faces);
 
 // Every maximal straight edge walk, as vertex indices (a closed loop does not repeat its start).
+// Every edge is on exactly one loop.
 struct EdgeLoop {
   std::vector<std::uint32_t> vertices;
   bool closed = false;
+  // PolyMesh edge indices, edges[j] from vertices[j] to vertices[j + 1] (closed: the last one
+  // back to vertices[0]), filled by edgeLoops.
+  std::vector<std::uint32_t> edges;
 };
 std::vector<EdgeLoop> edgeLoops(const PolyMesh& mesh);
 

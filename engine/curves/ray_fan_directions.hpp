@@ -17,6 +17,9 @@
 // or whose fan found no closed section (a junction) still gets a direction from its neighbours.
 // Closed edge loops (edge_loops.hpp) whose edges are mostly circumferential are then the rings
 // around the limbs, the iso-parametric curves; loops mostly axial run along the limbs.
+// Since a loop's class is a majority anyway, RayFanOptions::loop_samples walks the loops first and
+// runs the test only at a few vertices spread along each (the rig's mode: 1 vertex in 7 to 14 on
+// the test tubes), and every edge takes its loop's class.
 #pragma once
 
 #include <cstdint>
@@ -43,13 +46,23 @@ struct RayFanOptions {
   // the axis point (on a quad limb one of them does, and it is all the edge classes need; 3x
   // faster); true: always the whole fan as well, for the axis between the edge lines.
   bool full_fan = false;
+  // 0: the test at every vertex, axes smoothed over one-rings, each end votes on its edges. k > 0:
+  // the maximal straight edge loops (edgeLoops) first, and the test only at vertices spread along
+  // each loop until it has k decided votes (or no untested vertex left); a tested vertex votes for
+  // every loop through it, each loop takes the majority of its votes and each edge its loop's class
+  // (every edge is on one loop). Same classes on the test meshes with 1/7 to 1/14 of the rays.
+  int loop_samples = 0;
 };
 
+// With loop_samples > 0 the per-vertex fields hold only the tested vertices (axes unsmoothed; 0,
+// 0 and not measured elsewhere).
 struct RayFanDirections {
   std::vector<Vec3> axes;            // V: unit axial direction after one-ring smoothing (0 where none)
   std::vector<double> diameters;     // V: ray length to the opposite wall (0: the ray found none)
   std::vector<char> measured;        // V: the fan found a closed section around the axis point
   std::vector<EdgeDirection> edges;  // per PolyMesh edge index
+  std::vector<EdgeLoop> loops;       // loop_samples > 0: edgeLoops(mesh), which directedEdgeLoops reuses
+  std::size_t tested_vertices = 0;   // vertices the ray and fan ran at (all of them with loop_samples 0)
   std::size_t measured_vertices = 0;
   std::size_t axial_edges = 0;
   std::size_t circumferential_edges = 0;

@@ -20,6 +20,9 @@ namespace {
 // A ring needs this many vertices (a coarser loop is not round enough for its centroid to be on
 // the axis).
 constexpr std::size_t kMinRingPoints = 6;
+// Decided ray-and-fan votes per edge loop: a loop's class is its majority, so a few vertices
+// spread along it decide it (RayFanOptions::loop_samples) instead of every vertex.
+constexpr int kLoopSamples = 3;
 
 }  // namespace
 
@@ -29,7 +32,9 @@ Result<CurveSkeleton> skeletonFromEdgeLoops(std::span<const Vec3> rest, const Fa
                                             std::vector<IsoCurve>& curves, EdgeLoopStats& stats) {
   const auto start = std::chrono::steady_clock::now();
   ODESKIN_ASSIGN_OR_RETURN(PolyMesh poly, buildPolyMesh(rest, faces, "curve skeleton"));
-  const RayFanDirections directions = rayFanDirections(poly);
+  RayFanOptions options;
+  options.loop_samples = kLoopSamples;
+  const RayFanDirections directions = rayFanDirections(poly, options);
   DirectedLoops loops = directedEdgeLoops(poly, directions, kMinRingPoints);
   stats.axial_edges = directions.axial_edges;
   stats.circumferential_edges = directions.circumferential_edges;

@@ -80,6 +80,14 @@ void keepObj(const QuadTestMesh& m, const std::string& name) {
 #endif
 }
 
+// The rig's mode (curve_skeleton_loops.cpp): the test at a few vertices of each edge loop.
+constexpr int kSamples = 3;
+RayFanOptions sampledOptions() {
+  RayFanOptions options;
+  options.loop_samples = kSamples;
+  return options;
+}
+
 double diagonal(const std::vector<Vec3>& points) {
   Vec3 lo(1e300), hi(-1e300);
   for (const Vec3& p : points) {
@@ -115,6 +123,16 @@ TEST(RayFanDirections, CapsuleEdgesAndRings) {
     for (const std::uint32_t v : loop.vertices) EXPECT_EQ(m.ring[v], m.ring[loop.vertices.front()]);
   }
   EXPECT_EQ(loops.axial.size(), 24u);
+  // Tested only at a few vertices per loop (the rig's mode): the same classes and loops.
+  const RayFanDirections sampled = rayFanDirections(mesh, sampledOptions());
+  const Accuracy s = ringAccuracy(m, mesh, sampled);
+  std::printf("capsule, %d per loop: %zu of %zu vertices tested, %.2f%% of %zu edges right\n", kSamples, sampled.tested_vertices,
+              m.positions.size(), 100.0 * s.fraction(), s.known);
+  EXPECT_GE(s.fraction(), 0.98);
+  EXPECT_LT(sampled.tested_vertices, m.positions.size() / 4);
+  const DirectedLoops sampled_loops = directedEdgeLoops(mesh, sampled, 6);
+  EXPECT_EQ(sampled_loops.rings.size(), loops.rings.size());
+  EXPECT_EQ(sampled_loops.axial.size(), loops.axial.size());
 }
 
 TEST(RayFanDirections, BentTubeEdgesAndRings) {
@@ -137,6 +155,15 @@ TEST(RayFanDirections, BentTubeEdgesAndRings) {
   // Every ring of the open tube closes (boundary vertices of valence 3 walk along the rims).
   EXPECT_EQ(loops.rings.size(), static_cast<std::size_t>(rings));
   EXPECT_EQ(loops.axial.size(), 24u);
+  const RayFanDirections sampled = rayFanDirections(mesh, sampledOptions());
+  const Accuracy s = ringAccuracy(m, mesh, sampled);
+  std::printf("bent tube, %d per loop: %zu of %zu vertices tested, %.2f%% of %zu edges right\n", kSamples, sampled.tested_vertices,
+              m.positions.size(), 100.0 * s.fraction(), s.known);
+  EXPECT_GE(s.fraction(), 0.98);
+  EXPECT_LT(sampled.tested_vertices, m.positions.size() / 4);
+  const DirectedLoops sampled_loops = directedEdgeLoops(mesh, sampled, 6);
+  EXPECT_EQ(sampled_loops.rings.size(), static_cast<std::size_t>(rings));
+  EXPECT_EQ(sampled_loops.axial.size(), 24u);
 }
 
 TEST(RayFanDirections, SubdividedTShape) {
@@ -155,6 +182,17 @@ TEST(RayFanDirections, SubdividedTShape) {
     std::printf("T: %zu rings, %zu lines\n", loops.rings.size(), loops.axial.size());
     EXPECT_GT(loops.rings.size(), 20u);
   }
+  const RayFanDirections full = rayFanDirections(mesh);
+  const RayFanDirections sampled = rayFanDirections(mesh, sampledOptions());
+  const Accuracy s = axisAccuracy(m, mesh, sampled);
+  const DirectedLoops full_loops = directedEdgeLoops(mesh, full, 6);
+  const DirectedLoops sampled_loops = directedEdgeLoops(mesh, sampled, 6);
+  std::printf("T, %d per loop: %zu of %zu vertices tested, %.2f%% of %zu edges in the arms right, %zu undecided; %zu rings, %zu lines\n",
+              kSamples, sampled.tested_vertices, m.positions.size(), 100.0 * s.fraction(), s.known, sampled.unknown_edges,
+              sampled_loops.rings.size(), sampled_loops.axial.size());
+  EXPECT_GE(s.fraction(), 0.95);
+  EXPECT_LT(sampled.tested_vertices, m.positions.size() / 4);
+  EXPECT_EQ(sampled_loops.rings.size(), full_loops.rings.size());
 }
 
 TEST(RayFanDirections, CatmullClarkCatIsClassified) {
@@ -194,6 +232,20 @@ TEST(RayFanDirections, EmptyAndFlatMeshesAreHandled) {
   EXPECT_EQ(d.measured_vertices, 0u);
   EXPECT_EQ(d.unknown_edges, mesh.n_edges());
   EXPECT_TRUE(directedEdgeLoops(mesh, d, 3).rings.empty());
+  // Sampled per loop: every vertex of every loop is tried (none gets an axis), nothing decided;
+  // a sample count above the loop lengths is the same.
+  for (const int samples : {3, 1000000}) {
+    RayFanOptions options;
+    options.loop_samples = samples;
+    const RayFanDirections sampled = rayFanDirections(mesh, options);
+    EXPECT_EQ(sampled.tested_vertices, grid.positions.size());
+    EXPECT_EQ(sampled.measured_vertices, 0u);
+    EXPECT_EQ(sampled.unknown_edges, mesh.n_edges());
+    EXPECT_TRUE(directedEdgeLoops(mesh, sampled, 3).rings.empty());
+  }
+  RayFanOptions options;
+  options.loop_samples = 3;
+  EXPECT_EQ(rayFanDirections(empty, options).tested_vertices, 0u);
 }
 
 TEST(RayFanRig, BentTubeGetsAnElbowJoint) {
