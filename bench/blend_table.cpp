@@ -30,7 +30,8 @@ template <typename T>
 T orDie(Result<T> r, const char* what) {
   if (!r.ok()) {
     std::fprintf(stderr, "odeskin_blend_table: %s: %s\n", what, r.status().toString().c_str());
-    std::exit(1);
+    std::fflush(nullptr);
+    std::_Exit(1);  // not exit(), which is not thread-safe
   }
   return std::move(r).value();
 }

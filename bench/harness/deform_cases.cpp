@@ -143,7 +143,7 @@ class CaseRunner {
     const GpuDeformFrame deform_frame{s_.frame.segment, s_.frame.gpu_bones, s_.frame.gpu_basis};
     const GpuLbsFrame lbs_frame{s_.frame.gpu_bones};
     auto frame = [&](double& gpu_seconds) {
-      const Status status = deformer ? deformer->run(deform_frame) : lbs->run(lbs_frame);
+      Status status = deformer ? deformer->run(deform_frame) : lbs->run(lbs_frame);
       gpu_seconds = deformer ? deformer->lastGpuSeconds() : lbs->lastGpuSeconds();
       return status;
     };

@@ -67,9 +67,11 @@ std::vector<EdgeLoop> edgeLoops(const PolyMesh& mesh) {
   auto edge = [&](Halfedge h) { return static_cast<std::uint32_t>(mesh.edge_handle(h).idx()); };
   std::vector<std::uint32_t> back;
   std::vector<std::uint32_t> back_edges;
-  for (auto e : mesh.edges()) {
-    if (seen[static_cast<std::size_t>(e.idx())]) continue;
-    seen[static_cast<std::size_t>(e.idx())] = 1;
+  // Plain handles throughout (a smart handle sliced to a plain one would drop its mesh pointer).
+  for (std::size_t i = 0; i < mesh.n_edges(); ++i) {
+    if (seen[i]) continue;
+    seen[i] = 1;
+    const OpenMesh::EdgeHandle e(static_cast<int>(i));
     const Halfedge h0 = mesh.halfedge_handle(e, 0);
     EdgeLoop loop;
     loop.vertices = {static_cast<std::uint32_t>(mesh.from_vertex_handle(h0).idx()), vertex(h0)};

@@ -170,7 +170,7 @@ Result<ModeTargetSet> buildModeTargets(const DeformAsset& asset, const DeformPla
           auto same = std::find_if(candidates.begin(), candidates.end(),
                                    [&](const Candidate& c) { return sameCurve(c.curve, curve); });
           if (same == candidates.end()) {
-            candidates.push_back(Candidate{std::move(curve), std::move(field), {{m, n}}});
+            candidates.push_back(Candidate{curve, std::move(field), {{m, n}}});
             continue;
           }
           same->field = addFields(same->field, field);
@@ -184,7 +184,7 @@ Result<ModeTargetSet> buildModeTargets(const DeformAsset& asset, const DeformPla
         target.segment = s;
         target.name = segmentName(s);
         target.name.append(kind == WeightCurveKind::kGamma ? ".gamma." : ".psi.").append(describeMembers(c.members));
-        target.curve = std::move(c.curve);
+        target.curve = c.curve;
         target.field = std::move(c.field);
         set.targets.push_back(std::move(target));
       }

@@ -61,7 +61,7 @@ Result<std::vector<NodeTransform>> restTransforms(const tinygltf::Model& model) 
       if (node.matrix.size() != 16 || !allFinite(node.matrix)) return bad("matrix (16)");
       glm::dmat4 m(1.0);
       for (int c = 0; c < 4; ++c) {
-        for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[static_cast<std::size_t>(4 * c + r)];  // column-major
+        for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[4 * static_cast<std::size_t>(c) + static_cast<std::size_t>(r)];  // column-major
       }
       t.matrix = m;
     }

@@ -98,7 +98,7 @@ Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::spa
     for (std::size_t j = 0; j < bones; ++j) {
       glm::dmat4& m = out.inverse_bind[j];
       for (int c = 0; c < 4; ++c) {
-        for (int r = 0; r < 4; ++r) m[c][r] = ibm.at(j, static_cast<std::size_t>(4 * c + r));
+        for (int r = 0; r < 4; ++r) m[c][r] = ibm.at(j, 4 * static_cast<std::size_t>(c) + static_cast<std::size_t>(r));
       }
       const bool affine = std::abs(m[0][3]) < 1e-6 && std::abs(m[1][3]) < 1e-6 && std::abs(m[2][3]) < 1e-6 &&
                           std::abs(m[3][3] - 1.0) < 1e-6;

@@ -127,8 +127,8 @@ MeshTopology meshTopology(std::span<const Vec3> positions, const FaceList& faces
       const std::size_t at = tri[0] == tri[corner] ? 0 : (tri[1] == tri[corner] ? 1 : 2);
       const std::uint32_t next = tri[(at + 1) % 3];
       const std::uint32_t prev = tri[(at + 2) % 3];
-      mesh.vertex_corner_steps[2 * k] = {next, prev, mesh.edge_lengths[mesh.triangle_edges[t][at]]};
-      mesh.vertex_corner_steps[2 * k + 1] = {prev, next, mesh.edge_lengths[mesh.triangle_edges[t][(at + 2) % 3]]};
+      mesh.vertex_corner_steps[2 * std::size_t{k}] = {next, prev, mesh.edge_lengths[mesh.triangle_edges[t][at]]};
+      mesh.vertex_corner_steps[2 * std::size_t{k} + 1] = {prev, next, mesh.edge_lengths[mesh.triangle_edges[t][(at + 2) % 3]]};
     }
   }
   mesh.boundary_vertex.assign(v_count, 0);

@@ -285,6 +285,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   if (Status s = playback->checkValidation(); !s.ok()) return reportFailure(console, s);
   if (glb && write_meshes) {
     std::vector<double> seconds;
+    seconds.reserve(times.size());
     for (double t : times) seconds.push_back(t * asset.segment_seconds);
     // --t, or clamped times at the end of a sequence, may repeat a time: keep strictly increasing keys.
     std::vector<std::vector<Vec3>> kept;

@@ -31,7 +31,7 @@ struct RigPictureOptions {
 // Errors: a malformed size, no Vulkan device (kUnavailable with a hint), the renderer's, kIoError
 // naming the path.
 Status drawRigPicture(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces,
-                      std::span<const IsoCurve> curves, const CurveSkeleton& curve_skeleton,
-                      const AnimationSkeleton& skeleton, const RigPictureOptions& options);
+                      std::span<const IsoCurve> curves, const CurveSkeleton& cs, const AnimationSkeleton& skeleton,
+                      const RigPictureOptions& o);
 
 }  // namespace odeskin

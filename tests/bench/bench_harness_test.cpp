@@ -218,7 +218,7 @@ TEST_F(DeformCases, VerifiesAndTimesEveryBackendAndKernel) {
   ASSERT_TRUE(status.ok()) << status.toString();
   // Per size: odeskin for each N, then lbs and dqs, each on cpu_ref, cpu_fast 1 and 2 threads (+ vulkan).
   const std::size_t backends = options.vulkan ? 4 : 3;
-  EXPECT_EQ(records.size(), 2 * (2 + 2) * backends);
+  EXPECT_EQ(records.size(), std::size_t{2} * (2 + 2) * backends);
   for (const BenchRecord& r : records) {
     EXPECT_GT(r.seconds_per_frame, 0.0) << r.kernel << " " << r.backend;
     EXPECT_LE(r.max_error, kVerifyTolerance) << r.kernel << " " << r.backend;

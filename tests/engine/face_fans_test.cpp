@@ -51,7 +51,10 @@ FaceList grid(std::uint32_t nx, std::uint32_t ny, bool quads, const std::vector<
 
 std::vector<Vec3> points(std::size_t count) {
   std::vector<Vec3> p(count);
-  for (std::size_t i = 0; i < count; ++i) p[i] = Vec3(static_cast<double>(i % 17), static_cast<double>(i / 17), 0.0);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t row = i / 17;  // rows of 17 points
+    p[i] = Vec3(static_cast<double>(i % 17), static_cast<double>(row), 0.0);
+  }
   return p;
 }
 
@@ -82,9 +85,9 @@ TEST(FaceFans, DataMeshesAreSimpleWithOpenMeshLoops) {
 }
 
 TEST(FaceFans, GridsWithHolesAndMixedPolygons) {
-  expectAsOpenMesh(points(5 * 4), grid(4, 3, true), "quad grid");
-  expectAsOpenMesh(points(7 * 6), grid(6, 5, false, {7, 8, 20, 33}), "triangle grid with holes");
-  expectAsOpenMesh(points(7 * 6), grid(6, 5, true, {7, 9, 21}), "quad grid with holes");
+  expectAsOpenMesh(points(std::size_t{5} * 4), grid(4, 3, true), "quad grid");
+  expectAsOpenMesh(points(std::size_t{7} * 6), grid(6, 5, false, {7, 8, 20, 33}), "triangle grid with holes");
+  expectAsOpenMesh(points(std::size_t{7} * 6), grid(6, 5, true, {7, 9, 21}), "quad grid with holes");
   // A pentagon and a hexagon among triangles.
   expectAsOpenMesh(points(12), facesOf({{0, 1, 2, 3, 4}, {0, 4, 5}, {4, 3, 6, 7, 8, 9}, {0, 5, 10, 11}}), "polygons");
   const auto loops = boundaryLoopsOfFaces(grid(6, 5, false, {7, 8, 20, 33}), 7 * 6);

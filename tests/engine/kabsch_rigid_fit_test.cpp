@@ -192,6 +192,7 @@ TEST(FitRigidBoneTransforms, DegenerateBonesFollowTheirParent) {
   }
   rig.influences = in;
   std::vector<RigidTransform> motions;
+  motions.reserve(7);
   for (int b = 0; b < 7; ++b) motions.push_back(randomRigid(rng));
   std::vector<Vec3> pose;
   for (std::size_t i = 0; i < rig.rest.size(); ++i) pose.push_back(motions[owner[i]].apply(rig.rest[i]));

@@ -112,6 +112,7 @@ TEST(WeightedKabsch, ReflectionBecomesAProperRotation) {
   std::vector<Vec3> from(12);
   for (Vec3& p : from) p = Vec3(unit(rng), unit(rng), 0.0);
   std::vector<Vec3> to;
+  to.reserve(from.size());
   for (const Vec3& p : from) to.push_back(Vec3(-p.x, p.y, p.z));
   std::vector<double> weights(from.size(), 1.0);
   Result<RigidTransform> fit = weightedKabsch(from, to, weights);
@@ -153,7 +154,7 @@ TEST(WeightedKabsch, ReflectionBecomesAProperRotation) {
 TEST(WeightedKabsch, BadAndDegenerateInput) {
   std::mt19937 rng(5);
   const std::vector<Vec3> from = randomPoints(rng, 6);
-  const std::vector<Vec3> to = from;
+  const std::vector<Vec3>& to = from;
   std::vector<double> weights(6, 1.0);
   EXPECT_EQ(weightedKabsch(from, std::span(to).first(5), weights).status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(weightedKabsch(from, to, std::span(weights).first(5)).status().code(), StatusCode::kInvalidArgument);
@@ -174,6 +175,7 @@ TEST(WeightedKabsch, BadAndDegenerateInput) {
   weights[4] = 2.0;
   EXPECT_EQ(weightedKabsch(from, to, weights).status().code(), StatusCode::kDegenerate);
   std::vector<Vec3> line;
+  line.reserve(10);
   for (int i = 0; i < 10; ++i) line.push_back(Vec3(1.0, 2.0, 3.0) + 0.3 * i * Vec3(1.0, -1.0, 2.0));
   std::vector<double> ones(line.size(), 1.0);
   EXPECT_EQ(weightedKabsch(line, applied(randomRigid(rng, 1.0), line), ones).status().code(),

@@ -202,7 +202,7 @@ TEST(ReadDmat, PerVertexTransformsReproduceThePosedMesh) {
     for (std::size_t v = 0; v < 420; ++v) {
       BoneTransform mv;
       for (int c = 0; c < 4; ++c) {
-        for (int r = 0; r < 3; ++r) mv[c][r] = m->at(v, static_cast<std::size_t>(3 * c + r));
+        for (int r = 0; r < 3; ++r) mv[c][r] = m->at(v, 3 * static_cast<std::size_t>(c) + static_cast<std::size_t>(r));
       }
       const Vec3 d = mv * glm::dvec4(rest->positions[v], 1.0) - posed->positions[v];
       worst = std::max({worst, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
@@ -259,6 +259,7 @@ TEST_F(TempDir, MalformedDmatNamesPath) {
 double lbsError(const std::vector<Vec3>& rest, const Influences& influences, const std::vector<RigidTransform>& pose,
                 const std::vector<Vec3>& posed) {
   std::vector<BoneTransform> bones;
+  bones.reserve(pose.size());
   for (const RigidTransform& t : pose) bones.push_back(t.matrix());
   double worst = 0.0;
   for (std::size_t v = 0; v < rest.size(); ++v) {

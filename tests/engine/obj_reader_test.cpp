@@ -184,6 +184,7 @@ TEST(ParseObj, TextInMemoryReadsAsTheFileAndErrorsNameTheSource) {
 
 TEST(ReadObjSequence, AllTenCatPosesShareOneTopology) {
   std::vector<fs::path> paths;
+  paths.reserve(10);
   for (int k = 0; k < 10; ++k) paths.push_back(kData / ("cat-poses/cat-0" + std::to_string(k) + ".obj"));
   const Result<ExampleSet> set = readObjSequence(paths);
   ASSERT_TRUE(set.ok()) << set.status().toString();
@@ -233,7 +234,7 @@ class ObjSequenceTempDir : public ObjTempDir {
     b_ = *b;
   }
   fs::path save(const std::string& name, const ObjMesh& mesh) const {
-    const fs::path path = dir_ / name;
+    fs::path path = dir_ / name;
     EXPECT_TRUE(writeObj(path, mesh.positions, mesh.faces).ok());
     return path;
   }

@@ -104,6 +104,7 @@ TEST_F(RenderOffscreen, PictureHasTheRequestedSizeAndAClearBackground) {
 std::vector<bool> cpuCoverage(const Camera& camera, const std::vector<Vec3>& positions,
                               const std::vector<std::uint32_t>& triangles, std::uint32_t w, std::uint32_t h) {
   std::vector<Vec3> px;
+  px.reserve(positions.size());
   for (const Vec3& p : positions) px.push_back(visual::projectToPixel(camera, p, w, h));
   std::vector<bool> covered(std::size_t(w) * h, false);
   for (std::size_t t = 0; t < triangles.size(); t += 3) {

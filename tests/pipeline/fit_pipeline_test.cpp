@@ -137,6 +137,7 @@ TEST(FitPipeline, CheburashkaWithItsRigOfElevenBones) {
 TEST(FitPipeline, FacePosesOpenSurfaceAutoRig) {
   // An open face mask (762 boundary edges) whose expressions are mostly non-rigid.
   std::vector<std::filesystem::path> paths;
+  paths.reserve(3);
   for (int k = 0; k < 3; ++k) paths.push_back(testing::dataDir() / "face-poses" / ("face-0" + std::to_string(k) + ".obj"));
   Result<ExampleSet> ex = readObjSequence(paths);
   ASSERT_TRUE(ex.ok()) << ex.status().toString();

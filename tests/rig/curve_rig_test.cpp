@@ -32,6 +32,7 @@ ObjMesh dataMesh(const std::string& name) {
 
 std::vector<std::vector<Vec3>> dataPoses(const std::vector<std::string>& names) {
   std::vector<std::vector<Vec3>> poses;
+  poses.reserve(names.size());
   for (const std::string& n : names) poses.push_back(dataMesh(n).positions);
   return poses;
 }

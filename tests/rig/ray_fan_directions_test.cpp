@@ -41,8 +41,8 @@ struct Accuracy {
 Accuracy ringAccuracy(const QuadTestMesh& m, const PolyMesh& mesh, const RayFanDirections& d) {
   Accuracy a;
   for (auto e : mesh.edges()) {
-    const auto u = static_cast<std::size_t>(mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)).idx());
-    const auto v = static_cast<std::size_t>(mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)).idx());
+    const auto u = static_cast<std::size_t>(e.v0().idx());  // the ends of halfedge 0
+    const auto v = static_cast<std::size_t>(e.v1().idx());
     if (m.ring[u] < 0 || m.ring[v] < 0) continue;
     const EdgeDirection truth = m.ring[u] == m.ring[v] ? EdgeDirection::kCircumferential : EdgeDirection::kAxial;
     ++a.known;
@@ -55,8 +55,8 @@ Accuracy ringAccuracy(const QuadTestMesh& m, const PolyMesh& mesh, const RayFanD
 Accuracy axisAccuracy(const QuadTestMesh& m, const PolyMesh& mesh, const RayFanDirections& d) {
   Accuracy a;
   for (auto e : mesh.edges()) {
-    const auto u = static_cast<std::size_t>(mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)).idx());
-    const auto v = static_cast<std::size_t>(mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)).idx());
+    const auto u = static_cast<std::size_t>(e.v0().idx());  // the ends of halfedge 0
+    const auto v = static_cast<std::size_t>(e.v1().idx());
     if (!(glm::length(m.axis[u]) > 0.0) || m.axis[u] != m.axis[v]) continue;
     const Vec3 edge = glm::normalize(m.positions[v] - m.positions[u]);
     const EdgeDirection truth =

@@ -40,7 +40,7 @@ double maxError(std::span<const Vec3> a, std::span<const Vec3> b) {
 }
 
 std::filesystem::path scratch(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("odeskin_demo_test_" + name);
+  std::filesystem::path dir = std::filesystem::temp_directory_path() / ("odeskin_demo_test_" + name);
   std::filesystem::remove_all(dir);
   return dir;
 }
