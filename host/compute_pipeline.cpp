@@ -157,8 +157,11 @@ Status ComputePipeline::bindBuffer(std::uint32_t set_index, std::uint32_t bindin
     return okStatus();
   }
   if (range != VK_WHOLE_SIZE) {
-    const VkDeviceSize texel_bytes = texelBytes(texel->format);  // never 0: create() refuses other formats
-    if (texel_bytes == 0 || range / texel_bytes > max_texel_elements_) {
+    const VkDeviceSize texel_bytes = texelBytes(texel->format);
+    if (texel_bytes == 0) {  // create() refuses other formats, so this is a broken invariant
+      return internalError("ComputePipeline: binding " + std::to_string(binding) + " has no texel size");
+    }
+    if (range / texel_bytes > max_texel_elements_) {
       return unavailable("ComputePipeline: binding " + std::to_string(binding) + " holds " +
                          std::to_string(range / texel_bytes) + " texels, more than maxTexelBufferElements (" +
                          std::to_string(max_texel_elements_) + ")");

@@ -90,7 +90,7 @@ TEST(FaceFans, GridsWithHolesAndMixedPolygons) {
   expectAsOpenMesh(points(std::size_t{7} * 6), grid(6, 5, true, {7, 9, 21}), "quad grid with holes");
   // A pentagon and a hexagon among triangles.
   expectAsOpenMesh(points(12), facesOf({{0, 1, 2, 3, 4}, {0, 4, 5}, {4, 3, 6, 7, 8, 9}, {0, 5, 10, 11}}), "polygons");
-  const auto loops = boundaryLoopsOfFaces(grid(6, 5, false, {7, 8, 20, 33}), 7 * 6);
+  const auto loops = boundaryLoopsOfFaces(grid(6, 5, false, {7, 8, 20, 33}), std::size_t{7} * 6);
   EXPECT_EQ(loops.size(), 3u);  // the rim, the hole of faces 7 and 8 (one quad), faces 20 and 33 apart
 }
 

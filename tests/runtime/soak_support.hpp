@@ -92,7 +92,10 @@ struct SoakClock {
   }
   std::uint32_t preset(std::uint32_t k) const { return k % presets; }
   static bool engineBones(std::uint32_t k) { return k % 4 == 3; }
-  static Vec3 place(std::uint32_t k) { return Vec3(1.5 * (k % 10), 0.0, 1.5 * static_cast<double>(k / 10)); }
+  static Vec3 place(std::uint32_t k) {
+    const std::uint32_t row = k / 10;  // rows of 10 instances
+    return Vec3(1.5 * (k % 10), 0.0, 1.5 * row);
+  }
 };
 
 // The asset's interpolated bones at `t`, translated to `offset` (no allocation).
