@@ -83,6 +83,19 @@ void timeLoop(benchmark::State& state, Body&& body) {
   }
 }
 
+// Times gpu.run(frame) (submit and wait) and reports the dispatch's timestamp-query time per
+// iteration as the counter gpu_s.
+template <typename Gpu, typename Frame>
+void timeGpuLoop(benchmark::State& state, Gpu& gpu, const Frame& frame) {
+  double gpu_seconds = 0.0;
+  timeLoop(state, [&] {
+    Status status = gpu.run(frame);
+    gpu_seconds += gpu.lastGpuSeconds();
+    return status;
+  });
+  state.counters["gpu_s"] = benchmark::Counter(gpu_seconds, benchmark::Counter::kAvgIterations);
+}
+
 void runDeform(benchmark::State& state, BenchAsset& b, Backend backend) {
   if (backend == Backend::kCpuRef) {
     std::vector<Vec3> out(b.vertex_count);
@@ -95,14 +108,7 @@ void runDeform(benchmark::State& state, BenchAsset& b, Backend backend) {
       state.SkipWithError(("no Vulkan device: " + benchDeviceNote()).c_str());
       return;
     }
-    double gpu_seconds = 0.0;
-    const GpuDeformFrame frame{b.segment, b.gpu_bones, b.gpu_basis};
-    timeLoop(state, [&] {
-      Status status = b.gpu_deformer->run(frame);
-      gpu_seconds += b.gpu_deformer->lastGpuSeconds();
-      return status;
-    });
-    state.counters["gpu_s"] = benchmark::Counter(gpu_seconds, benchmark::Counter::kAvgIterations);
+    timeGpuLoop(state, *b.gpu_deformer, GpuDeformFrame{b.segment, b.gpu_bones, b.gpu_basis});
     return;
   }
   std::vector<gpu::Float4> out(b.vertex_count);
@@ -128,14 +134,7 @@ void runLbs(benchmark::State& state, BenchAsset& b, Backend backend) {
       state.SkipWithError(("no Vulkan device: " + benchDeviceNote()).c_str());
       return;
     }
-    double gpu_seconds = 0.0;
-    const GpuLbsFrame frame{b.gpu_bones};
-    timeLoop(state, [&] {
-      Status status = b.gpu_lbs->run(frame);
-      gpu_seconds += b.gpu_lbs->lastGpuSeconds();
-      return status;
-    });
-    state.counters["gpu_s"] = benchmark::Counter(gpu_seconds, benchmark::Counter::kAvgIterations);
+    timeGpuLoop(state, *b.gpu_lbs, GpuLbsFrame{b.gpu_bones});
     return;
   }
   std::vector<gpu::Float4> out(b.vertex_count);

@@ -78,18 +78,7 @@ std::uint32_t largestComponentExtremity(const MeshTopology& mesh) {
   std::uint32_t best = 0;
   for (std::uint32_t s = 0; s < count; ++s) {
     if (hops[s] >= 0) continue;
-    queue.clear();
-    queue.push_back(s);
-    hops[s] = 0;
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      const std::uint32_t u = queue[head];
-      for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
-        const std::uint32_t w = mesh.vertex_neighbours[k];
-        if (hops[w] >= 0) continue;
-        hops[w] = hops[u] + 1;
-        queue.push_back(w);
-      }
-    }
+    sweepEdgeHops(mesh, s, hops, queue);
     if (queue.size() <= best_size) continue;
     best_size = queue.size();
     // The queue is in hop order: its last vertex is at the largest hop count.

@@ -302,11 +302,11 @@ std::vector<double> edgeDistance(const MeshTopology& mesh, std::span<const std::
   return distance;
 }
 
-std::vector<std::int32_t> edgeHops(const MeshTopology& mesh, std::uint32_t source) {
-  const std::size_t v_count = mesh.vertex_offsets.size() - 1;
-  std::vector<std::int32_t> hops(v_count, -1);
-  std::vector<std::uint32_t> queue{source};
-  queue.reserve(v_count);
+void sweepEdgeHops(const MeshTopology& mesh, std::uint32_t source, std::vector<std::int32_t>& hops,
+                   std::vector<std::uint32_t>& queue) {
+  assert(hops[source] < 0);
+  queue.clear();
+  queue.push_back(source);
   hops[source] = 0;
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const std::uint32_t u = queue[head];
@@ -317,6 +317,14 @@ std::vector<std::int32_t> edgeHops(const MeshTopology& mesh, std::uint32_t sourc
       queue.push_back(w);
     }
   }
+}
+
+std::vector<std::int32_t> edgeHops(const MeshTopology& mesh, std::uint32_t source) {
+  const std::size_t v_count = mesh.vertex_offsets.size() - 1;
+  std::vector<std::int32_t> hops(v_count, -1);
+  std::vector<std::uint32_t> queue;
+  queue.reserve(v_count);
+  sweepEdgeHops(mesh, source, hops, queue);
   return hops;
 }
 
