@@ -306,8 +306,10 @@ int main(int argc, char** argv) {
     if (std::strncmp(argv[i], "--benchmark_min_time", 20) == 0) has_min_time = true;
     args.push_back(argv[i]);
   }
-  static char default_min_time[] = "--benchmark_min_time=0.2";
-  if (!has_min_time) args.push_back(default_min_time);
+  if (!has_min_time) {
+    static char default_min_time[] = "--benchmark_min_time=0.2";  // static: argv outlives this block
+    args.push_back(default_min_time);
+  }
   int count = static_cast<int>(args.size());
   args.push_back(nullptr);
   benchmark::Initialize(&count, args.data());

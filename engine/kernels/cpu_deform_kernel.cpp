@@ -235,7 +235,8 @@ void fillCoefficients(const PackedDeformData& d, Layout& out) {
     out.curve_trends[sc] = nonzero(trend) || nonzero(trend + 1) || nonzero(trend + 2) ? 1 : 0;
     for (std::uint32_t n = d.modes; n >= 1; --n) {
       bool any = false;
-      for (std::size_t e = (sc * m_count + 2 * std::size_t{n} - 1) * 3; e < (sc * m_count + 2 * std::size_t{n} + 1) * 3; ++e) any = any || nonzero(e);
+      const std::size_t cos_n = sc * m_count + 2 * static_cast<std::size_t>(n) - 1;  // then sin_n
+      for (std::size_t e = 3 * cos_n; e < 3 * (cos_n + 2); ++e) any = any || nonzero(e);
       if (any) {
         out.curve_modes[sc] = n;
         break;

@@ -120,12 +120,12 @@ template <std::uint32_t kL, bool kTwoCurves>
   }
   if (trend) {
     const V v = load<kL>(lanes + rowOffset(kV));
-    const float* a_trend = a + 3 * std::size_t{m_count - 1};
+    const float* a_trend = a + 3 * static_cast<std::size_t>(m_count - 1);
     ax = v * splat<kL>(a_trend[0]) + ax;
     ay = v * splat<kL>(a_trend[1]) + ay;
     az = v * splat<kL>(a_trend[2]) + az;
     if constexpr (kTwoCurves) {
-      const float* b_trend = b + 3 * std::size_t{m_count - 1};
+      const float* b_trend = b + 3 * static_cast<std::size_t>(m_count - 1);
       bx = v * splat<kL>(b_trend[0]) + bx;
       by = v * splat<kL>(b_trend[1]) + by;
       bz = v * splat<kL>(b_trend[2]) + bz;
@@ -138,7 +138,7 @@ template <std::uint32_t kL, bool kTwoCurves>
   V sn = s1;
   constexpr bool kSplit = !kTwoCurves || kMaxLanes == 16;
   for (std::uint32_t n = 1; n <= modes_used; ++n) {
-    const float* an = a + std::size_t{3} * (2 * n - 1);  // cos xyz, then sin xyz
+    const float* an = a + 3 * (2 * static_cast<std::size_t>(n) - 1);  // cos xyz, then sin xyz
     if constexpr (kSplit) {
       ax = cn * splat<kL>(an[0]) + ax;
       ay = cn * splat<kL>(an[1]) + ay;
@@ -152,7 +152,7 @@ template <std::uint32_t kL, bool kTwoCurves>
       az = sn * splat<kL>(an[5]) + (cn * splat<kL>(an[2]) + az);
     }
     if constexpr (kTwoCurves) {
-      const float* bn = b + std::size_t{3} * (2 * n - 1);
+      const float* bn = b + 3 * (2 * static_cast<std::size_t>(n) - 1);
       if constexpr (kSplit) {
         bx = cn * splat<kL>(bn[0]) + bx;
         by = cn * splat<kL>(bn[1]) + by;

@@ -107,7 +107,8 @@ TEST(BlendGrid, VertexLayoutFacesAndWrap) {
   for (const auto& [a, b] : edges) unmatched += edges.count({b, a}) == 0;
   EXPECT_EQ(unmatched, 2u * V);
   // Outward orientation: S_u x S_v points away from the axis for this downward-flaring blend.
-  const Vec3 p0 = g->positions[2 * std::size_t{V}], p1 = g->positions[3 * std::size_t{V}], p2 = g->positions[3 * std::size_t{V} + 1];
+  const std::size_t row = V;  // vertices per row of u
+  const Vec3 p0 = g->positions[2 * row], p1 = g->positions[3 * row], p2 = g->positions[3 * row + 1];
   const Vec3 n = glm::cross(p1 - p0, p2 - p1);
   EXPECT_GT(glm::dot(n, Vec3(p0.x, p0.y, 0.0)), 0.0);
 }
