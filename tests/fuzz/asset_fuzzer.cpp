@@ -24,10 +24,7 @@ constexpr std::size_t kHeaderBytes = 32;
 void check(const std::string& bytes) {
   const std::string source = "fuzz.odsk";
   const Result<DeformAsset> asset = decodeAsset(bytes, source);
-  if (!asset.ok()) {
-    fuzz::requireNamedError(asset.status(), source);
-    return;
-  }
+  if (!fuzz::accepted(asset, source)) return;
   const Result<std::string> encoded = encodeAsset(*asset);
   fuzz::require(encoded.ok(), "a decoded asset does not encode: " + encoded.status().toString());
   const Result<DeformAsset> again = decodeAsset(*encoded, source);
@@ -46,7 +43,7 @@ void check(const std::string& bytes) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  std::string bytes(reinterpret_cast<const char*>(data), size);
+  std::string bytes = fuzz::text(data, size);
   check(bytes);
   if (bytes.size() >= kHeaderBytes) {
     const std::uint64_t payload = bytes.size() - kHeaderBytes;

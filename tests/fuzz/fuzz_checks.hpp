@@ -4,10 +4,13 @@
 // reader's documented invariants. A broken promise aborts, which libFuzzer reports as a finding.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+#include "engine/core/result.hpp"
 #include "engine/core/status.hpp"
 
 namespace odeskin::fuzz {
@@ -26,6 +29,19 @@ inline void requireNamedError(const Status& status, const std::string& source) {
   require(!status.ok(), "an error result carries kOk");
   require(status.code() != StatusCode::kInternal, "bad input reported as an internal error: " + status.toString());
   require(status.message().rfind(source, 0) == 0, "error does not start with '" + source + "': " + status.toString());
+}
+
+// Whether a reader accepted its input; a refusal must be a named error (above).
+template <typename T>
+bool accepted(const Result<T>& result, const std::string& source) {
+  if (result.ok()) return true;
+  requireNamedError(result.status(), source);
+  return false;
+}
+
+// libFuzzer's bytes as the text a reader parses.
+inline std::string text(const std::uint8_t* data, std::size_t size) {
+  return std::string(reinterpret_cast<const char*>(data), size);
 }
 
 }  // namespace odeskin::fuzz

@@ -17,10 +17,7 @@ using namespace odeskin;
 void check(const std::string& bytes, const GltfPoseRequest& request) {
   const std::string source = "fuzz.gltf";
   const Result<ExampleSet> examples = parseGltfExamples(bytes, source, request);
-  if (!examples.ok()) {
-    fuzz::requireNamedError(examples.status(), source);
-    return;
-  }
+  if (!fuzz::accepted(examples, source)) return;
   const std::size_t vertices = examples->rest_positions.size();
   for (const auto& pose : examples->poses) fuzz::require(pose.size() == vertices, "a pose of another vertex count");
   for (std::uint32_t v : examples->faces.indices) fuzz::require(v < vertices, "a face index out of range");
@@ -35,7 +32,7 @@ void check(const std::string& bytes, const GltfPoseRequest& request) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string bytes(reinterpret_cast<const char*>(data), size);
+  const std::string bytes = fuzz::text(data, size);
   GltfPoseRequest bind;
   bind.min_poses = 1;
   check(bytes, bind);

@@ -10,11 +10,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace odeskin;
   const std::string source = "fuzz.obj";
-  const Result<ObjMesh> mesh = parseObj(std::string(reinterpret_cast<const char*>(data), size), source);
-  if (!mesh.ok()) {
-    fuzz::requireNamedError(mesh.status(), source);
-    return 0;
-  }
+  const Result<ObjMesh> mesh = parseObj(fuzz::text(data, size), source);
+  if (!fuzz::accepted(mesh, source)) return 0;
   // Accepted: a face list whose every corner is a vertex, faces of 3 or more corners.
   const FaceList& faces = mesh->faces;
   fuzz::require(!mesh->positions.empty() && faces.faceCount() > 0, "accepted a mesh without vertices or faces");

@@ -11,11 +11,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace odeskin;
   const std::string source = "fuzz.tgf";
-  const Result<Skeleton> skeleton = parseTgf(std::string(reinterpret_cast<const char*>(data), size), source);
-  if (!skeleton.ok()) {
-    fuzz::requireNamedError(skeleton.status(), source);
-    return 0;
-  }
+  const Result<Skeleton> skeleton = parseTgf(fuzz::text(data, size), source);
+  if (!fuzz::accepted(skeleton, source)) return 0;
   const std::size_t bones = skeleton->boneCount();
   fuzz::require(bones > 0, "accepted a skeleton without bones");
   fuzz::require(skeleton->parents.size() == bones && skeleton->heads.size() == bones && skeleton->tails.size() == bones &&
