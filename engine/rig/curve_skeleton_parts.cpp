@@ -107,14 +107,23 @@ std::vector<SkeletonAnchor> tipAnchors(const LevelGraph& graph, std::uint32_t re
 
 std::vector<SkeletonAnchor> curveAnchors(std::span<const CurvePoint> points, bool closed, std::span<const Vec3> rest) {
   // Each segment's length goes half to either end: the anchors' mean is the length-weighted centroid.
+  // Each point's position is computed once, not once per segment it ends.
   std::vector<SkeletonAnchor> anchors(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) anchors[i].point = points[i];
   const std::size_t segments = closed ? points.size() : (points.empty() ? 0 : points.size() - 1);
+  if (segments == 0) {
+    for (SkeletonAnchor& a : anchors) a.weight = 1.0;
+    return anchors;
+  }
+  const Vec3 first = curvePointPosition(rest, points[0]);
+  Vec3 at = first;
   for (std::size_t k = 0; k < segments; ++k) {
     const std::size_t j = (k + 1) % points.size();
-    const double length = glm::length(curvePointPosition(rest, points[j]) - curvePointPosition(rest, points[k]));
+    const Vec3 next = j == 0 ? first : curvePointPosition(rest, points[j]);
+    const double length = glm::length(next - at);
     anchors[k].weight += 0.5 * length;
     anchors[j].weight += 0.5 * length;
+    at = next;
   }
   double total = 0.0;
   for (const SkeletonAnchor& a : anchors) total += a.weight;
@@ -126,11 +135,11 @@ std::vector<SkeletonAnchor> curveAnchors(std::span<const CurvePoint> points, boo
 
 IsoCurve orderedContour(const LevelContour& contour, std::uint32_t part) {
   const std::size_t n = contour.points.size();
-  std::vector<std::array<std::int64_t, 2>> next(n, {-1, -1});
+  std::vector<std::array<std::int32_t, 2>> next(n, {-1, -1});
   for (const auto& s : contour.segments) {
     for (int side = 0; side < 2; ++side) {
       auto& slot = next[s[static_cast<std::size_t>(side)]];
-      (slot[0] < 0 ? slot[0] : slot[1]) = s[static_cast<std::size_t>(1 - side)];
+      (slot[0] < 0 ? slot[0] : slot[1]) = static_cast<std::int32_t>(s[static_cast<std::size_t>(1 - side)]);
     }
   }
   std::size_t start = 0;
@@ -143,13 +152,14 @@ IsoCurve orderedContour(const LevelContour& contour, std::uint32_t part) {
   IsoCurve curve;
   curve.closed = contour.closed;
   curve.part = part;
+  curve.points.reserve(n);
   std::vector<char> seen(n, 0);
-  std::int64_t previous = -1;
-  for (auto at = static_cast<std::int64_t>(start); at >= 0 && !seen[static_cast<std::size_t>(at)];) {
+  std::int32_t previous = -1;
+  for (auto at = static_cast<std::int32_t>(start); at >= 0 && !seen[static_cast<std::size_t>(at)];) {
     const auto i = static_cast<std::size_t>(at);
     seen[i] = 1;
     curve.points.push_back(contour.points[i]);
-    const std::int64_t step = next[i][0] != previous ? next[i][0] : next[i][1];
+    const std::int32_t step = next[i][0] != previous ? next[i][0] : next[i][1];
     previous = at;
     at = step;
   }
