@@ -17,6 +17,7 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "engine/rig/skeleton_compare.hpp"
+#include "engine/visual/camera.hpp"
 #include "engine/temp_dir_test.hpp"  // tests/engine
 
 namespace odeskin {
@@ -37,15 +38,6 @@ std::vector<std::vector<Vec3>> dataPoses(const std::vector<std::string>& names) 
   return poses;
 }
 
-double diagonal(const std::vector<Vec3>& points) {
-  Vec3 lo(1e300), hi(-1e300);
-  for (const Vec3& p : points) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  return glm::length(hi - lo);
-}
-
 class CurveRigFiles : public testing::TempDirTest {
  protected:
   CurveRigFiles() : TempDirTest("odeskin_curve_rig_test_") {}
@@ -62,7 +54,7 @@ TEST(CurveRig, CylinderPosesFindTheTrueJoints) {
   ASSERT_TRUE(rig.ok()) << rig.status().message();
   Result<Skeleton> truth = readTgf(kData + "/cylinder/cylinder.tgf");
   ASSERT_TRUE(truth.ok());
-  const SkeletonComparison c = compareSkeletons(*truth, rig->rig.skeleton, diagonal(cylinder.positions));
+  const SkeletonComparison c = compareSkeletons(*truth, rig->rig.skeleton, visual::boundsOf(cylinder.positions).diagonal());
   EXPECT_EQ(c.bones, 4u);
   EXPECT_LT(c.truth_to_ours_max, 0.05);
   EXPECT_LT(c.ours_to_truth_max, 0.05);
@@ -91,7 +83,7 @@ TEST(CurveRig, TemplatesOnTheCharacters) {
   // docs/rigging.md; the ears add bones the truth does not have).
   Result<Skeleton> truth = readTgf(kData + "/cheburashka/cheburashka.tgf");
   ASSERT_TRUE(truth.ok());
-  const SkeletonComparison c = compareSkeletons(*truth, cheb->rig.skeleton, diagonal(cheburashka.positions));
+  const SkeletonComparison c = compareSkeletons(*truth, cheb->rig.skeleton, visual::boundsOf(cheburashka.positions).diagonal());
   EXPECT_LT(c.truth_to_ours_max, 0.10);
   EXPECT_GE(c.bones, c.truth_bones);
 }

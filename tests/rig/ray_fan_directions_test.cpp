@@ -17,6 +17,7 @@
 #include "engine/io/obj_io.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_rig.hpp"
+#include "engine/visual/camera.hpp"
 #include "quad_test_meshes.hpp"
 
 namespace odeskin {
@@ -86,15 +87,6 @@ RayFanOptions sampledOptions() {
   RayFanOptions options;
   options.loop_samples = kSamples;
   return options;
-}
-
-double diagonal(const std::vector<Vec3>& points) {
-  Vec3 lo(1e300), hi(-1e300);
-  for (const Vec3& p : points) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  return glm::length(hi - lo);
 }
 
 // The rig's mode on a swept tube: edges classified as well as by the full test from under a
@@ -262,9 +254,9 @@ TEST(RayFanRig, BentTubeGetsAnElbowJoint) {
     if (a.reasons[j] == JointReason::kBend) nearest = std::min(nearest, glm::length(a.joints[j] - elbow));
   }
   std::printf("bent tube rig: %zu bones, %zu curves, nearest bend joint %.3f from the elbow (diagonal %.2f), curves %.2f ms\n",
-              rig->rig.skeleton.boneCount(), rig->curve_skeleton.curves.size(), nearest, diagonal(m.positions),
+              rig->rig.skeleton.boneCount(), rig->curve_skeleton.curves.size(), nearest, visual::boundsOf(m.positions).diagonal(),
               1e3 * rig->seconds_curves);
-  EXPECT_LT(nearest, 0.05 * diagonal(m.positions));
+  EXPECT_LT(nearest, 0.05 * visual::boundsOf(m.positions).diagonal());
   // The levels, asked for, give a joint there too: the loops agree with them.
   options.curves.source = CurveSource::kLevels;
   Result<CurveRig> levels = buildCurveRig(m.positions, m.faces, {}, options);
