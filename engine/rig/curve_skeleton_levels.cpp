@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 #include "../core/disjoint_sets.hpp"
+#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -328,125 +329,144 @@ std::vector<std::int32_t> edgeHops(const MeshTopology& mesh, std::uint32_t sourc
   return hops;
 }
 
-LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh, std::span<const double> f,
-                      double spacing) {
-  assert(spacing > 0.0);
-  LevelGraph graph;
-  graph.spacing = spacing;
+namespace {
+
+constexpr std::uint32_t kUnreachedSlab = std::numeric_limits<std::uint32_t>::max();
+// From this many triangles on, the regions and the contours of a level graph are found on two
+// threads at once (below it the hand-over costs more than it saves).
+constexpr std::size_t kParallelTriangles = 2048;
+
+// What both halves of the level graph read. Triangle t owns one piece per slab in [lo[t], lo[t] +
+// base[t + 1] - base[t]) (none with a corner unreached); edge e crosses level s (f = s * spacing)
+// for s in (edge_lo[e], edge_lo[e] + its crossing count], its crossings numbered from
+// crossing_base[e].
+struct SlabLayout {
+  std::vector<std::uint32_t> vertex_slab;  // kUnreachedSlab where f is infinite
+  std::vector<std::uint32_t> lo, base;
+  std::vector<std::uint32_t> edge_lo, crossing_base;
+
+  bool reached(std::uint32_t t) const { return base[t + 1] != base[t]; }
+  std::uint32_t piece(std::uint32_t t, std::uint32_t slab) const { return base[t] + slab - lo[t]; }
+  std::uint32_t crossings(std::uint32_t e) const { return crossing_base[e + 1] - crossing_base[e]; }
+  std::uint32_t crossing(std::uint32_t e, std::uint32_t s) const { return crossing_base[e] + s - edge_lo[e] - 1; }
+  bool crosses(std::uint32_t e, std::uint32_t s) const { return s > edge_lo[e] && s <= edge_lo[e] + crossings(e); }
+};
+
+SlabLayout slabLayout(const MeshTopology& mesh, std::span<const double> f, double spacing) {
+  SlabLayout layout;
   const std::size_t t_count = mesh.triangles.size();
   const std::size_t e_count = mesh.edges.size();
-  // Slabs per vertex (kUnreachedSlab where f is infinite), computed once.
-  constexpr std::uint32_t kUnreachedSlab = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> vertex_slab(f.size());
-  for (std::size_t v = 0; v < f.size(); ++v) vertex_slab[v] = std::isfinite(f[v]) ? slabOf(f[v], spacing) : kUnreachedSlab;
-
-  // Pieces: triangle t owns one piece per slab in [lo[t], lo[t] + base[t + 1] - base[t]); a
-  // triangle with a corner unreached owns none.
-  std::vector<std::uint32_t> lo(t_count, 0), base(t_count + 1, 0);
+  layout.vertex_slab.resize(f.size());
+  for (std::size_t v = 0; v < f.size(); ++v) layout.vertex_slab[v] = std::isfinite(f[v]) ? slabOf(f[v], spacing) : kUnreachedSlab;
+  const std::vector<std::uint32_t>& slab = layout.vertex_slab;
+  layout.lo.assign(t_count, 0);
+  layout.base.assign(t_count + 1, 0);
   for (std::uint32_t t = 0; t < t_count; ++t) {
     const auto& tri = mesh.triangles[t];
-    const std::uint32_t a = vertex_slab[tri[0]], b = vertex_slab[tri[1]], c = vertex_slab[tri[2]];
+    const std::uint32_t a = slab[tri[0]], b = slab[tri[1]], c = slab[tri[2]];
     std::uint32_t count = 0;
     if (a != kUnreachedSlab && b != kUnreachedSlab && c != kUnreachedSlab) {
-      lo[t] = std::min({a, b, c});
-      count = std::max({a, b, c}) - lo[t] + 1;
+      layout.lo[t] = std::min({a, b, c});
+      count = std::max({a, b, c}) - layout.lo[t] + 1;
     }
-    base[t + 1] = base[t] + count;
+    layout.base[t + 1] = layout.base[t] + count;
   }
-  auto reached = [&](std::uint32_t t) { return base[t + 1] != base[t]; };
-  auto piece = [&](std::uint32_t t, std::uint32_t slab) { return base[t] + slab - lo[t]; };
-
-  // One pass over the edges: neighbouring triangles' pieces of a slab meet where their shared edge
-  // meets the slab, and edge e crosses level s (f = s * spacing) for s in (slab(min f), slab(max f)].
-  DisjointSets pieces(base[t_count]);
-  std::vector<std::uint32_t> crossing_base(e_count + 1, 0);
-  std::vector<std::uint32_t> edge_lo(e_count, 0);
+  layout.edge_lo.assign(e_count, 0);
+  layout.crossing_base.assign(e_count + 1, 0);
   for (std::size_t e = 0; e < e_count; ++e) {
-    const std::uint32_t su = vertex_slab[mesh.edges[e][0]];
-    const std::uint32_t sv = vertex_slab[mesh.edges[e][1]];
+    const std::uint32_t su = slab[mesh.edges[e][0]];
+    const std::uint32_t sv = slab[mesh.edges[e][1]];
     std::uint32_t count = 0;
     if (su != kUnreachedSlab && sv != kUnreachedSlab) {
-      edge_lo[e] = std::min(su, sv);
-      count = std::max(su, sv) - edge_lo[e];
-      const auto [t0, t1] = mesh.edge_triangles[e];
-      if (t1 >= 0 && reached(static_cast<std::uint32_t>(t0)) && reached(static_cast<std::uint32_t>(t1))) {
-        const auto a = static_cast<std::uint32_t>(t0);
-        const auto b = static_cast<std::uint32_t>(t1);
-        for (std::uint32_t s = edge_lo[e]; s <= edge_lo[e] + count; ++s) pieces.unite(piece(a, s), piece(b, s));
-      }
+      layout.edge_lo[e] = std::min(su, sv);
+      count = std::max(su, sv) - layout.edge_lo[e];
     }
-    crossing_base[e + 1] = crossing_base[e] + count;
+    layout.crossing_base[e + 1] = layout.crossing_base[e] + count;
+  }
+  return layout;
+}
+
+// The regions: the triangles' pieces of a slab joined where their shared edge meets the slab,
+// numbered in the order the triangles first meet them (pieces, then corners). Fills the graph's
+// regions (slab, vertices) and vertex_region; `pieces` is left flattened and `region_of_root` maps
+// its roots to regions.
+void findRegions(const MeshTopology& mesh, const SlabLayout& layout, LevelGraph& graph, DisjointSets& pieces,
+                 std::vector<std::uint32_t>& region_of_root) {
+  const std::size_t t_count = mesh.triangles.size();
+  for (std::uint32_t e = 0; e < mesh.edges.size(); ++e) {
+    // Both triangles reached: so are the edge's ends, and its slab range is [edge_lo, + crossings].
+    const auto [t0, t1] = mesh.edge_triangles[e];
+    if (t1 < 0 || !layout.reached(static_cast<std::uint32_t>(t0)) || !layout.reached(static_cast<std::uint32_t>(t1))) continue;
+    const auto a = static_cast<std::uint32_t>(t0);
+    const auto b = static_cast<std::uint32_t>(t1);
+    const std::uint32_t hi = layout.edge_lo[e] + layout.crossings(e);
+    for (std::uint32_t s = layout.edge_lo[e]; s <= hi; ++s) pieces.unite(layout.piece(a, s), layout.piece(b, s));
   }
   pieces.flatten();
-
-  // Regions numbered in the order the triangles first meet them (pieces, then corners).
-  std::vector<std::uint32_t> region_of_root(base[t_count], LevelGraph::kNoRegion);
-  graph.vertex_region.assign(positions.size(), LevelGraph::kNoRegion);
+  region_of_root.assign(layout.base[t_count], LevelGraph::kNoRegion);
   for (std::uint32_t t = 0; t < t_count; ++t) {
-    for (std::uint32_t p = base[t]; p < base[t + 1]; ++p) {
+    for (std::uint32_t p = layout.base[t]; p < layout.base[t + 1]; ++p) {
       std::uint32_t& region = region_of_root[pieces.parent[p]];
       if (region == LevelGraph::kNoRegion) {
         region = static_cast<std::uint32_t>(graph.regions.size());
-        graph.regions.emplace_back().slab = lo[t] + p - base[t];
+        graph.regions.emplace_back().slab = layout.lo[t] + p - layout.base[t];
       }
     }
-    if (!reached(t)) continue;
+    if (!layout.reached(t)) continue;
     for (const std::uint32_t v : mesh.triangles[t]) {
-      if (graph.vertex_region[v] == LevelGraph::kNoRegion) graph.vertex_region[v] = region_of_root[pieces.parent[piece(t, vertex_slab[v])]];
+      if (graph.vertex_region[v] == LevelGraph::kNoRegion) {
+        graph.vertex_region[v] = region_of_root[pieces.parent[layout.piece(t, layout.vertex_slab[v])]];
+      }
     }
   }
-  auto regionOf = [&](std::uint32_t t, std::uint32_t slab) { return region_of_root[pieces.parent[piece(t, slab)]]; };
-  {
-    std::vector<std::uint32_t> sizes(graph.regions.size(), 0);
-    for (const std::uint32_t r : graph.vertex_region) {
-      if (r != LevelGraph::kNoRegion) ++sizes[r];
-    }
-    for (std::size_t r = 0; r < sizes.size(); ++r) graph.regions[r].vertices.reserve(sizes[r]);
+  std::vector<std::uint32_t> sizes(graph.regions.size(), 0);
+  for (const std::uint32_t r : graph.vertex_region) {
+    if (r != LevelGraph::kNoRegion) ++sizes[r];
   }
-  for (std::uint32_t v = 0; v < positions.size(); ++v) {
+  for (std::size_t r = 0; r < sizes.size(); ++r) graph.regions[r].vertices.reserve(sizes[r]);
+  for (std::uint32_t v = 0; v < graph.vertex_region.size(); ++v) {
     if (graph.vertex_region[v] != LevelGraph::kNoRegion) graph.regions[graph.vertex_region[v]].vertices.push_back(v);
   }
+}
 
-  // Segments: one per level strictly inside a reached triangle's slab range, between the
-  // crossings of that level on two of its edges.
-  const std::uint32_t crossing_count = crossing_base.back();
-  auto crossing = [&](std::uint32_t e, std::uint32_t s) { return crossing_base[e] + s - edge_lo[e] - 1; };
-  auto crosses = [&](std::uint32_t e, std::uint32_t s) {
-    return s > edge_lo[e] && s <= edge_lo[e] + (crossing_base[e + 1] - crossing_base[e]);
-  };
+// The contours: one segment per level strictly inside a reached triangle's slab range, between
+// the crossings of that level on two of its edges; segments sharing a crossing form a contour,
+// numbered in the order the segments first meet them. Fills the graph's contours (all but lower
+// and upper) and each contour's first segment's triangle, which decides them.
+void findContours(std::span<const Vec3> positions, const MeshTopology& mesh, std::span<const double> f, double spacing,
+                  const SlabLayout& layout, LevelGraph& graph, std::vector<std::uint32_t>& first_triangle) {
+  const std::size_t t_count = mesh.triangles.size();
+  const std::uint32_t crossing_count = layout.crossing_base.back();
   struct Segment {
     std::uint32_t e0, e1, triangle, level;
   };
   std::vector<Segment> segments;
   DisjointSets links(crossing_count);
   for (std::uint32_t t = 0; t < t_count; ++t) {
-    if (base[t + 1] - base[t] < 2) continue;
-    const std::uint32_t hi = lo[t] + (base[t + 1] - base[t]) - 1;
-    for (std::uint32_t s = lo[t] + 1; s <= hi; ++s) {
+    if (layout.base[t + 1] - layout.base[t] < 2) continue;
+    const std::uint32_t hi = layout.lo[t] + (layout.base[t + 1] - layout.base[t]) - 1;
+    for (std::uint32_t s = layout.lo[t] + 1; s <= hi; ++s) {
       std::uint32_t found[2] = {0, 0};
       int n = 0;
       for (const std::uint32_t e : mesh.triangle_edges[t]) {
-        if (crosses(e, s) && n < 2) found[n++] = e;
+        if (layout.crosses(e, s) && n < 2) found[n++] = e;
       }
       assert(n == 2);
-      links.unite(crossing(found[0], s), crossing(found[1], s));
+      links.unite(layout.crossing(found[0], s), layout.crossing(found[1], s));
       segments.push_back({found[0], found[1], t, s});
     }
   }
   links.flatten();
 
-  // Contours numbered in the order the segments first meet them, their sizes counted before they
-  // are filled.
+  // Contours' sizes are counted before they are filled.
   std::vector<std::uint32_t> contour_of_root(crossing_count, LevelGraph::kNoRegion);
   std::vector<std::uint32_t> segment_counts;
   for (const Segment& seg : segments) {
-    const std::uint32_t root = links.parent[crossing(seg.e0, seg.level)];
+    const std::uint32_t root = links.parent[layout.crossing(seg.e0, seg.level)];
     if (contour_of_root[root] == LevelGraph::kNoRegion) {
       contour_of_root[root] = static_cast<std::uint32_t>(graph.contours.size());
-      LevelContour& created = graph.contours.emplace_back();
-      created.level = seg.level;
-      created.lower = regionOf(seg.triangle, seg.level - 1);
-      created.upper = regionOf(seg.triangle, seg.level);
+      graph.contours.emplace_back().level = seg.level;
+      first_triangle.push_back(seg.triangle);
       segment_counts.push_back(0);
     }
     ++segment_counts[contour_of_root[root]];
@@ -465,7 +485,7 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
   std::vector<std::uint32_t> point_of_crossing(crossing_count, LevelGraph::kNoRegion);
   std::vector<std::uint32_t> uses(crossing_count, 0);
   auto pointOf = [&](LevelContour& contour, std::uint32_t e, std::uint32_t s) {
-    const std::uint32_t c = crossing(e, s);
+    const std::uint32_t c = layout.crossing(e, s);
     if (point_of_crossing[c] == LevelGraph::kNoRegion) {
       std::uint32_t a = mesh.edges[e][0];
       std::uint32_t b = mesh.edges[e][1];
@@ -479,7 +499,7 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
     return point_of_crossing[c];
   };
   for (const Segment& seg : segments) {
-    LevelContour& contour = graph.contours[contour_of_root[links.parent[crossing(seg.e0, seg.level)]]];
+    LevelContour& contour = graph.contours[contour_of_root[links.parent[layout.crossing(seg.e0, seg.level)]]];
     const std::uint32_t p0 = pointOf(contour, seg.e0, seg.level);
     const std::uint32_t p1 = pointOf(contour, seg.e1, seg.level);
     contour.segments.push_back({p0, p1});
@@ -487,25 +507,52 @@ LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh,
   for (std::uint32_t c = 0; c < crossing_count; ++c) {
     if (uses[c] == 1) graph.contours[contour_of_root[links.parent[c]]].closed = false;
   }
-  {
-    std::vector<std::uint32_t> sizes(graph.regions.size(), 0);
-    for (const LevelContour& contour : graph.contours) {
-      ++sizes[contour.lower];
-      ++sizes[contour.upper];
-    }
-    for (std::size_t r = 0; r < sizes.size(); ++r) graph.regions[r].contours.reserve(sizes[r]);
-  }
   std::vector<Vec3> at;  // a contour's points on `positions`, computed once for its sums
-  for (std::uint32_t c = 0; c < graph.contours.size(); ++c) {
-    LevelContour& contour = graph.contours[c];
+  for (LevelContour& contour : graph.contours) {
     at.clear();
     for (const CurvePoint& p : contour.points) at.push_back(curvePointPosition(positions, p));
     contour.centroid = centroidOf(contour, [&](std::uint32_t i) { return at[i]; }, &contour.length);
     double radius = 0.0;
     for (const Vec3& p : at) radius += glm::length(p - contour.centroid);
     contour.radius = contour.points.empty() ? 0.0 : radius / static_cast<double>(contour.points.size());
-    graph.regions[contour.lower].contours.push_back(c);
-    graph.regions[contour.upper].contours.push_back(c);
+  }
+}
+
+}  // namespace
+
+LevelGraph levelGraph(std::span<const Vec3> positions, const MeshTopology& mesh, std::span<const double> f,
+                      double spacing) {
+  assert(spacing > 0.0);
+  LevelGraph graph;
+  graph.spacing = spacing;
+  graph.vertex_region.assign(positions.size(), LevelGraph::kNoRegion);
+  const SlabLayout layout = slabLayout(mesh, f, spacing);
+  // The regions and the contours need each other only for the contours' two region numbers, so
+  // on a large mesh they are found at the same time (each writes its own part of the graph).
+  DisjointSets pieces(layout.base.back());
+  std::vector<std::uint32_t> region_of_root;
+  std::vector<std::uint32_t> first_triangle;
+  auto regions = [&] { findRegions(mesh, layout, graph, pieces, region_of_root); };
+  auto contours = [&] { findContours(positions, mesh, f, spacing, layout, graph, first_triangle); };
+  if (mesh.triangles.size() >= kParallelTriangles) {
+    parallelInvoke(regions, contours);
+  } else {
+    regions();
+    contours();
+  }
+  auto regionOf = [&](std::uint32_t t, std::uint32_t slab) { return region_of_root[pieces.parent[layout.piece(t, slab)]]; };
+  std::vector<std::uint32_t> sizes(graph.regions.size(), 0);
+  for (std::uint32_t c = 0; c < graph.contours.size(); ++c) {
+    LevelContour& contour = graph.contours[c];
+    contour.lower = regionOf(first_triangle[c], contour.level - 1);
+    contour.upper = regionOf(first_triangle[c], contour.level);
+    ++sizes[contour.lower];
+    ++sizes[contour.upper];
+  }
+  for (std::size_t r = 0; r < sizes.size(); ++r) graph.regions[r].contours.reserve(sizes[r]);
+  for (std::uint32_t c = 0; c < graph.contours.size(); ++c) {
+    graph.regions[graph.contours[c].lower].contours.push_back(c);
+    graph.regions[graph.contours[c].upper].contours.push_back(c);
   }
   for (LevelRegion& region : graph.regions) {
     Vec3 sum(0.0);
