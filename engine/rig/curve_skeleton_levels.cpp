@@ -51,40 +51,42 @@ MeshTopology meshTopology(std::span<const Vec3> positions, const FaceList& faces
     }
   }
   // Half-edges bucketed by their smaller vertex (a counting sort), then matched within a bucket.
+  // Each is kept as one key, its larger vertex above its index 3 t + k: sorting a bucket's keys
+  // orders its half-edges by their other end, then by index.
   const std::size_t h_count = 3 * mesh.triangles.size();
   std::vector<std::uint32_t> bucket(v_count + 1, 0);
   for (const auto& t : mesh.triangles) {
     for (std::uint32_t k = 0; k < 3; ++k) ++bucket[std::min(t[k], t[(k + 1) % 3]) + 1];
   }
   for (std::size_t v = 0; v < v_count; ++v) bucket[v + 1] += bucket[v];
-  std::vector<std::uint32_t> half(h_count);  // 3 t + k
+  std::vector<std::uint64_t> half(h_count);
   {
     std::vector<std::uint32_t> fill(bucket.begin(), bucket.end() - 1);
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
       for (std::uint32_t k = 0; k < 3; ++k) {
-        half[fill[std::min(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])]++] = 3 * t + k;
+        const std::uint32_t a = mesh.triangles[t][k];
+        const std::uint32_t b = mesh.triangles[t][(k + 1) % 3];
+        half[fill[std::min(a, b)]++] = std::uint64_t{std::max(a, b)} << 32 | (3 * t + k);
       }
     }
   }
-  auto other = [&](std::uint32_t h) {
-    const auto& t = mesh.triangles[h / 3];
-    return std::max(t[h % 3], t[(h % 3 + 1) % 3]);
-  };
+  auto other = [](std::uint64_t key) { return static_cast<std::uint32_t>(key >> 32); };
+  auto triangle = [](std::uint64_t key) { return static_cast<std::uint32_t>(key) / 3; };
+  auto side = [](std::uint64_t key) { return static_cast<std::uint32_t>(key) % 3; };
   mesh.triangle_edges.resize(mesh.triangles.size());
+  mesh.edges.reserve(h_count / 2);  // exact for a closed manifold mesh
+  mesh.edge_triangles.reserve(h_count / 2);
   for (std::uint32_t v = 0; v < v_count; ++v) {
-    // A bucket holds the few half-edges of one vertex: order them by their other end.
-    std::sort(half.begin() + bucket[v], half.begin() + bucket[v + 1], [&](std::uint32_t x, std::uint32_t y) {
-      return other(x) != other(y) ? other(x) < other(y) : x < y;
-    });
+    std::sort(half.begin() + bucket[v], half.begin() + bucket[v + 1]);
     for (std::uint32_t i = bucket[v]; i < bucket[v + 1];) {
       const auto e = static_cast<std::uint32_t>(mesh.edges.size());
       const std::uint32_t w = other(half[i]);
       mesh.edges.push_back({v, w});
-      mesh.edge_triangles.push_back({static_cast<std::int32_t>(half[i] / 3), -1});
+      mesh.edge_triangles.push_back({static_cast<std::int32_t>(triangle(half[i])), -1});
       std::uint32_t j = i;
       for (; j < bucket[v + 1] && other(half[j]) == w; ++j) {
-        mesh.triangle_edges[half[j] / 3][half[j] % 3] = e;
-        if (j == i + 1) mesh.edge_triangles.back()[1] = static_cast<std::int32_t>(half[j] / 3);
+        mesh.triangle_edges[triangle(half[j])][side(half[j])] = e;
+        if (j == i + 1) mesh.edge_triangles.back()[1] = static_cast<std::int32_t>(triangle(half[j]));
       }
       i = j;
     }
