@@ -66,7 +66,7 @@ MeshTopology meshTopology(std::span<const Vec3> positions, const FaceList& faces
       for (std::uint32_t k = 0; k < 3; ++k) {
         const std::uint32_t a = mesh.triangles[t][k];
         const std::uint32_t b = mesh.triangles[t][(k + 1) % 3];
-        half[fill[std::min(a, b)]++] = std::uint64_t{std::max(a, b)} << 32 | (3 * t + k);
+        half[fill[std::min(a, b)]++] = static_cast<std::uint64_t>(std::max(a, b)) << 32 | (3 * t + k);
       }
     }
   }
