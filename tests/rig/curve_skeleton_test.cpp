@@ -59,7 +59,13 @@ TEST(CurveSkeleton, TopologyOfACube) {
   const MeshTopology mesh = meshTopology(corners, quads);
   EXPECT_EQ(mesh.triangles.size(), 12u);
   ASSERT_EQ(mesh.edges.size(), 18u);
-  for (const auto& t : mesh.edge_triangles) EXPECT_GE(t[1], 0);
+  // Edges in order of (smaller end, larger end), each with its triangles in index order: the
+  // numbering every later table, and the order of the level graphs' regions and rings, rests on.
+  for (std::size_t e = 0; e + 1 < mesh.edges.size(); ++e) EXPECT_LT(mesh.edges[e], mesh.edges[e + 1]) << e;
+  for (const auto& t : mesh.edge_triangles) {
+    EXPECT_GE(t[1], 0);
+    EXPECT_LT(t[0], t[1]);
+  }
   for (const char b : mesh.boundary_vertex) EXPECT_EQ(b, 0);
   EXPECT_EQ(mesh.vertex_offsets.back(), 36u);
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
