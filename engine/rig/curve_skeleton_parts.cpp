@@ -111,10 +111,7 @@ std::vector<SkeletonAnchor> curveAnchors(std::span<const CurvePoint> points, boo
   std::vector<SkeletonAnchor> anchors(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) anchors[i].point = points[i];
   const std::size_t segments = closed ? points.size() : (points.empty() ? 0 : points.size() - 1);
-  if (segments == 0) {
-    for (SkeletonAnchor& a : anchors) a.weight = 1.0;
-    return anchors;
-  }
+  if (points.empty()) return anchors;
   const Vec3 first = curvePointPosition(rest, points[0]);
   Vec3 at = first;
   for (std::size_t k = 0; k < segments; ++k) {
