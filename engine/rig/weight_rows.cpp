@@ -6,6 +6,12 @@
 
 
 namespace odeskin {
+namespace {
+
+// Vertices per task of a smoothing step (a few hundred entries each).
+constexpr std::size_t kSmoothGrain = 64;
+
+}  // namespace
 
 Status checkFaces(const FaceList& faces, std::size_t vertex_count, const std::string& who) {
   if (faces.face_offsets.empty() || faces.face_offsets[0] != 0 || faces.face_offsets.back() != faces.indices.size()) {
@@ -27,31 +33,47 @@ Status checkFaces(const FaceList& faces, std::size_t vertex_count, const std::st
 }
 
 void smoothRows(std::vector<WeightRow>& rows, const VertexAdjacency& adjacency, int iterations, double lambda) {
+  std::uint32_t bones = 0;
+  for (const WeightRow& row : rows) {
+    for (const BoneWeight& e : row) bones = std::max(bones, e.bone + 1);
+  }
   std::vector<WeightRow> next(rows.size());
   for (int it = 0; it < iterations; ++it) {
-    parallelFor(std::size_t{0}, rows.size(), [&](std::size_t i) {
-      const auto ring = adjacency.of(static_cast<std::uint32_t>(i));
-      WeightRow& out = next[i];
-      out.clear();
-      if (ring.empty()) {
-        out = rows[i];
-        return;
-      }
-      const double share = lambda / static_cast<double>(ring.size());
-      for (const BoneWeight& e : rows[i]) out.push_back({e.bone, (1.0 - lambda) * e.weight});
-      for (const std::uint32_t j : ring) {
-        for (const BoneWeight& e : rows[j]) out.push_back({e.bone, share * e.weight});
-      }
-      std::sort(out.begin(), out.end(), [](const BoneWeight& a, const BoneWeight& b) { return a.bone < b.bone; });
-      std::size_t kept = 0;
-      for (std::size_t e = 0; e < out.size(); ++e) {
-        if (kept > 0 && out[kept - 1].bone == out[e].bone) {
-          out[kept - 1].weight += out[e].weight;
-        } else {
-          out[kept++] = out[e];
+    // Each row is summed bone by bone in one fixed order (the vertex, then its neighbours in the
+    // adjacency's order) into a dense per-chunk array: no sort of the ring's entries, and a sum that
+    // does not depend on how a sort leaves equal bones.
+    parallelFor(tbb::blocked_range<std::size_t>(0, rows.size(), kSmoothGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<double> sum(bones, 0.0);
+      std::vector<char> used(bones, 0);
+      std::vector<std::uint32_t> touched;
+      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+        const auto ring = adjacency.of(static_cast<std::uint32_t>(i));
+        WeightRow& out = next[i];
+        if (ring.empty()) {
+          out = rows[i];
+          continue;
         }
+        auto add = [&](const WeightRow& row, double scale) {
+          for (const BoneWeight& e : row) {
+            if (!used[e.bone]) {
+              used[e.bone] = 1;
+              touched.push_back(e.bone);
+            }
+            sum[e.bone] += scale * e.weight;
+          }
+        };
+        add(rows[i], 1.0 - lambda);
+        const double share = lambda / static_cast<double>(ring.size());
+        for (const std::uint32_t j : ring) add(rows[j], share);
+        std::sort(touched.begin(), touched.end());
+        out.clear();
+        for (const std::uint32_t b : touched) {
+          out.push_back({b, sum[b]});
+          sum[b] = 0.0;
+          used[b] = 0;
+        }
+        touched.clear();
       }
-      out.resize(kept);
     });
     rows.swap(next);
   }
