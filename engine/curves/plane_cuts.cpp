@@ -35,26 +35,36 @@ CutMesh buildCutMesh(const FaceList& faces, std::size_t vertex_count) {
   }
   for (std::size_t v = 0; v < vertex_count; ++v) mesh.vertex_offsets[v + 1] += mesh.vertex_offsets[v];
   mesh.vertex_triangles.resize(mesh.vertex_offsets.back());
-  // next[j]: the corner after v in the j-th triangle around v.
-  std::vector<std::uint32_t> next(mesh.vertex_triangles.size());
+  // Around each v, the j-th triangle: its corner after v (next), before v (prev), and which of
+  // its edges runs prev -> v (edge k runs from corner k to corner k + 1).
+  const std::size_t corners = mesh.vertex_triangles.size();
+  std::vector<std::uint32_t> next(corners), prev(corners);
+  std::vector<std::uint8_t> edge_into(corners);
   std::vector<std::uint32_t> fill(mesh.vertex_offsets.begin(), mesh.vertex_offsets.end() - 1);
   for (std::uint32_t t = 0; t < count; ++t) {
     for (std::uint32_t k = 0; k < 3; ++k) {
       const std::uint32_t v = mesh.triangles[t][k];
-      next[fill[v]] = mesh.triangles[t][(k + 1) % 3];
-      mesh.vertex_triangles[fill[v]++] = t;
+      const std::uint32_t j = fill[v]++;
+      next[j] = mesh.triangles[t][k == 2 ? 0 : k + 1];
+      prev[j] = mesh.triangles[t][k == 0 ? 2 : k - 1];
+      edge_into[j] = static_cast<std::uint8_t>(k == 0 ? 2 : k - 1);
+      mesh.vertex_triangles[j] = t;
     }
   }
   // Consistent orientation: the neighbour across (u, v) is the triangle around v that runs v -> u
-  // (the last one, should a broken mesh have several).
+  // (the last one, should a broken mesh have several). Each triangle's edge into v is matched
+  // against v's own list, so both scans stay in one short stretch of memory.
   mesh.neighbours.assign(count, {-1, -1, -1});
-  for (std::uint32_t t = 0; t < count; ++t) {
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t u = mesh.triangles[t][k];
-      const std::uint32_t v = mesh.triangles[t][(k + 1) % 3];
-      for (std::uint32_t j = mesh.vertex_offsets[v]; j < mesh.vertex_offsets[v + 1]; ++j) {
-        if (next[j] == u) mesh.neighbours[t][k] = static_cast<std::int32_t>(mesh.vertex_triangles[j]);
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const std::uint32_t begin = mesh.vertex_offsets[v];
+    const std::uint32_t end = mesh.vertex_offsets[v + 1];
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const std::uint32_t u = prev[i];
+      std::int32_t across = -1;
+      for (std::uint32_t j = begin; j < end; ++j) {
+        if (next[j] == u) across = static_cast<std::int32_t>(mesh.vertex_triangles[j]);
       }
+      mesh.neighbours[mesh.vertex_triangles[i]][edge_into[i]] = across;
     }
   }
   return mesh;

@@ -13,8 +13,12 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 // Every face corner, grouped by its vertex: the vertex before and after it in the face, and the
 // corner's position in faces.indices (where OpenMesh creates the edge to `next`).
 struct Corners {
+  // One record per corner, so that placing a corner in its vertex's group writes one cache line.
+  struct Corner {
+    std::uint32_t prev, next, position, prev_position;
+  };
   std::vector<std::uint32_t> offsets;  // V + 1
-  std::vector<std::uint32_t> prev, next, position, prev_position;
+  std::vector<Corner> at;
 
   std::uint32_t begin(std::uint32_t v) const { return offsets[v]; }
   std::uint32_t end(std::uint32_t v) const { return offsets[v + 1]; }
@@ -35,21 +39,15 @@ bool buildCorners(const FaceList& faces, std::size_t vertex_count, Corners& c) {
   }
   for (std::size_t v = 0; v < vertex_count; ++v) c.offsets[v + 1] += c.offsets[v];
   const std::size_t total = faces.indices.size();
-  c.prev.resize(total);
-  c.next.resize(total);
-  c.position.resize(total);
-  c.prev_position.resize(total);
+  c.at.resize(total);
   std::vector<std::uint32_t> fill(c.offsets.begin(), c.offsets.end() - 1);
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {
     const std::uint32_t begin = faces.face_offsets[f];
     const std::uint32_t n = faces.face_offsets[f + 1] - begin;
     for (std::uint32_t i = 0; i < n; ++i) {
       const std::uint32_t v = faces.indices[begin + i];
-      const std::uint32_t k = fill[v]++;
-      c.prev[k] = faces.indices[begin + (i + n - 1) % n];
-      c.next[k] = faces.indices[begin + (i + 1) % n];
-      c.position[k] = begin + i;
-      c.prev_position[k] = begin + (i + n - 1) % n;
+      const std::uint32_t before = begin + (i == 0 ? n - 1 : i - 1);
+      c.at[fill[v]++] = {faces.indices[before], faces.indices[begin + (i + 1 == n ? 0 : i + 1)], begin + i, before};
     }
   }
   return true;
@@ -87,8 +85,8 @@ bool oneFan(const Corners& c, std::uint32_t v, std::uint32_t& open) {
     bool followed = false;
     for (std::uint32_t g = begin; g < begin + count; ++g) {
       if (g == f) continue;
-      if (c.next[g] == c.next[f] || c.prev[g] == c.prev[f]) return false;  // a directed edge twice
-      if (c.next[g] == c.prev[f]) followed = true;
+      if (c.at[g].next == c.at[f].next || c.at[g].prev == c.at[f].prev) return false;  // a directed edge twice
+      if (c.at[g].next == c.at[f].prev) followed = true;
     }
     if (followed) ++links;
     else start = f;
@@ -100,7 +98,7 @@ bool oneFan(const Corners& c, std::uint32_t v, std::uint32_t& open) {
   for (std::uint32_t f = start;;) {
     std::uint32_t follower = kNone;
     for (std::uint32_t g = begin; g < begin + count; ++g) {
-      if (c.prev[g] == c.next[f]) follower = g;
+      if (c.at[g].prev == c.at[f].next) follower = g;
     }
     if (follower == kNone || follower == start) break;
     if (++seen > count) return false;
@@ -131,7 +129,7 @@ std::optional<std::vector<std::vector<std::uint32_t>>> simpleManifoldBoundaryLoo
     if (!oneFan(c, v, open)) return std::nullopt;
     if (open == kNone) continue;
     leaving[v] = static_cast<std::uint32_t>(boundary.size());
-    boundary.push_back({v, c.prev[open], c.prev_position[open]});
+    boundary.push_back({v, c.at[open].prev, c.at[open].prev_position});
   }
   std::vector<std::uint32_t> order(boundary.size());
   for (std::uint32_t h = 0; h < order.size(); ++h) order[h] = h;
