@@ -10,31 +10,36 @@ namespace {
 
 Eigen::Vector3d toEigen(const Vec3& p) { return {p.x, p.y, p.z}; }
 
-// Weighted Kabsch of rest positions onto target(i, w) with weight weight_of(w) over bone b's
-// vertices at or above its threshold (two passes about the centroids).
+// Weighted Kabsch of rest positions onto target(e, i, w) (column entry e: vertex i, weight w) with
+// weight weight_of(w) over bone b's vertices at or above its threshold (two passes about the
+// centroids). `targets` keeps the first pass's targets for the second, beside the column.
 template <typename Target, typename WeightOf>
-Result<RigidTransform> alignBone(const BoneFitProblem& p, std::size_t b, Target target, WeightOf weight_of) {
+Result<RigidTransform> alignBone(const BoneFitProblem& p, std::size_t b, Target target, WeightOf weight_of,
+                                 std::vector<Vec3>& targets) {
+  const std::uint32_t begin = p.column_offsets[b];
+  targets.resize(p.column_offsets[b + 1] - begin);
   double weight_sum = 0.0;
   Vec3 from_sum(0.0);
   Vec3 to_sum(0.0);
-  for (std::uint32_t e = p.column_offsets[b]; e < p.column_offsets[b + 1]; ++e) {
+  for (std::uint32_t e = begin; e < p.column_offsets[b + 1]; ++e) {
     const double w = p.column_weights[e];
     if (w < p.thresholds[b]) continue;
     const std::uint32_t i = p.column_vertices[e];
     const double a = weight_of(w);
     weight_sum += a;
     from_sum += a * p.rest[i];
-    to_sum += a * target(i, w);
+    targets[e - begin] = target(e, i, w);
+    to_sum += a * targets[e - begin];
   }
   if (!(weight_sum > 0.0)) return degenerate("bone has no weighted vertex");
   const Vec3 from_centroid = from_sum / weight_sum;
   const Vec3 to_centroid = to_sum / weight_sum;
   Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
-  for (std::uint32_t e = p.column_offsets[b]; e < p.column_offsets[b + 1]; ++e) {
+  for (std::uint32_t e = begin; e < p.column_offsets[b + 1]; ++e) {
     const double w = p.column_weights[e];
     if (w < p.thresholds[b]) continue;
     const std::uint32_t i = p.column_vertices[e];
-    h.noalias() += weight_of(w) * toEigen(p.rest[i] - from_centroid) * toEigen(target(i, w) - to_centroid).transpose();
+    h.noalias() += weight_of(w) * toEigen(p.rest[i] - from_centroid) * toEigen(targets[e - begin] - to_centroid).transpose();
   }
   return kabschFromCovariance(h, from_centroid, to_centroid);
 }
@@ -91,9 +96,10 @@ std::vector<RigidTransform> initialBoneTransforms(const BoneFitProblem& problem,
                                                   std::vector<char>* inherited) {
   std::vector<RigidTransform> transforms(problem.parents.size());
   if (inherited != nullptr) inherited->assign(problem.parents.size(), 0);
+  std::vector<Vec3> targets;
   for (const std::uint32_t b : problem.order) {
     Result<RigidTransform> fit = alignBone(
-        problem, b, [&](std::uint32_t i, double) { return pose[i]; }, [](double w) { return w; });
+        problem, b, [&](std::uint32_t, std::uint32_t i, double) { return pose[i]; }, [](double w) { return w; }, targets);
     if (fit.ok()) {
       transforms[b] = fit.value();
     } else {
@@ -123,18 +129,26 @@ double refineBoneTransforms(const BoneFitProblem& problem, std::span<const Vec3>
     return error;
   };
   double error = skinAll();
+  // Per entry of the bone's column: x_i under the bone's transform before the update (used by the
+  // targets and by the update of skin), and the targets.
+  std::vector<Vec3> moved, targets;
   for (int sweep = 0; sweep < max_sweeps && error > 0.0; ++sweep) {
     for (const std::uint32_t b : problem.order) {
       const RigidTransform old = transforms[b];
+      const std::uint32_t begin = problem.column_offsets[b];
+      moved.resize(problem.column_offsets[b + 1] - begin);
+      for (std::uint32_t e = begin; e < problem.column_offsets[b + 1]; ++e) {
+        moved[e - begin] = old.apply(problem.rest[problem.column_vertices[e]]);
+      }
       // The point bone b alone should send x_i to, given the other bones: (p_i - others_i) / w_ib.
-      auto target = [&](std::uint32_t i, double w) {
-        return (pose[i] - skin[i] + w * old.apply(problem.rest[i])) / w;
+      auto target = [&](std::uint32_t e, std::uint32_t i, double w) {
+        return (pose[i] - skin[i] + w * moved[e - begin]) / w;
       };
-      Result<RigidTransform> fit = alignBone(problem, b, target, [](double w) { return w * w; });
+      Result<RigidTransform> fit = alignBone(problem, b, target, [](double w) { return w * w; }, targets);
       const RigidTransform next = fit.ok() ? fit.value() : inherit(problem, b, transforms);
-      for (std::uint32_t e = problem.column_offsets[b]; e < problem.column_offsets[b + 1]; ++e) {
+      for (std::uint32_t e = begin; e < problem.column_offsets[b + 1]; ++e) {
         const std::uint32_t i = problem.column_vertices[e];
-        skin[i] += problem.column_weights[e] * (next.apply(problem.rest[i]) - old.apply(problem.rest[i]));
+        skin[i] += problem.column_weights[e] * (next.apply(problem.rest[i]) - moved[e - begin]);
       }
       transforms[b] = next;
     }
