@@ -18,10 +18,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <numeric>
 #include <optional>
+#include <span>
 
+#include <tbb/blocked_range.h>
 
 #include "cluster_connectivity.hpp"
 #include "kabsch.hpp"
@@ -75,52 +76,124 @@ std::vector<std::uint32_t> patchAround(const MotionData& m, std::uint32_t seed, 
   return patch;
 }
 
-// Bone matrices C x K, laid out for the per-vertex loops.
-std::vector<BoneTransform> matricesOf(const Transforms& t) {
-  const std::size_t poses = t.size();
-  const std::size_t clusters = t[0].size();
-  std::vector<BoneTransform> out(clusters * poses);
-  for (std::size_t c = 0; c < clusters; ++c) {
-    for (std::size_t k = 0; k < poses; ++k) out[c * poses + k] = t[k][c].matrix();
+// The pose whose vertices move farthest from the bind mesh (sum of squared displacements): the
+// one whose error term best tells a wrong cluster from the right one (an example pose equal to
+// the bind mesh gives every cluster an error near 0).
+std::size_t mostMovedPose(const MotionData& m) {
+  std::size_t best = 0;
+  double best_motion = -1.0;
+  for (std::size_t k = 0; k < m.poseCount(); ++k) {
+    double motion = 0.0;
+    for (std::size_t i = 0; i < m.vertexCount(); ++i) {
+      const Vec3 d = (*m.poses)[k][i] - m.rest[i];
+      motion += glm::dot(d, d);
+    }
+    if (motion > best_motion) {
+      best_motion = motion;
+      best = k;
+    }
   }
-  return out;
+  return best;
 }
 
-double vertexError(const MotionData& m, std::span<const BoneTransform> matrices, std::size_t c, std::size_t i,
-                   double stop_above) {
-  const std::size_t poses = m.poseCount();
-  const glm::dvec4 x(m.rest[i], 1.0);
-  double e = 0.0;
-  for (std::size_t k = 0; k < poses && e <= stop_above; ++k) {
-    const Vec3 d = matrices[c * poses + k] * x - (*m.poses)[k][i];
-    e += glm::dot(d, d);
+// |T_c x - p|^2 for n transforms T_c held entry by entry (entry (column, row) at a[(3 column + row) n
+// + c]), with the arithmetic of glm's product (its translation times w = 1 is exact) and dot in
+// their order, into e[0, n).
+void transformErrors(const double* __restrict a, std::size_t n, const Vec3& rest, const Vec3& pose, double* __restrict e) {
+  const double x = rest.x, y = rest.y, z = rest.z;
+  const double px = pose.x, py = pose.y, pz = pose.z;
+  for (std::size_t c = 0; c < n; ++c) {
+    const double dx = a[c] * x + a[3 * n + c] * y + a[6 * n + c] * z + a[9 * n + c] - px;
+    const double dy = a[n + c] * x + a[4 * n + c] * y + a[7 * n + c] * z + a[10 * n + c] - py;
+    const double dz = a[2 * n + c] * x + a[5 * n + c] * y + a[8 * n + c] * z + a[11 * n + c] - pz;
+    e[c] = dx * dx + dy * dy + dz * dz;
   }
-  return e;
 }
 
-void assignBest(const MotionData& m, std::span<const BoneTransform> matrices, std::size_t clusters,
-                std::vector<std::uint32_t>& labels) {
-  parallelFor(std::size_t{0}, m.vertexCount(), [&](std::size_t i) {
-    std::uint32_t best = labels[i];
-    double best_error = vertexError(m, matrices, best, i, std::numeric_limits<double>::infinity());
-    for (std::size_t c = 0; c < clusters; ++c) {
-      if (c == labels[i]) continue;
-      const double e = vertexError(m, matrices, c, i, best_error);
-      if (e < best_error) {
-        best_error = e;
-        best = static_cast<std::uint32_t>(c);
+// Every vertex's fit error in every cluster for one set of transforms: sum over poses k, in
+// order, of |T_{k,c} x_i - p_ki|^2.
+class ClusterFit {
+ public:
+  ClusterFit(const MotionData& m, const Transforms& t, std::size_t probe)
+      : m_(m), probe_(probe), clusters_(t[0].size()), probe_entries_(12 * clusters_) {
+    const std::size_t poses = t.size();
+    matrices_.resize(clusters_ * poses);
+    for (std::size_t c = 0; c < clusters_; ++c) {
+      for (std::size_t k = 0; k < poses; ++k) matrices_[c * poses + k] = t[k][c].matrix();
+      const BoneTransform& at_probe = matrices_[c * poses + probe];
+      for (int col = 0; col < 4; ++col) {
+        for (int row = 0; row < 3; ++row) probe_entries_[(3 * col + row) * clusters_ + c] = at_probe[col][row];
       }
     }
-    labels[i] = best;
+  }
+
+  std::size_t clusterCount() const { return clusters_; }
+
+  double error(std::size_t c, std::size_t i) const {
+    double e = 0.0;
+    for (std::size_t k = 0; k < m_.poseCount(); ++k) e += term(c, i, k);
+    return e;
+  }
+
+  // The probe pose's term of vertex i in every cluster, into `out` (clusterCount() values): the
+  // arithmetic of term() (glm's product and dot, in their order), cluster by cluster in one loop
+  // the compiler vectorises.
+  void probeTerms(std::size_t i, std::span<double> out) const {
+    const Vec3 p = (*m_.poses)[probe_][i];
+    transformErrors(probe_entries_.data(), clusters_, m_.rest[i], p, out.data());
+  }
+
+  // The error, or any value above stop_above once it is known to exceed it (callers only compare
+  // it with stop_above). The probe pose's term alone (`probe_term`, from probeTerms) is a lower
+  // bound of the sum (adding non-negative terms never rounds below a partial sum), so it decides
+  // first; below stop_above, the sum is the one error() forms, stopped as soon as it passes.
+  double errorUpTo(std::size_t c, std::size_t i, double probe_term, double stop_above) const {
+    if (probe_term > stop_above) return probe_term;
+    double e = 0.0;
+    for (std::size_t k = 0; k < m_.poseCount() && e <= stop_above; ++k) e += k == probe_ ? probe_term : term(c, i, k);
+    return e;
+  }
+  double errorUpTo(std::size_t c, std::size_t i, double stop_above) const {
+    return errorUpTo(c, i, term(c, i, probe_), stop_above);
+  }
+
+ private:
+  double term(std::size_t c, std::size_t i, std::size_t k) const {
+    const Vec3 d = matrices_[c * m_.poseCount() + k] * glm::dvec4(m_.rest[i], 1.0) - (*m_.poses)[k][i];
+    return glm::dot(d, d);
+  }
+
+  const MotionData& m_;
+  std::size_t probe_;
+  std::size_t clusters_;
+  std::vector<BoneTransform> matrices_;  // C x K
+  std::vector<double> probe_entries_;    // the probe pose's matrices, entry (column, row) major, then cluster
+};
+
+void assignBest(const MotionData& m, const ClusterFit& fit, std::vector<std::uint32_t>& labels) {
+  parallelFor(tbb::blocked_range<std::size_t>(0, m.vertexCount(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<double> probe(fit.clusterCount());
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      fit.probeTerms(i, probe);
+      std::uint32_t best = labels[i];
+      double best_error = fit.error(best, i);
+      for (std::size_t c = 0; c < probe.size(); ++c) {
+        if (c == labels[i]) continue;
+        const double e = fit.errorUpTo(c, i, probe[c], best_error);
+        if (e < best_error) {
+          best_error = e;
+          best = static_cast<std::uint32_t>(c);
+        }
+      }
+      labels[i] = best;
+    }
   });
 }
 
 void computeErrors(const MotionData& m, const Transforms& t, Clustering& out) {
-  const std::vector<BoneTransform> matrices = matricesOf(t);
+  const ClusterFit fit(m, t, 0);
   out.vertex_error.resize(m.vertexCount());
-  parallelFor(std::size_t{0}, m.vertexCount(), [&](std::size_t i) {
-    out.vertex_error[i] = vertexError(m, matrices, out.labels[i], i, std::numeric_limits<double>::infinity());
-  });
+  parallelFor(std::size_t{0}, m.vertexCount(), [&](std::size_t i) { out.vertex_error[i] = fit.error(out.labels[i], i); });
   const double total = std::accumulate(out.vertex_error.begin(), out.vertex_error.end(), 0.0);
   out.rms_error = std::sqrt(total / static_cast<double>(m.vertexCount() * m.poseCount())) / m.box;
 }
@@ -147,16 +220,16 @@ std::optional<std::vector<RigidTransform>> seedCluster(const MotionData& m, cons
 }
 
 // Lloyd rounds at a fixed count, until no label changes; leaves the errors up to date.
-void lloyd(const MotionData& m, int iterations, Clustering& c) {
+void lloyd(const MotionData& m, std::size_t probe, int iterations, Clustering& c) {
   const std::size_t clusters = c.clusterCount();
   // cppcheck-suppress variableScope ; declared outside the loop so its storage is reused each iteration
   std::vector<std::uint32_t> previous;
   for (int it = 0; it < iterations; ++it) {
-    const std::vector<BoneTransform> matrices = matricesOf(c.transforms);
+    const ClusterFit errors(m, c.transforms, probe);
     previous = c.labels;
-    assignBest(m, matrices, clusters, c.labels);
+    assignBest(m, errors, c.labels);
     keepClustersConnected(*m.adjacency, clusters, c.labels, [&](std::uint32_t cluster, std::uint32_t i, double stop_above) {
-      return vertexError(m, matrices, cluster, i, stop_above);
+      return errors.errorUpTo(cluster, i, stop_above);
     });
     if (it > 0 && c.labels == previous) break;
     std::vector<std::vector<std::uint32_t>> members(clusters);
@@ -195,13 +268,13 @@ bool growthStops(const ClusterOptions& options, std::size_t previous_count, doub
 // One more assignment, then clusters too small or too flat to hold a bone are dropped (their
 // vertices go to the best remaining cluster) until every cluster fits; labels, transforms and
 // errors then agree. `whole` is the whole mesh's fit, the last resort.
-void finalise(const MotionData& m, const std::vector<RigidTransform>& whole, Clustering& c) {
+void finalise(const MotionData& m, std::size_t probe, const std::vector<RigidTransform>& whole, Clustering& c) {
   for (;;) {
     const std::size_t clusters = c.clusterCount();
-    const std::vector<BoneTransform> matrices = matricesOf(c.transforms);
-    assignBest(m, matrices, clusters, c.labels);
+    const ClusterFit errors(m, c.transforms, probe);
+    assignBest(m, errors, c.labels);
     keepClustersConnected(*m.adjacency, clusters, c.labels, [&](std::uint32_t cluster, std::uint32_t i, double stop_above) {
-      return vertexError(m, matrices, cluster, i, stop_above);
+      return errors.errorUpTo(cluster, i, stop_above);
     });
     std::vector<std::vector<std::uint32_t>> members(clusters);
     for (std::uint32_t i = 0; i < m.vertexCount(); ++i) members[c.labels[i]].push_back(i);
@@ -251,6 +324,7 @@ Result<Clustering> clusterRigidMotion(const MotionData& m, const ClusterOptions&
                                                   : static_cast<std::size_t>(options.max_clusters);
   if (options.clusters == 1 || (options.clusters == 0 && c.rms_error <= kGoodEnoughRms)) return c;
   double best_rms = c.rms_error;
+  const std::size_t probe = mostMovedPose(m);
   while (c.clusterCount() < target) {
     // Split where the error is: seeds go to the clusters with the largest total error.
     const std::size_t clusters = c.clusterCount();
@@ -270,11 +344,11 @@ Result<Clustering> clusterRigidMotion(const MotionData& m, const ClusterOptions&
       }
     }
     if (added == 0) break;
-    lloyd(m, options.iterations, c);
+    lloyd(m, probe, options.iterations, c);
     if (options.clusters == 0 && growthStops(options, clusters, best_rms, c)) break;
     best_rms = std::min(best_rms, c.rms_error);
   }
-  finalise(m, *whole, c);
+  finalise(m, probe, *whole, c);
   return c;
 }
 
