@@ -19,22 +19,28 @@ namespace odeskin {
 namespace {
 
 constexpr std::size_t kMaxCandidates = 8;
+// Bounded sizes keep a vertex's small matrices off the heap (the same dynamic-size algorithms).
+constexpr int kMaxSize = static_cast<int>(kMaxCandidates);
+using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxSize, kMaxSize>;
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxSize, 1>;
+using KktMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxSize + 1, kMaxSize + 1>;
+using KktVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxSize + 1, 1>;
 
 // Minimises 1/2 w^T G w - g^T w on the simplex; G must be positive definite.
-Eigen::VectorXd solveOnSimplex(const Eigen::MatrixXd& big_g, const Eigen::VectorXd& g) {
+SmallVector solveOnSimplex(const SmallMatrix& big_g, const SmallVector& g) {
   const Eigen::Index n = g.size();
   Eigen::Index start = 0;
   for (Eigen::Index j = 1; j < n; ++j) {
     if (0.5 * big_g(j, j) - g(j) < 0.5 * big_g(start, start) - g(start)) start = j;
   }
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
+  SmallVector w = SmallVector::Zero(n);
   w(start) = 1.0;
   std::vector<Eigen::Index> free{start};
   const double tolerance = 1e-13 * (big_g.diagonal().cwiseAbs().maxCoeff() + g.cwiseAbs().maxCoeff());
   for (int outer = 0; outer < 4 * static_cast<int>(n); ++outer) {
     // On the free set the gradient equals the multiplier of sum w = 1; a fixed weight whose
     // gradient is below it would lower the objective by growing.
-    const Eigen::VectorXd gradient = big_g * w - g;
+    const SmallVector gradient = big_g * w - g;
     const double level = gradient(free[0]);
     Eigen::Index enter = -1;
     double most = -tolerance;
@@ -49,15 +55,15 @@ Eigen::VectorXd solveOnSimplex(const Eigen::MatrixXd& big_g, const Eigen::Vector
     free.push_back(enter);
     for (Eigen::Index inner = 0; inner <= n; ++inner) {
       const auto f = static_cast<Eigen::Index>(free.size());
-      Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(f + 1, f + 1);
-      Eigen::VectorXd rhs(f + 1);
+      KktMatrix kkt = KktMatrix::Zero(f + 1, f + 1);
+      KktVector rhs(f + 1);
       for (Eigen::Index a = 0; a < f; ++a) {
         for (Eigen::Index b = 0; b < f; ++b) kkt(a, b) = big_g(free[a], free[b]);
         kkt(a, f) = kkt(f, a) = 1.0;
         rhs(a) = g(free[a]);
       }
       rhs(f) = 1.0;
-      const Eigen::VectorXd z = kkt.partialPivLu().solve(rhs);
+      const KktVector z = kkt.partialPivLu().solve(rhs);
       double step = 1.0;
       for (Eigen::Index a = 0; a < f; ++a) {
         const double wa = w(free[a]);
@@ -104,14 +110,14 @@ std::vector<WeightRow> fitVertexWeights(const MotionData& m, const std::vector<s
           for (int c = 0; c < 3; ++c) d(static_cast<Eigen::Index>(3 * k) + c, b) = e[c];
         }
       }
-      Eigen::MatrixXd g = d.transpose() * d;
+      SmallMatrix g = d.transpose() * d;
       const double lambda = prior_pull * g.trace() / static_cast<double>(n) + floor;
-      Eigen::VectorXd target(n);
+      SmallVector target(n);
       double prior_sum = 0.0;
       for (const BoneWeight& e : set) prior_sum += e.weight;
       for (Eigen::Index b = 0; b < n; ++b) target(b) = lambda * set[static_cast<std::size_t>(b)].weight / prior_sum;
       g.diagonal().array() += lambda;
-      const Eigen::VectorXd w = solveOnSimplex(g, target);
+      const SmallVector w = solveOnSimplex(g, target);
       WeightRow row;
       for (Eigen::Index b = 0; b < n; ++b) {
         if (w(b) > 0.0) row.push_back({set[static_cast<std::size_t>(b)].bone, w(b)});
