@@ -24,8 +24,10 @@
 
 #include <tbb/blocked_range.h>
 
+#include <Eigen/Dense>
+
+#include "bone_fit.hpp"
 #include "cluster_connectivity.hpp"
-#include "kabsch.hpp"
 #include "../core/parallel.hpp"
 
 namespace odeskin {
@@ -44,16 +46,31 @@ constexpr double kMinGainPerCluster = 0.01;
 
 using Transforms = std::vector<std::vector<RigidTransform>>;  // K x C
 
-// Per-pose Kabsch of `members` (rest -> pose k), or nothing when their points are degenerate.
+// Per-pose Kabsch of `members` (rest -> pose k), or nothing when their points are degenerate:
+// weightedKabsch with unit weights, to the bit (times 1 is exact), with the rest side's centroid
+// and offsets formed once for all poses.
 std::optional<std::vector<RigidTransform>> fitMembers(const MotionData& m, std::span<const std::uint32_t> members) {
-  std::vector<Vec3> from;
-  std::vector<Vec3> to(members.size());
-  for (const std::uint32_t i : members) from.push_back(m.rest[i]);
-  const std::vector<double> ones(members.size(), 1.0);
+  if (members.empty()) return std::nullopt;
+  Vec3 from_sum(0.0);
+  for (const std::uint32_t i : members) from_sum += m.rest[i];
+  const auto count = static_cast<double>(members.size());
+  const Vec3 from_centroid = from_sum / count;
+  std::vector<Eigen::Vector3d> from(members.size());
+  for (std::size_t e = 0; e < members.size(); ++e) {
+    const Vec3 d = m.rest[members[e]] - from_centroid;
+    from[e] = {d.x, d.y, d.z};
+  }
   std::vector<RigidTransform> out;
   for (const std::vector<Vec3>& pose : *m.poses) {
-    for (std::size_t e = 0; e < members.size(); ++e) to[e] = pose[members[e]];
-    Result<RigidTransform> fit = weightedKabsch(from, to, ones);
+    Vec3 to_sum(0.0);
+    for (const std::uint32_t i : members) to_sum += pose[i];
+    const Vec3 to_centroid = to_sum / count;
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+    for (std::size_t e = 0; e < members.size(); ++e) {
+      const Vec3 d = pose[members[e]] - to_centroid;
+      h.noalias() += from[e] * Eigen::Vector3d(d.x, d.y, d.z).transpose();
+    }
+    Result<RigidTransform> fit = kabschFromCovariance(h, from_centroid, to_centroid);
     if (!fit.ok()) return std::nullopt;
     out.push_back(fit.value());
   }
