@@ -8,7 +8,7 @@
 namespace odeskin {
 namespace {
 
-// Vertices per task of a smoothing step (a few hundred entries each).
+// Vertices per chunk of a smoothing step (a few hundred entries each), each with its own output buffer.
 constexpr std::size_t kSmoothGrain = 64;
 
 }  // namespace
@@ -33,28 +33,46 @@ Status checkFaces(const FaceList& faces, std::size_t vertex_count, const std::st
 }
 
 void smoothRows(std::vector<WeightRow>& rows, const VertexAdjacency& adjacency, int iterations, double lambda) {
+  if (iterations <= 0) return;
   std::uint32_t bones = 0;
   for (const WeightRow& row : rows) {
     for (const BoneWeight& e : row) bones = std::max(bones, e.bone + 1);
   }
-  std::vector<WeightRow> next(rows.size());
+  // The rows are smoothed as compressed rows (one array of entries, an offset per row): a ring
+  // reads its neighbours' rows from one block instead of one heap allocation each.
+  const std::size_t count = rows.size();
+  std::vector<std::uint32_t> offsets(count + 1, 0);
+  std::vector<BoneWeight> entries;
+  for (std::size_t i = 0; i < count; ++i) {
+    entries.insert(entries.end(), rows[i].begin(), rows[i].end());
+    offsets[i + 1] = static_cast<std::uint32_t>(entries.size());
+  }
+  std::vector<std::uint32_t> next_offsets(count + 1, 0);
+  std::vector<BoneWeight> next_entries;
+  // A chunk's rows are written to its own buffer first (their lengths are known only once summed).
+  const std::size_t chunks = (count + kSmoothGrain - 1) / kSmoothGrain;
+  std::vector<std::vector<BoneWeight>> chunk_entries(chunks);
   for (int it = 0; it < iterations; ++it) {
     // Each row is summed bone by bone in one fixed order (the vertex, then its neighbours in the
     // adjacency's order) into a dense per-chunk array: no sort of the ring's entries, and a sum that
     // does not depend on how a sort leaves equal bones.
-    parallelFor(tbb::blocked_range<std::size_t>(0, rows.size(), kSmoothGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    parallelFor(std::size_t{0}, chunks, [&](std::size_t chunk) {
       std::vector<double> sum(bones, 0.0);
       std::vector<char> used(bones, 0);
       std::vector<std::uint32_t> touched;
-      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      std::vector<BoneWeight>& out = chunk_entries[chunk];
+      out.clear();
+      const std::size_t end = std::min(count, (chunk + 1) * kSmoothGrain);
+      for (std::size_t i = chunk * kSmoothGrain; i < end; ++i) {
         const auto ring = adjacency.of(static_cast<std::uint32_t>(i));
-        WeightRow& out = next[i];
         if (ring.empty()) {
-          out = rows[i];
+          out.insert(out.end(), entries.begin() + offsets[i], entries.begin() + offsets[i + 1]);
+          next_offsets[i + 1] = offsets[i + 1] - offsets[i];
           continue;
         }
-        auto add = [&](const WeightRow& row, double scale) {
-          for (const BoneWeight& e : row) {
+        auto add = [&](std::size_t row, double scale) {
+          for (std::uint32_t k = offsets[row]; k < offsets[row + 1]; ++k) {
+            const BoneWeight& e = entries[k];
             if (!used[e.bone]) {
               used[e.bone] = 1;
               touched.push_back(e.bone);
@@ -62,21 +80,29 @@ void smoothRows(std::vector<WeightRow>& rows, const VertexAdjacency& adjacency, 
             sum[e.bone] += scale * e.weight;
           }
         };
-        add(rows[i], 1.0 - lambda);
+        add(i, 1.0 - lambda);
         const double share = lambda / static_cast<double>(ring.size());
-        for (const std::uint32_t j : ring) add(rows[j], share);
+        for (const std::uint32_t j : ring) add(j, share);
         std::sort(touched.begin(), touched.end());
-        out.clear();
         for (const std::uint32_t b : touched) {
           out.push_back({b, sum[b]});
           sum[b] = 0.0;
           used[b] = 0;
         }
+        next_offsets[i + 1] = static_cast<std::uint32_t>(touched.size());
         touched.clear();
       }
     });
-    rows.swap(next);
+    for (std::size_t i = 0; i < count; ++i) next_offsets[i + 1] += next_offsets[i];
+    next_entries.resize(next_offsets[count]);
+    parallelFor(std::size_t{0}, chunks, [&](std::size_t chunk) {
+      std::copy(chunk_entries[chunk].begin(), chunk_entries[chunk].end(),
+                next_entries.begin() + next_offsets[chunk * kSmoothGrain]);
+    });
+    offsets.swap(next_offsets);
+    entries.swap(next_entries);
   }
+  for (std::size_t i = 0; i < count; ++i) rows[i].assign(entries.begin() + offsets[i], entries.begin() + offsets[i + 1]);
 }
 
 Influences pruneRows(const std::vector<WeightRow>& rows, int max_influences) {
