@@ -110,8 +110,8 @@ std::vector<SkeletonAnchor> curveAnchors(std::span<const CurvePoint> points, boo
   // Each point's position is computed once, not once per segment it ends.
   std::vector<SkeletonAnchor> anchors(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) anchors[i].point = points[i];
-  const std::size_t segments = closed ? points.size() : (points.empty() ? 0 : points.size() - 1);
   if (points.empty()) return anchors;
+  const std::size_t segments = closed ? points.size() : points.size() - 1;
   const Vec3 first = curvePointPosition(rest, points[0]);
   Vec3 at = first;
   for (std::size_t k = 0; k < segments; ++k) {
