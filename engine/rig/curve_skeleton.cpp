@@ -72,19 +72,18 @@ Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const Curve
 std::uint32_t largestComponentExtremity(const MeshTopology& mesh) {
   const std::size_t count = mesh.vertex_offsets.size() - 1;
   std::vector<std::int32_t> hops(count, -1);
-  std::vector<std::uint32_t> queue;
-  queue.reserve(count);
+  std::vector<std::uint32_t> queue(count + 1);
   std::size_t best_size = 0;
   std::uint32_t best = 0;
   for (std::uint32_t s = 0; s < count; ++s) {
     if (hops[s] >= 0) continue;
-    sweepEdgeHops(mesh, s, hops, queue);
-    if (queue.size() <= best_size) continue;
-    best_size = queue.size();
+    const std::size_t reached = sweepEdgeHops(mesh, s, hops, queue);
+    if (reached <= best_size) continue;
+    best_size = reached;
     // The queue is in hop order: its last vertex is at the largest hop count.
-    const std::int32_t far = hops[queue.back()];
-    best = queue.back();
-    for (std::size_t k = queue.size(); k-- > 0 && hops[queue[k]] == far;) best = std::min(best, queue[k]);
+    const std::int32_t far = hops[queue[reached - 1]];
+    best = queue[reached - 1];
+    for (std::size_t k = reached; k-- > 0 && hops[queue[k]] == far;) best = std::min(best, queue[k]);
   }
   return best;
 }

@@ -305,28 +305,33 @@ std::vector<double> edgeDistance(const MeshTopology& mesh, std::span<const std::
   return distance;
 }
 
-void sweepEdgeHops(const MeshTopology& mesh, std::uint32_t source, std::vector<std::int32_t>& hops,
-                   std::vector<std::uint32_t>& queue) {
-  assert(hops[source] < 0);
-  queue.clear();
-  queue.push_back(source);
+std::size_t sweepEdgeHops(const MeshTopology& mesh, std::uint32_t source, std::span<std::int32_t> hops,
+                          std::span<std::uint32_t> queue) {
+  assert(hops[source] < 0 && queue.size() > hops.size());
+  // Whether a neighbour is new follows no pattern a branch predictor can learn, so each one is
+  // written to the queue's next slot and kept only when it is new.
+  queue[0] = source;
   hops[source] = 0;
-  for (std::size_t head = 0; head < queue.size(); ++head) {
+  std::size_t tail = 1;
+  for (std::size_t head = 0; head < tail; ++head) {
     const std::uint32_t u = queue[head];
+    const std::int32_t next = hops[u] + 1;
     for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
       const std::uint32_t w = mesh.vertex_neighbours[k];
-      if (hops[w] >= 0) continue;
-      hops[w] = hops[u] + 1;
-      queue.push_back(w);
+      const std::int32_t h = hops[w];
+      const std::int32_t fresh = h >> 31;  // all ones where h < 0 (not yet counted), else 0
+      hops[w] = h ^ ((h ^ next) & fresh);
+      queue[tail] = w;
+      tail -= static_cast<std::size_t>(static_cast<std::ptrdiff_t>(fresh));
     }
   }
+  return tail;
 }
 
 std::vector<std::int32_t> edgeHops(const MeshTopology& mesh, std::uint32_t source) {
   const std::size_t v_count = mesh.vertex_offsets.size() - 1;
   std::vector<std::int32_t> hops(v_count, -1);
-  std::vector<std::uint32_t> queue;
-  queue.reserve(v_count);
+  std::vector<std::uint32_t> queue(v_count + 1);
   sweepEdgeHops(mesh, source, hops, queue);
   return hops;
 }

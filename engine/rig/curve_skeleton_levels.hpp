@@ -70,11 +70,12 @@ std::vector<double> edgeDistance(const MeshTopology& mesh, std::span<const std::
 // Breadth-first edge counts from one vertex (-1: unreached): a cheap first sweep to an extremity.
 std::vector<std::int32_t> edgeHops(const MeshTopology& mesh, std::uint32_t source);
 // The sweep itself, into a caller's arrays: from `source` (hops[source] must be -1), every vertex
-// reached through vertices whose hops are -1 gets its edge count from `source`; `queue` is cleared
-// and then holds the reached vertices in the order of their counts. Vertices already counted stop
-// the sweep, so one call per unreached vertex sweeps each connected component once.
-void sweepEdgeHops(const MeshTopology& mesh, std::uint32_t source, std::vector<std::int32_t>& hops,
-                   std::vector<std::uint32_t>& queue);
+// reached through vertices whose hops are -1 gets its edge count from `source`. Returns how many
+// it reached; queue[0, that count) holds them in the order of their counts (`queue` must hold
+// hops.size() + 1 entries: the sweep writes one past the vertices it keeps). Vertices already
+// counted stop the sweep, so one call per unreached vertex sweeps each connected component once.
+std::size_t sweepEdgeHops(const MeshTopology& mesh, std::uint32_t source, std::span<std::int32_t> hops,
+                          std::span<std::uint32_t> queue);
 
 // One ring (or, where the mesh has a hole, an open arc) of f = level * spacing.
 struct LevelContour {
