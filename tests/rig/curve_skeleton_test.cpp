@@ -119,6 +119,36 @@ TEST(CurveSkeleton, FastMarchingBeatsEdgePathsOnAGrid) {
   EXPECT_EQ(hops[440], 20);     // the far corner, along the diagonals
 }
 
+TEST(CurveSkeleton, HopSweepCountsOneComponentAndStopsAtCountedVertices) {
+  // Two 4 x 4 grids side by side, not connected: 25 vertices each.
+  testing::TestMesh two = flatGrid(4);
+  const testing::TestMesh second = flatGrid(4);
+  const auto offset = static_cast<std::uint32_t>(two.positions.size());
+  for (const Vec3& p : second.positions) two.positions.push_back(p + Vec3(10.0, 0.0, 0.0));
+  for (std::size_t f = 0; f < second.faces.faceCount(); ++f) {
+    const std::uint32_t* c = &second.faces.indices[second.faces.face_offsets[f]];
+    two.triangle(c[0] + offset, c[1] + offset, c[2] + offset);
+  }
+  const MeshTopology mesh = meshTopology(two.positions, two.faces);
+  std::vector<std::int32_t> hops(two.positions.size(), -1);
+  std::vector<std::uint32_t> queue(two.positions.size() + 1);
+  const std::size_t first = sweepEdgeHops(mesh, 0, hops, queue);
+  ASSERT_EQ(first, 25u);
+  for (std::size_t k = 1; k < first; ++k) EXPECT_LE(hops[queue[k - 1]], hops[queue[k]]) << k;
+  // The grid's diagonals run (+1, +1): (i, j) is max(i, j) hops from the corner (0, 0).
+  EXPECT_EQ(hops[queue[first - 1]], 4);
+  EXPECT_EQ(hops[24], 4);
+  for (std::uint32_t v = offset; v < two.positions.size(); ++v) EXPECT_EQ(hops[v], -1) << v;
+  // The second grid from its centre; the first keeps its counts.
+  const std::size_t centre = sweepEdgeHops(mesh, offset + 12, hops, queue);
+  ASSERT_EQ(centre, 25u);
+  EXPECT_EQ(queue[0], offset + 12);
+  EXPECT_EQ(hops[offset + 12], 0);
+  EXPECT_EQ(hops[offset], 2);      // (0, 0): two diagonals back
+  EXPECT_EQ(hops[offset + 4], 4);  // (4, 0): no diagonal runs (+1, -1)
+  EXPECT_EQ(hops[24], 4);
+}
+
 TEST(CurveSkeleton, RingsOfATubeAreClosedAndJoinTheirRegions) {
   const testing::TestMesh tube = closedTube(41, 16, 4.0, 0.5);
   const MeshTopology mesh = meshTopology(tube.positions, tube.faces);
