@@ -13,6 +13,8 @@
 #include "curve_skeleton_levels.hpp"
 #include "curve_skeleton_parts.hpp"
 #include "curve_skeleton_tree.hpp"
+#include "mesh_topology.hpp"
+#include "surface_distance.hpp"
 
 namespace odeskin {
 namespace {

@@ -10,6 +10,8 @@
 #include "engine/core/disjoint_sets.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_skeleton_levels.hpp"
+#include "engine/rig/mesh_topology.hpp"
+#include "engine/rig/surface_distance.hpp"
 #include "rig_test_meshes.hpp"
 
 namespace odeskin {
