@@ -187,10 +187,11 @@ std::size_t sweepEdgeHops(const MeshTopology& mesh, std::uint32_t source, std::s
     for (std::uint32_t k = mesh.vertex_offsets[u]; k < mesh.vertex_offsets[u + 1]; ++k) {
       const std::uint32_t w = mesh.vertex_neighbours[k];
       const std::int32_t h = hops[w];
-      const std::int32_t fresh = h >> 31;  // all ones where h < 0 (not yet counted), else 0
-      hops[w] = h ^ ((h ^ next) & fresh);
+      const bool fresh = h < 0;
+      const std::int32_t mask = -static_cast<std::int32_t>(fresh);  // all ones where w is new
+      hops[w] = h ^ ((h ^ next) & mask);
       queue[tail] = w;
-      tail -= static_cast<std::size_t>(static_cast<std::ptrdiff_t>(fresh));
+      tail += static_cast<std::size_t>(fresh);
     }
   }
   return tail;
