@@ -3,6 +3,8 @@
 
 #include "texel_bindings.hpp"
 
+#include <algorithm>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -41,7 +43,36 @@ Result<ComputeDispatcher> ComputeDispatcher::create(const Device& device, const 
       ODESKIN_TRY(d.pipeline_.bindBuffer(s, b.binding, d.ring_.inputBuffer(s), b.offset, b.size));
     }
   }
+  if (desc.prepass != nullptr) ODESKIN_TRY(d.createPrepass(device, desc));
   return d;
+}
+
+Status ComputeDispatcher::createPrepass(const Device& device, const ComputeDispatcherDesc& desc) {
+  const ComputePrepassDesc& pre = *desc.prepass;
+  const SortedBindings sorted = SortedBindings::sort(pre.bindings, pre.texel_bindings);
+  ComputePipelineDesc pipeline_desc;
+  pipeline_desc.spirv = pre.spirv;
+  pipeline_desc.storage_bindings = sorted.storage;
+  pipeline_desc.texel_bindings = sorted.texels;
+  pipeline_desc.push_constant_bytes = pre.push_constant_bytes;
+  pipeline_desc.descriptor_set_count = desc.frames_in_flight;
+  ODESKIN_ASSIGN_OR_RETURN(prepass_, ComputePipeline::create(device, pipeline_desc));
+  for (const std::uint32_t binding : pre.bindings) {
+    const auto is = [binding](const auto& b) { return b.binding == binding; };
+    const auto st = std::find_if(desc.static_bindings.begin(), desc.static_bindings.end(), is);
+    const auto fr = std::find_if(desc.frame_bindings.begin(), desc.frame_bindings.end(), is);
+    for (std::uint32_t s = 0; s < desc.frames_in_flight; ++s) {
+      if (st != desc.static_bindings.end()) {
+        ODESKIN_TRY(prepass_.bindBuffer(s, binding, st->buffer));
+      } else if (fr != desc.frame_bindings.end()) {
+        ODESKIN_TRY(prepass_.bindBuffer(s, binding, ring_.inputBuffer(s), fr->offset, fr->size));
+      } else {
+        return invalidArgument("ComputeDispatcher: the prepass binds " + std::to_string(binding) +
+                               ", which is neither a static nor a per-frame binding");
+      }
+    }
+  }
+  return okStatus();
 }
 
 ComputeDispatcher& ComputeDispatcher::operator=(ComputeDispatcher&& other) noexcept {
@@ -50,6 +81,7 @@ ComputeDispatcher& ComputeDispatcher::operator=(ComputeDispatcher&& other) noexc
     ring_ = std::move(other.ring_);
     reuse_stages_ = other.reuse_stages_;
     pipeline_ = std::move(other.pipeline_);
+    prepass_ = std::move(other.prepass_);
     slot_ = other.slot_;
   }
   return *this;
@@ -60,7 +92,8 @@ Result<std::span<std::byte>> ComputeDispatcher::beginFrame() {
   return ring_.inputs(slot_);
 }
 
-Status ComputeDispatcher::submitFrame(const void* push, std::uint32_t group_count) {
+Status ComputeDispatcher::submitFrame(const void* push, std::uint32_t group_count, const void* prepass_push,
+                                      std::uint32_t prepass_groups) {
   ODESKIN_ASSIGN_OR_RETURN(VkCommandBuffer cmd, ring_.beginRecording());
   // Frames share the output buffer: the previous frame's shader writes (and anyone's reads of them,
   // e.g. a vertex fetch or a copy) must finish before this frame overwrites it (WAW/WAR).
@@ -70,6 +103,16 @@ Status ComputeDispatcher::submitFrame(const void* push, std::uint32_t group_coun
   before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
   vkCmdPipelineBarrier(cmd, reuse_stages_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before, 0, nullptr, 0,
                        nullptr);
+  if (prepass_.setCount() > 0 && prepass_groups > 0) {
+    prepass_.recordDispatch(cmd, slot_, prepass_push, prepass_groups);
+    // The main dispatch reads what the prepass wrote.
+    VkMemoryBarrier between{};
+    between.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    between.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    between.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &between,
+                         0, nullptr, 0, nullptr);
+  }
   pipeline_.recordDispatch(cmd, slot_, push, group_count);
   // A fence alone does not make device writes visible to the host; this barrier does, so a mapped
   // output can be read right after the wait.

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // One compute pipeline on a FrameRing: static storage buffers bound once, slices of each slot's
-// mapped per-frame buffer bound once per slot, and one dispatch per frame, bracketed by the barriers
-// a shared output buffer needs between frames. What GpuDeformer and GpuLbs (through
-// SingleMeshDispatch) run on.
+// mapped per-frame buffer bound once per slot, and one dispatch per frame (optionally after a
+// prepass that writes one of its inputs), bracketed by the barriers a shared output buffer needs
+// between frames. What GpuDeformer and GpuLbs (through SingleMeshDispatch) run on.
 #pragma once
 
 #include <cstddef>
@@ -31,6 +31,16 @@ struct FrameBinding {
   VkDeviceSize size = 0;
 };
 
+// A pass recorded before the main dispatch in the same command buffer (fold_series.comp before a
+// deformation), on its own pipeline over the same static and per-frame buffers: it binds those of
+// `bindings` (each must be one of them), reading `texel_bindings` as texel buffers.
+struct ComputePrepassDesc {
+  std::span<const std::uint32_t> spirv;
+  std::span<const std::uint32_t> bindings;
+  std::span<const TexelBinding> texel_bindings;
+  std::uint32_t push_constant_bytes = 0;
+};
+
 struct ComputeDispatcherDesc {
   std::span<const std::uint32_t> spirv;
   std::span<const StaticBinding> static_bindings;
@@ -41,6 +51,7 @@ struct ComputeDispatcherDesc {
   VkDeviceSize frame_bytes = 0;            // per-frame buffer size, > 0 if frame_bindings is not empty
   std::uint32_t push_constant_bytes = 0;
   std::uint32_t frames_in_flight = 2;
+  const ComputePrepassDesc* prepass = nullptr;  // optional; read during create() only
 };
 
 // Stages that may still read or write a deformer's output from an earlier frame on this queue:
@@ -61,17 +72,23 @@ class ComputeDispatcher {
   // for the caller to fill. Call submitFrame next.
   Result<std::span<std::byte>> beginFrame();
   // Records and submits the slot from beginFrame: `push` and `group_count` workgroups, bracketed by
-  // timestamps and by the barriers a shared output buffer needs between frames.
-  Status submitFrame(const void* push, std::uint32_t group_count);
+  // timestamps and by the barriers a shared output buffer needs between frames. With a prepass,
+  // `prepass_groups` workgroups of it with `prepass_push` come first, and the main dispatch reads
+  // what they wrote.
+  Status submitFrame(const void* push, std::uint32_t group_count, const void* prepass_push = nullptr,
+                     std::uint32_t prepass_groups = 0);
   // Waits for every submitted frame and updates lastGpuSeconds().
   Status wait() { return ring_.waitAll(); }
   // GPU time of the most recently completed frame in seconds (0 before any, or without timestamps).
   double lastGpuSeconds() const { return ring_.lastGpuSeconds(); }
 
  private:
+  Status createPrepass(const Device& device, const ComputeDispatcherDesc& desc);
+
   VkPipelineStageFlags reuse_stages_ = 0;
   ComputePipeline pipeline_;
-  std::uint32_t slot_ = 0;  // from the last beginFrame
+  ComputePipeline prepass_;  // without a prepass: no sets
+  std::uint32_t slot_ = 0;   // from the last beginFrame
   // Last, so it is destroyed first: it waits for in-flight frames before the pipeline goes.
   FrameRing ring_;
 };

@@ -71,6 +71,9 @@ Result<GpuDeformer> GpuDeformer::create(const vk::Device& device, const PackedDe
   desc.basis_count = deformer.basis_count_;
   desc.statics = statics;
   desc.push_constant_bytes = sizeof(gpu::DeformPushConstants);
+  desc.fold_series = true;
+  desc.modes = data.modes;
+  desc.curve_count = data.curve_count;
   ODESKIN_ASSIGN_OR_RETURN(deformer.dispatch_, SingleMeshDispatch::create(device, desc));
   return deformer;
 }
@@ -95,7 +98,8 @@ Status GpuDeformer::validate(const GpuDeformFrame& frame) const {
 
 Status GpuDeformer::submit(const GpuDeformFrame& frame) {
   ODESKIN_TRY(validate(frame));
-  return dispatch_.submit(frame.bones, frame.basis, &push_constants_[frame.segment]);
+  const gpu::DeformPushConstants& push = push_constants_[frame.segment];
+  return dispatch_.submit(frame.bones, frame.basis, &push, frame.segment, push.use_rates != 0);
 }
 
 Status GpuDeformer::run(const GpuDeformFrame& frame) {

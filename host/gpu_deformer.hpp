@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // GPU dispatcher of FourierDeformFastJob (shaders/fourier_deform.comp; thesis Eq 6.30 corrected,
 // MATH.md 5.6): the packed data is uploaded once, then each frame writes the same per-frame fields
-// as the CPU job (segment, bones, basis) into a double-buffered mapped buffer and runs ONE dispatch
-// of ceil(V / 64) workgroups into an output buffer a renderer can bind as vertex input. With
+// as the CPU job (segment, bones, basis) into a double-buffered mapped buffer and records two
+// dispatches in one command buffer: fold_series.comp folds the basis into the segment's curve
+// coefficients (C x (2N + 2) invocations), then ceil(V / 64) workgroups deform every vertex into an
+// output buffer a renderer can bind as vertex input. With
 // data.skinning = kDualQuaternion each frame also converts the bones to dual quaternions on the
 // host (toGpuDualQuaternions, as FourierDeformFastJob does) and writes them beside the bones. The
 // frame ring, per-frame writer and readback are SingleMeshDispatch's, shared with GpuLbs.

@@ -3,6 +3,8 @@
 
 #include <vector>
 
+#include "engine/runtime/runtime_layout.hpp"
+#include "shaders/fold_series.spv.h"
 #include "texel_bindings.hpp"
 
 namespace odeskin {
@@ -18,12 +20,23 @@ Result<SingleMeshDispatch> SingleMeshDispatch::create(const vk::Device& device, 
                            vk::Buffer::create(device, out_bytes < 16 ? 16 : out_bytes, vk::kOutputBufferUsage));
   std::vector<vk::StaticBinding> statics(desc.statics.begin(), desc.statics.end());
   statics.push_back({ODESKIN_BINDING_OUT_POSITIONS, d.out_positions_.handle()});
+  // One folded buffer serves every frame: each frame's barrier before its first dispatch waits for
+  // the compute work of the frames before it, so a fold never overwrites what a deformation reads.
+  const std::uint32_t fold_entries = desc.curve_count * gpu::coefficientsPerCurve(desc.modes);
+  if (desc.fold_series) {
+    const VkDeviceSize fold_bytes = VkDeviceSize{fold_entries} * sizeof(gpu::Float4);
+    ODESKIN_ASSIGN_OR_RETURN(d.folded_, vk::Buffer::create(device, fold_bytes < 16 ? 16 : fold_bytes, vk::kShaderInputUsage));
+    statics.push_back({ODESKIN_BINDING_FOLDED_SERIES, d.folded_.handle()});
+    d.fold_push_ = gpu::FoldPushConstants{desc.modes, desc.curve_count, static_cast<std::uint32_t>(desc.basis_count), 0};
+    d.fold_groups_ = (fold_entries + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  }
 
   // Per-frame buffer: bones, the basis (when read), then the bones' dual quaternions.
   vk::FrameInputLayout layout(device);
   d.palettes_ = vk::BonePaletteWriter::plan(layout, ODESKIN_BINDING_BONES, ODESKIN_BINDING_BONE_DUAL_QUATS,
                                             desc.bone_count, desc.skinning);
   if (desc.basis_count > 0) d.basis_offset_ = layout.add(ODESKIN_BINDING_MODE_BASIS, desc.basis_count * sizeof(gpu::ModeBasis));
+  if (desc.fold_series) d.record_offset_ = layout.add(ODESKIN_RT_BINDING_INSTANCES, sizeof(gpu::InstanceRecord));
   ODESKIN_TRY(layout.checkLimits(desc.name.c_str()));
 
   vk::ComputeDispatcherDesc dispatcher;
@@ -34,19 +47,30 @@ Result<SingleMeshDispatch> SingleMeshDispatch::create(const vk::Device& device, 
   dispatcher.frame_bytes = layout.totalBytes();
   dispatcher.push_constant_bytes = desc.push_constant_bytes;
   dispatcher.frames_in_flight = 2;
+  vk::ComputePrepassDesc fold;
+  fold.spirv = kFoldSeriesSpirv;
+  fold.bindings = vk::kFoldBindings;
+  fold.texel_bindings = vk::kFoldTexelBindings;
+  fold.push_constant_bytes = sizeof(gpu::FoldPushConstants);
+  if (desc.fold_series) dispatcher.prepass = &fold;
   ODESKIN_ASSIGN_OR_RETURN(d.dispatcher_, vk::ComputeDispatcher::create(device, dispatcher));
   return d;
 }
 
 Status SingleMeshDispatch::submit(std::span<const gpu::BoneMatrix> bones, std::span<const gpu::ModeBasis> basis,
-                                  const void* push) {
+                                  const void* push, std::uint32_t segment, bool use_rates) {
   if (vertex_count_ == 0) return okStatus();
   ODESKIN_ASSIGN_OR_RETURN(std::span<std::byte> inputs, dispatcher_.beginFrame());
   // Plain copies into coherent mapped memory; the queue submit publishes them to the device.
   palettes_.write(inputs, bones);
   vk::writeSlice(inputs, basis_offset_, basis);
+  if (fold_groups_ > 0) {
+    // One deformation: its record gives the fold the segment and whether it has rates.
+    const gpu::InstanceRecord record{segment, 0, use_rates ? 0u : gpu::kNoRates, 0};
+    vk::writeSlice(inputs, record_offset_, std::span<const gpu::InstanceRecord>(&record, 1));
+  }
   const std::uint32_t groups = (vertex_count_ + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
-  return dispatcher_.submitFrame(push, groups);
+  return dispatcher_.submitFrame(push, groups, &fold_push_, fold_groups_);
 }
 
 Status SingleMeshDispatch::readPositions(std::span<gpu::Float4> out_positions) {

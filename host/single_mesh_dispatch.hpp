@@ -30,6 +30,11 @@ struct SingleMeshDispatchDesc {
   std::size_t basis_count = 0;                  // 0: the shader reads no time basis
   std::span<const vk::StaticBinding> statics;   // uploaded arrays; the output is added here
   std::uint32_t push_constant_bytes = 0;
+  // With modes and curves (basis_count > 0): fold_series.comp folds the frame's basis into the
+  // curves' coefficients (statics: materials, coefficients, rates) before the main dispatch.
+  bool fold_series = false;
+  std::uint32_t modes = 0;
+  std::uint32_t curve_count = 0;
 };
 
 class SingleMeshDispatch {
@@ -40,7 +45,9 @@ class SingleMeshDispatch {
 
   // Writes `bones` and `basis` (sizes checked by the caller) into the next frame slot, waiting for
   // the frame that used it last, and submits ceil(V / 64) workgroups with `push`. V = 0: nothing.
-  Status submit(std::span<const gpu::BoneMatrix> bones, std::span<const gpu::ModeBasis> basis, const void* push);
+  // With fold_series, the fold of segment `segment` (its rates if `use_rates`) runs first.
+  Status submit(std::span<const gpu::BoneMatrix> bones, std::span<const gpu::ModeBasis> basis, const void* push,
+                std::uint32_t segment = 0, bool use_rates = false);
   Status wait() { return dispatcher_.wait(); }
   // kInvalidArgument when `out_positions` is not vertex_count long; waits for submitted frames.
   Status readPositions(std::span<gpu::Float4> out_positions);
@@ -55,6 +62,10 @@ class SingleMeshDispatch {
   std::string name_;
   std::uint32_t vertex_count_ = 0;
   VkDeviceSize basis_offset_ = 0;
+  VkDeviceSize record_offset_ = 0;       // fold_series: the frame's InstanceRecord
+  gpu::FoldPushConstants fold_push_{};
+  std::uint32_t fold_groups_ = 0;        // 0: no fold pass
+  vk::Buffer folded_;                    // fold_series: C x M Float4, shared by the frames (see submit)
   vk::BonePaletteWriter palettes_;
   vk::Buffer out_positions_;
   vk::ComputeDispatcher dispatcher_;  // last: destroyed first, after waiting for its frames

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Which read-only shader inputs are uniform texel buffers, and the texel each texelFetch returns:
 // the deformation shaders' (fourier_deform.comp, lbs.comp, instanced_deform*.comp; gpu_layout.h and
-// runtime_layout.h bindings, which share their numbers) and instance_normals.comp's. Outputs and
+// runtime_layout.h bindings, which share their numbers), fold_series.comp's and
+// instance_normals.comp's. Outputs and
 // the bounds (written, atomics) stay storage buffers. Structs of mixed uint and float fields are
 // fetched as uint texels and the floats taken back with uintBitsToFloat.
 #pragma once
@@ -20,6 +21,9 @@ namespace odeskin::vk {
 static_assert(ODESKIN_RT_BINDING_BONES == ODESKIN_BINDING_BONES && ODESKIN_RT_BINDING_MODE_BASIS == ODESKIN_BINDING_MODE_BASIS &&
                   ODESKIN_RT_BINDING_BONE_DUAL_QUATS == ODESKIN_BINDING_BONE_DUAL_QUATS,
               "one table serves the single-mesh and the instanced shaders");
+static_assert(ODESKIN_BINDING_FOLDED_SERIES != ODESKIN_RT_BINDING_INSTANCES &&
+                  ODESKIN_BINDING_FOLDED_SERIES != ODESKIN_RT_BINDING_BOUNDS,
+              "the folded coefficients have a binding of their own in both layouts");
 
 inline constexpr TexelBinding kDeformTexelBindings[] = {
     {ODESKIN_BINDING_REST_POSITIONS, VK_FORMAT_R32G32B32A32_SFLOAT},    // Float4
@@ -35,7 +39,21 @@ inline constexpr TexelBinding kDeformTexelBindings[] = {
     {ODESKIN_BINDING_MODE_BASIS, VK_FORMAT_R32G32_SFLOAT},              // ModeBasis
     {ODESKIN_BINDING_BONE_DUAL_QUATS, VK_FORMAT_R32G32B32A32_SFLOAT},   // DualQuat: 2 texels (real, dual)
     {ODESKIN_RT_BINDING_INSTANCES, VK_FORMAT_R32G32B32A32_UINT},        // InstanceRecord
+    {ODESKIN_BINDING_FOLDED_SERIES, VK_FORMAT_R32G32B32A32_SFLOAT},     // Float4 (fold_series.comp's output)
 };
+
+// fold_series.comp's inputs; its output, ODESKIN_BINDING_FOLDED_SERIES, is a storage buffer there.
+inline constexpr TexelBinding kFoldTexelBindings[] = {
+    {ODESKIN_BINDING_CURVE_MATERIALS, VK_FORMAT_R32_UINT},          // uint
+    {ODESKIN_BINDING_COEFFICIENTS, VK_FORMAT_R32G32B32A32_SFLOAT},  // Float4
+    {ODESKIN_BINDING_RATES, VK_FORMAT_R32G32B32A32_SFLOAT},         // Float4
+    {ODESKIN_BINDING_MODE_BASIS, VK_FORMAT_R32G32_SFLOAT},          // ModeBasis
+    {ODESKIN_RT_BINDING_INSTANCES, VK_FORMAT_R32G32B32A32_UINT},    // InstanceRecord
+};
+// The bindings fold_series.comp declares, in the order of kFoldTexelBindings, then its output.
+inline constexpr std::uint32_t kFoldBindings[] = {ODESKIN_BINDING_CURVE_MATERIALS, ODESKIN_BINDING_COEFFICIENTS,
+                                                  ODESKIN_BINDING_RATES,           ODESKIN_BINDING_MODE_BASIS,
+                                                  ODESKIN_RT_BINDING_INSTANCES,    ODESKIN_BINDING_FOLDED_SERIES};
 
 inline constexpr TexelBinding kNormalsTexelBindings[] = {
     {ODESKIN_RT_NORMALS_BINDING_POSITIONS, VK_FORMAT_R32G32B32A32_SFLOAT},  // Float4

@@ -11,14 +11,12 @@ layout(set = 0, binding = ODESKIN_BINDING_REST_POSITIONS) uniform samplerBuffer 
 layout(set = 0, binding = ODESKIN_BINDING_VERTEX_BINDINGS) uniform usamplerBuffer bindings;          // VertexBinding
 layout(set = 0, binding = ODESKIN_BINDING_SEGMENT_VERTICES) uniform usamplerBuffer segment_vertices; // SegmentVertex
 layout(set = 0, binding = ODESKIN_BINDING_REMAINDERS) uniform samplerBuffer remainders;              // Float4
-layout(set = 0, binding = ODESKIN_BINDING_CURVE_MATERIALS) uniform usamplerBuffer curve_materials;   // uint
-layout(set = 0, binding = ODESKIN_BINDING_COEFFICIENTS) uniform samplerBuffer coefficients;          // Float4
-layout(set = 0, binding = ODESKIN_BINDING_RATES) uniform samplerBuffer rates;                        // Float4
 layout(set = 0, binding = ODESKIN_BINDING_INFLUENCE_OFFSETS) uniform usamplerBuffer influence_offsets; // uint
 layout(set = 0, binding = ODESKIN_BINDING_INFLUENCES) uniform usamplerBuffer influences;             // Influence
 layout(set = 0, binding = ODESKIN_BINDING_BONES) uniform samplerBuffer bones;                        // BoneMatrix: 3 texels
 layout(set = 0, binding = ODESKIN_BINDING_MODE_BASIS) uniform samplerBuffer basis;                   // ModeBasis
 layout(set = 0, binding = ODESKIN_BINDING_BONE_DUAL_QUATS) uniform samplerBuffer bone_dual_quats;    // DualQuat: 2 texels
+layout(set = 0, binding = ODESKIN_BINDING_FOLDED_SERIES) uniform samplerBuffer folded_series;        // Float4
 
 vec3 restPosition(uint i) { return texelFetch(rest_positions, int(i)).xyz; }
 
@@ -33,9 +31,7 @@ SegmentVertex segmentVertex(uint k) {
 }
 
 vec3 remainder(uint k) { return texelFetch(remainders, int(k)).xyz; }
-uint curveMaterial(uint curve) { return texelFetch(curve_materials, int(curve)).x; }
-vec3 coefficient(uint k) { return texelFetch(coefficients, int(k)).xyz; }
-vec3 rate(uint k) { return texelFetch(rates, int(k)).xyz; }
+vec3 foldedCoefficient(uint k) { return texelFetch(folded_series, int(k)).xyz; }
 uint influenceOffset(uint i) { return texelFetch(influence_offsets, int(i)).x; }
 
 Influence influence(uint k) {

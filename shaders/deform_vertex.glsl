@@ -4,45 +4,33 @@
 //   D_i = (1 - w) S_a(v) + w S_b(v),  S_c(v) = sum_m (gamma_n d_cm + psi_n rdot_cm) phi_m(v)
 //   bind:  out = skin(X + r^s + D + w(tau) eps);  posed: out = skin(X) + r^s + D + w(tau) eps
 // Mirrors curveSeries / deformRange in engine/kernels/fourier_deform_fast_job.cpp operation for
-// operation. The including shader declares pc (modes, curve_count, material_count, vertex_count,
-// residual_space and skinning.glsl's fields) and includes deform_inputs.glsl and skinning.glsl first.
+// operation; the fold of the time basis into each curve's coefficients (fold_series.comp) has run
+// before, in the same command buffer. The including shader declares pc (modes, material_count,
+// vertex_count, residual_space and skinning.glsl's fields) and includes deform_inputs.glsl and
+// skinning.glsl first.
 
 // Where one deformation's frame values sit in the shared buffers.
 struct DeformSource {
-  uint segment;         // s: selects segment_vertices[s*V..] and coefficients[s*C*M..]
+  uint segment;         // s: selects segment_vertices[s*V..]
   uint remainder_base;  // first remainder of segment s in remainders[]
-  uint rates_offset;    // added to the coefficient index to read rates[] (a preset's rates)
-  bool use_rates;       // false: rates[] is not read
-  uint basis_base;      // first ModeBasis of this deformation's time basis
+  uint folded_base;     // first of this deformation's folded coefficients (fold_series.comp)
+  uint basis_base;      // first ModeBasis of this deformation's time basis (the remainders' weight)
   uint bone_base;       // first bone of this deformation's palette
 };
 
 const float kTwoPi = 6.28318530717958647692;
 
-// Series of curve `curve` at (cos 2 pi v, sin 2 pi v) = (c1, s1): higher harmonics by the
-// angle-addition recurrence, which costs two products per mode instead of a cos and a sin.
+// Series of curve `curve` at (cos 2 pi v, sin 2 pi v) = (c1, s1) from its coefficients folded with
+// the frame's time basis: higher harmonics by the angle-addition recurrence, which costs two
+// products per mode instead of a cos and a sin.
 vec3 curveSeries(DeformSource src, uint curve, float v, float c1, float s1) {
   uint m_count = 2u * pc.modes + 2u;
-  uint base = (src.segment * pc.curve_count + curve) * m_count;
-  uint rate_base = src.rates_offset + base;
-  uint basis_base = src.basis_base + curveMaterial(curve) * (pc.modes + 1u);
-  ModeBasis b0 = modeBasis(basis_base);
-  vec3 d0 = coefficient(base) + v * coefficient(base + m_count - 1u);
-  vec3 sum = b0.gamma * d0;
-  if (src.use_rates) {
-    sum += b0.psi * (rate(rate_base) + v * rate(rate_base + m_count - 1u));
-  }
+  uint base = src.folded_base + curve * m_count;
+  vec3 sum = foldedCoefficient(base) + v * foldedCoefficient(base + m_count - 1u);
   float cn = c1;
   float sn = s1;
   for (uint n = 1u; n <= pc.modes; ++n) {
-    ModeBasis bn = modeBasis(basis_base + n);
-    vec3 dc = coefficient(base + 2u * n - 1u);
-    vec3 ds = coefficient(base + 2u * n);
-    vec3 term = cn * dc + sn * ds;
-    sum += bn.gamma * term;
-    if (src.use_rates) {
-      sum += bn.psi * (cn * rate(rate_base + 2u * n - 1u) + sn * rate(rate_base + 2u * n));
-    }
+    sum += cn * foldedCoefficient(base + 2u * n - 1u) + sn * foldedCoefficient(base + 2u * n);
     float c_next = cn * c1 - sn * s1;
     sn = sn * c1 + cn * s1;
     cn = c_next;

@@ -6,7 +6,8 @@
 //   bind:  out = sum_b w_b M_b (X + r^s + D + gamma_0 eps);  posed: out = LBS(X) + r^s + D + gamma_0 eps
 // with LBS or dual-quaternion skinning (Kavan et al. 2008) by pc.skinning (skinning.glsl). The
 // per-vertex work is deform_vertex.glsl's, shared with instanced_deform.comp.
-// Time bases are float64 host values per (material, mode) (MATH.md 1.6); the GPU only sums.
+// Time bases are float64 host values per (material, mode) (MATH.md 1.6); fold_series.comp has
+// folded them into the curves' coefficients before this dispatch, so the GPU only sums.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_layout.h"
@@ -24,8 +25,8 @@ layout(push_constant) uniform Push { DeformPushConstants pc; };
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.vertex_count) return;
-  // One mesh: the frame's segment from the push constants, the whole basis and bone buffers.
-  DeformSource src = DeformSource(pc.segment, pc.remainder_base, 0u, pc.use_rates != 0u, 0u, 0u);
+  // One mesh: the frame's segment from the push constants, the whole folded, basis and bone buffers.
+  DeformSource src = DeformSource(pc.segment, pc.remainder_base, 0u, 0u, 0u);
   vec3 p = deformVertex(src, i);
   out_positions[i] = Float4(p.x, p.y, p.z, 1.0);
 }

@@ -40,9 +40,9 @@ void main() {
   if (i < pc.vertex_count) {
     uvec4 t = texelFetch(instances, int(instance));
     InstanceRecord r = InstanceRecord(t.x, t.y, t.z, t.w);
-    DeformSource src = DeformSource(r.segment, r.remainder_base, r.rates_offset == ODESKIN_RT_NO_RATES ? 0u : r.rates_offset,
-                                    r.rates_offset != ODESKIN_RT_NO_RATES, instance * pc.basis_entries,
-                                    instance * pc.bone_count);
+    // The fold pass (fold_series.comp) has folded the instance's basis into its own coefficients.
+    DeformSource src = DeformSource(r.segment, r.remainder_base, instance * pc.curve_count * (2u * pc.modes + 2u),
+                                    instance * pc.basis_entries, instance * pc.bone_count);
     vec3 p = deformVertex(src, i);
     out_positions[instance * pc.vertex_count + i] = Float4(p.x, p.y, p.z, 1.0);
     lo = p;

@@ -52,6 +52,11 @@ using uint = std::uint32_t;
 // BoneMatrix rows). A second buffer rather than columns of BoneMatrix: LBS keeps its 48-byte
 // rows, and the slice is always bound but only written and read with ODESKIN_SKINNING_DUAL_QUATERNION.
 #define ODESKIN_BINDING_BONE_DUAL_QUATS 12
+// Float4[D*C*M]: the frame's time basis folded into every curve's coefficients by fold_series.comp,
+// A_cm = gamma_n(m) d_cm + psi_n(m) rdot_cm, for each of the D deformations of a dispatch (one mesh:
+// D = 1; the runtime: one per instance), deformation k's curve c entry m at (k C + c) M + m.
+// Written by the fold pass, read by the deformation shaders. (13 and 14 are runtime_layout.h's.)
+#define ODESKIN_BINDING_FOLDED_SERIES 15
 
 struct Float4 {
   float x;
@@ -126,6 +131,14 @@ struct DeformPushConstants {
   uint use_rates;          // 0: rates buffer ignored
   uint skinning;           // ODESKIN_SKINNING_LINEAR or ODESKIN_SKINNING_DUAL_QUATERNION
   uint pad1;
+};
+
+// Push constants of fold_series.comp, whose invocation (x, y) folds entry x = c M + m of deformation y.
+struct FoldPushConstants {
+  uint modes;          // N
+  uint curve_count;    // C
+  uint basis_entries;  // E = ODESKIN_BASIS_ENTRIES(material_count, modes): deformation y's basis at y E
+  uint pad0;
 };
 
 #ifdef __cplusplus

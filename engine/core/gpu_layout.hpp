@@ -17,6 +17,7 @@ static_assert(sizeof(DualQuat) == 32 && offsetof(DualQuat, dual) == 16);
 static_assert(sizeof(ModeBasis) == 8);
 static_assert(sizeof(DeformPushConstants) == 48 && sizeof(DeformPushConstants) <= 128);
 static_assert(offsetof(DeformPushConstants, skinning) == 40);
+static_assert(sizeof(FoldPushConstants) == 16);
 
 inline constexpr uint kWorkgroupSize = ODESKIN_WORKGROUP_SIZE;
 inline constexpr uint kNoRemainder = ODESKIN_NO_REMAINDER;

@@ -24,23 +24,28 @@ constexpr float kTwoPi = 6.28318530717958647692f;
 glm::vec3 xyz(const gpu::Float4& f) { return {f.x, f.y, f.z}; }
 glm::vec4 vec(const gpu::Float4& f) { return {f.x, f.y, f.z, f.w}; }
 
-// Same order of operations as curveSeries() in shaders/fourier_deform.comp.
+// Entry m of a curve's coefficients folded with its mode's time basis, A_m = gamma d_m + psi rdot_m:
+// what shaders/fold_series.comp writes for the shaders' series (and foldCurve of the CPU kernel).
+glm::vec3 folded(const gpu::Float4* coef, const gpu::Float4* rate, const gpu::ModeBasis& b, std::size_t m) {
+  return rate ? b.gamma * xyz(coef[m]) + b.psi * xyz(rate[m]) : b.gamma * xyz(coef[m]);
+}
+
+// Same order of operations as curveSeries() in shaders/deform_vertex.glsl on fold_series.comp's
+// folded coefficients.
 glm::vec3 curveSeries(const PackedDeformData& d, const gpu::DeformPushConstants& pc,
                       std::span<const gpu::ModeBasis> basis, std::uint32_t curve, float v, float c1, float s1) {
   const std::uint32_t m_count = 2 * pc.modes + 2;
   const std::size_t base = (static_cast<std::size_t>(pc.segment) * pc.curve_count + curve) * m_count;
   const std::size_t basis_base = static_cast<std::size_t>(d.curve_materials[curve]) * (pc.modes + 1);
   const gpu::Float4* coef = d.coefficients.data() + base;
-  const gpu::ModeBasis b0 = basis[basis_base];
-  glm::vec3 sum = b0.gamma * (xyz(coef[0]) + v * xyz(coef[m_count - 1]));
   const gpu::Float4* rate = pc.use_rates ? d.rates.data() + base : nullptr;
-  if (rate) sum += b0.psi * (xyz(rate[0]) + v * xyz(rate[m_count - 1]));
+  const gpu::ModeBasis& b0 = basis[basis_base];
+  glm::vec3 sum = folded(coef, rate, b0, 0) + v * folded(coef, rate, b0, m_count - 1);
   float cn = c1;
   float sn = s1;
   for (std::uint32_t n = 1; n <= pc.modes; ++n) {
-    const gpu::ModeBasis bn = basis[basis_base + n];
-    sum += bn.gamma * (cn * xyz(coef[2 * n - 1]) + sn * xyz(coef[2 * std::size_t{n}]));
-    if (rate) sum += bn.psi * (cn * xyz(rate[2 * n - 1]) + sn * xyz(rate[2 * std::size_t{n}]));
+    const gpu::ModeBasis& bn = basis[basis_base + n];
+    sum += cn * folded(coef, rate, bn, 2 * n - 1) + sn * folded(coef, rate, bn, 2 * std::size_t{n});
     const float c_next = cn * c1 - sn * s1;
     sn = sn * c1 + cn * s1;
     cn = c_next;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Fast CPU path (float, multithreaded) of fourier_deform_job: the same mathematics in the order of
-// operations of shaders/fourier_deform.comp (cos/sin by the angle-addition recurrence, curve series
+// operations of shaders/fourier_deform.comp (each curve's coefficients folded with the time basis as
+// shaders/fold_series.comp folds them, cos/sin by the angle-addition recurrence, curve series
 // blended before skinning), so CPU-fast, GPU and reference agree within float32 tolerances.
 // Skinning follows data->skinning, as the GPU does (one source, so the two cannot disagree): with
 // SkinningMode::kDualQuaternion each run converts the frame's bones once (toGpuDualQuaternions,

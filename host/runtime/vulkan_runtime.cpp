@@ -7,6 +7,7 @@
 
 #include "host/compute_dispatcher.hpp"
 #include "host/texel_bindings.hpp"
+#include "shaders/fold_series.spv.h"
 #include "shaders/instance_normals.spv.h"
 #include "shaders/instanced_deform.spv.h"
 #include "shaders/instanced_deform_shared.spv.h"
@@ -34,6 +35,12 @@ std::vector<gpu::Float4> allRates(const RuntimeAsset& asset) {
     rates.insert(rates.end(), r.begin(), r.end());
   }
   return rates;
+}
+
+// One frame's folded coefficients: every instance's copy of a segment's C x (2N + 2) entries.
+VkDeviceSize foldedBytes(const RuntimeAsset& asset, std::uint32_t capacity) {
+  const PackedDeformData& d = asset.packed(0);
+  return VkDeviceSize{capacity} * d.curve_count * gpu::coefficientsPerCurve(d.modes) * sizeof(gpu::Float4);
 }
 
 // Whether compute shaders on `device` have subgroup arithmetic (instanced_deform.comp reduces the
@@ -86,6 +93,8 @@ Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, co
   }
   const VkDeviceSize out_bytes = VkDeviceSize{options.capacity} * v * sizeof(gpu::Float4);
   if (out_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's positions", out_bytes, device);
+  const VkDeviceSize fold_bytes = foldedBytes(asset, options.capacity);
+  if (fold_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's folded coefficients", fold_bytes, device);
   return okStatus();
 }
 
@@ -150,6 +159,8 @@ Status VulkanRuntime::createSlots() {
   const VkDeviceSize out_bytes = VkDeviceSize{capacity()} * asset().vertexCount() * sizeof(gpu::Float4);
   const VkDeviceSize bytes = out_bytes < 16 ? 16 : out_bytes;
   const VkDeviceSize bounds_bytes = std::max<VkDeviceSize>(VkDeviceSize{capacity()} * sizeof(gpu::BoundsKeys), 32);
+  const VkDeviceSize fold_bytes = std::max<VkDeviceSize>(foldedBytes(asset(), capacity()), 16);
+  ODESKIN_ASSIGN_OR_RETURN(folded_, vk::Buffer::create(*device_, fold_bytes, vk::kShaderInputUsage));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
     Slot slot;
     ODESKIN_ASSIGN_OR_RETURN(slot.positions, vk::Buffer::create(*device_, bytes, vk::kOutputBufferUsage));
@@ -166,7 +177,8 @@ Status VulkanRuntime::createSlots() {
 
 Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
   // One descriptor set per slot, written once: nothing is rebound per frame.
-  std::vector<std::uint32_t> deform_bindings = {ODESKIN_RT_BINDING_OUT_POSITIONS, ODESKIN_RT_BINDING_BOUNDS};
+  std::vector<std::uint32_t> deform_bindings = {ODESKIN_RT_BINDING_OUT_POSITIONS, ODESKIN_RT_BINDING_BOUNDS,
+                                                ODESKIN_BINDING_FOLDED_SERIES};
   for (const auto& [binding, buffer] : deform_statics_) deform_bindings.push_back(binding);
   for (const vk::FrameBinding& b : layout.bindings()) deform_bindings.push_back(b.binding);
   vk::ComputePipelineDesc deform_desc;
@@ -185,7 +197,9 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
     }
     ODESKIN_TRY(deform_.bindBuffer(s, ODESKIN_RT_BINDING_OUT_POSITIONS, slots_[s].positions.handle()));
     ODESKIN_TRY(deform_.bindBuffer(s, ODESKIN_RT_BINDING_BOUNDS, slots_[s].bounds.handle()));
+    ODESKIN_TRY(deform_.bindBuffer(s, ODESKIN_BINDING_FOLDED_SERIES, folded_.handle()));
   }
+  ODESKIN_TRY(createFoldPipeline(layout));
   if (!options().normals) return okStatus();
 
   const std::uint32_t normal_bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
@@ -203,6 +217,38 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
     ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, corner_offsets_.handle()));
     ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNERS, corners_.handle()));
     ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS, slots_[s].normals.handle()));
+  }
+  return okStatus();
+}
+
+Status VulkanRuntime::createFoldPipeline(const vk::FrameInputLayout& layout) {
+  // One folded buffer serves every slot: each frame's first barrier waits for the compute work of
+  // the frames before it, so a fold never overwrites what an earlier frame's deformation reads.
+  const PackedDeformData& d = asset().packed(0);
+  fold_push_ = gpu::FoldPushConstants{d.modes, d.curve_count, asset().basisEntries(), 0};
+  const std::uint32_t entries = d.curve_count * gpu::coefficientsPerCurve(d.modes);
+  fold_groups_x_ = (entries + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  vk::ComputePipelineDesc fold_desc;
+  fold_desc.spirv = kFoldSeriesSpirv;
+  const vk::SortedBindings sorted = vk::SortedBindings::sort(vk::kFoldBindings, vk::kFoldTexelBindings);
+  fold_desc.storage_bindings = sorted.storage;
+  fold_desc.texel_bindings = sorted.texels;
+  fold_desc.push_constant_bytes = sizeof(gpu::FoldPushConstants);
+  fold_desc.descriptor_set_count = framesInFlight();
+  ODESKIN_ASSIGN_OR_RETURN(fold_, vk::ComputePipeline::create(*device_, fold_desc));
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    for (const auto& [binding, buffer] : deform_statics_) {
+      if (binding == ODESKIN_BINDING_CURVE_MATERIALS || binding == ODESKIN_BINDING_COEFFICIENTS ||
+          binding == ODESKIN_BINDING_RATES) {
+        ODESKIN_TRY(fold_.bindBuffer(s, binding, buffer.handle()));
+      }
+    }
+    for (const vk::FrameBinding& b : layout.bindings()) {
+      if (b.binding == ODESKIN_RT_BINDING_INSTANCES || b.binding == ODESKIN_RT_BINDING_MODE_BASIS) {
+        ODESKIN_TRY(fold_.bindBuffer(s, b.binding, ring_.inputBuffer(s), b.offset, b.size));
+      }
+    }
+    ODESKIN_TRY(fold_.bindBuffer(s, ODESKIN_BINDING_FOLDED_SERIES, folded_.handle()));
   }
   return okStatus();
 }
@@ -255,6 +301,10 @@ void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_
     pc.residual_space = d.residual_space == ResidualSpace::kBind ? ODESKIN_RESIDUAL_BIND : ODESKIN_RESIDUAL_POSED;
     pc.skinning = d.skinning == SkinningMode::kDualQuaternion ? ODESKIN_SKINNING_DUAL_QUATERNION : ODESKIN_SKINNING_LINEAR;
     pc.basis_entries = asset().basisEntries();
+    // Every instance's basis folded into its own copy of the segment's coefficients first.
+    dispatch(cmd, fold_, slot, &fold_push_, sizeof(fold_push_), fold_groups_x_, instance_count);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     dispatch(cmd, deform_, slot, &pc, sizeof(pc), groups_x_, instance_count);
     if (options().normals) {
       // Normals read neighbours' positions: every position of the frame first.

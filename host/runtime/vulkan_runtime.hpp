@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The runtime on Vulkan compute (DeformRuntime's API, issue 6 point 1). The asset is uploaded once;
 // each submitFrame() writes every instance's inputs (InstanceRecord, bones, time basis; runtime_layout.h)
-// into the next slot of a FrameRing and records ONE command buffer: reset the slot's bounds, ONE
-// dispatch of instanced_deform.comp over (ceil(V / 64), instances) workgroups that deforms all
-// instances into the slot's output buffer (instance k at k * V) and reduces their boxes, then one
-// dispatch of instance_normals.comp. framesInFlight() slots (default 2) each own their outputs, so
+// into the next slot of a FrameRing and records ONE command buffer: reset the slot's bounds, one
+// dispatch of fold_series.comp that folds every instance's time basis into its copy of the curve
+// coefficients, ONE dispatch of instanced_deform.comp over (ceil(V / 64), instances) workgroups that
+// deforms all instances into the slot's output buffer (instance k at k * V) and reduces their
+// boxes, then one dispatch of instance_normals.comp. framesInFlight() slots (default 2) each own their outputs, so
 // the host prepares frame k+1 and a renderer draws frame k while the GPU deforms. No allocation
 // per frame (readbacks from non-mappable memory stage through a temporary buffer, on request only).
 // Reference: CpuRuntime, instance for instance (tests/runtime/vulkan_runtime_test.cpp).
@@ -54,8 +55,9 @@ class VulkanRuntime final : public DeformRuntime {
   // `device` and `asset` must outlive the runtime and stay where they are. kInvalidArgument for
   // frames_in_flight = 0; kUnavailable, naming the limit, when capacity exceeds
   // maxComputeWorkGroupCount[1], ceil(V / 64) exceeds maxComputeWorkGroupCount[0], or one frame's
-  // outputs (capacity x V x 16 bytes) or inputs exceed maxStorageBufferRange (lavapipe: 128 MiB,
-  // i.e. about 8.4 million instance vertices per runtime; use several runtimes beyond);
+  // outputs (capacity x V x 16 bytes), folded coefficients (capacity x C x (2N + 2) x 16 bytes) or
+  // inputs exceed maxStorageBufferRange (lavapipe: 128 MiB, i.e. about 8.4 million instance
+  // vertices per runtime; use several runtimes beyond);
   // kDeviceError from the driver. `allow_subgroups` = false forces the shared-memory bounds
   // reduction even where subgroup arithmetic exists (tests, benchmarks).
   static Result<VulkanRuntime> create(const vk::Device& device, const RuntimeAsset& asset,
@@ -91,6 +93,7 @@ class VulkanRuntime final : public DeformRuntime {
   Status uploadAsset();
   Status createSlots();
   Status createPipelines(const vk::FrameInputLayout& layout);
+  Status createFoldPipeline(const vk::FrameInputLayout& layout);
   void record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const;
 
   struct Slot {
@@ -100,7 +103,9 @@ class VulkanRuntime final : public DeformRuntime {
   };
   const vk::Device* device_ = nullptr;
   VkPipelineStageFlags reuse_stages_ = 0;
-  std::uint32_t groups_x_ = 0;  // ceil(V / 64)
+  std::uint32_t groups_x_ = 0;       // ceil(V / 64)
+  std::uint32_t fold_groups_x_ = 0;  // ceil(C (2N + 2) / 64)
+  gpu::FoldPushConstants fold_push_{};
   bool subgroup_bounds_ = false;
   // Host copies of one frame's inputs, prepared before waiting for the slot, then copied in.
   std::vector<gpu::InstanceRecord> records_;
@@ -113,6 +118,8 @@ class VulkanRuntime final : public DeformRuntime {
   vk::Buffer corner_offsets_;  // normals: RuntimeAsset::cornerOffsets
   vk::Buffer corners_;         // normals: RuntimeAsset::corners
   std::vector<Slot> slots_;
+  vk::Buffer folded_;  // capacity x C x (2N + 2) Float4: fold_series.comp's output, shared by the slots
+  vk::ComputePipeline fold_;
   vk::ComputePipeline deform_;
   vk::ComputePipeline normals_;
   // Last, so it is destroyed first: it waits for in-flight frames before anything they use goes.
