@@ -225,7 +225,7 @@ int run(const SampleOptions& o) {
       if (Status s = rt.setInstance(k, stateOf(*asset, k, now, own)); !s.ok()) return fail(s);
     }
     const double set_time = secondsSince(set_start);
-    // Deforms every instance: one dispatch (plus normals) on Vulkan; waits only for the frame
+    // Deforms every instance: one dispatch (after the fold, plus normals) on Vulkan; waits only for the frame
     // that used this slot two frames ago, so the GPU still runs the previous frame meanwhile.
     Result<std::uint64_t> frame = rt.submitFrame();
     if (!frame.ok()) return fail(frame.status());
