@@ -25,14 +25,8 @@ Result<ComputeDispatcher> ComputeDispatcher::create(const Device& device, const 
   std::vector<std::uint32_t> bindings;
   for (const StaticBinding& b : desc.static_bindings) bindings.push_back(b.binding);
   for (const FrameBinding& b : desc.frame_bindings) bindings.push_back(b.binding);
-  const SortedBindings sorted = SortedBindings::sort(bindings, desc.texel_bindings);
-  ComputePipelineDesc pipeline_desc;
-  pipeline_desc.spirv = desc.spirv;
-  pipeline_desc.storage_bindings = sorted.storage;
-  pipeline_desc.texel_bindings = sorted.texels;
-  pipeline_desc.push_constant_bytes = desc.push_constant_bytes;
-  pipeline_desc.descriptor_set_count = desc.frames_in_flight;
-  ODESKIN_ASSIGN_OR_RETURN(d.pipeline_, ComputePipeline::create(device, pipeline_desc));
+  ODESKIN_ASSIGN_OR_RETURN(d.pipeline_, createSortedPipeline(device, desc.spirv, bindings, desc.texel_bindings,
+                                                             desc.push_constant_bytes, desc.frames_in_flight));
   ODESKIN_ASSIGN_OR_RETURN(d.ring_, FrameRing::create(device, FrameRingDesc{desc.frames_in_flight, desc.frame_bytes}));
 
   // Descriptors are written once: the static buffers never change and each slot keeps its own
@@ -49,14 +43,8 @@ Result<ComputeDispatcher> ComputeDispatcher::create(const Device& device, const 
 
 Status ComputeDispatcher::createPrepass(const Device& device, const ComputeDispatcherDesc& desc) {
   const ComputePrepassDesc& pre = *desc.prepass;
-  const SortedBindings sorted = SortedBindings::sort(pre.bindings, pre.texel_bindings);
-  ComputePipelineDesc pipeline_desc;
-  pipeline_desc.spirv = pre.spirv;
-  pipeline_desc.storage_bindings = sorted.storage;
-  pipeline_desc.texel_bindings = sorted.texels;
-  pipeline_desc.push_constant_bytes = pre.push_constant_bytes;
-  pipeline_desc.descriptor_set_count = desc.frames_in_flight;
-  ODESKIN_ASSIGN_OR_RETURN(prepass_, ComputePipeline::create(device, pipeline_desc));
+  ODESKIN_ASSIGN_OR_RETURN(prepass_, createSortedPipeline(device, pre.spirv, pre.bindings, pre.texel_bindings,
+                                                          pre.push_constant_bytes, desc.frames_in_flight));
   for (const std::uint32_t binding : pre.bindings) {
     const auto is = [binding](const auto& b) { return b.binding == binding; };
     const auto st = std::find_if(desc.static_bindings.begin(), desc.static_bindings.end(), is);
@@ -97,31 +85,19 @@ Status ComputeDispatcher::submitFrame(const void* push, std::uint32_t group_coun
   ODESKIN_ASSIGN_OR_RETURN(VkCommandBuffer cmd, ring_.beginRecording());
   // Frames share the output buffer: the previous frame's shader writes (and anyone's reads of them,
   // e.g. a vertex fetch or a copy) must finish before this frame overwrites it (WAW/WAR).
-  VkMemoryBarrier before{};
-  before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-  before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-  before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-  vkCmdPipelineBarrier(cmd, reuse_stages_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before, 0, nullptr, 0,
-                       nullptr);
+  recordMemoryBarrier(cmd, reuse_stages_, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   if (prepass_.setCount() > 0 && prepass_groups > 0) {
     prepass_.recordDispatch(cmd, slot_, prepass_push, prepass_groups);
     // The main dispatch reads what the prepass wrote.
-    VkMemoryBarrier between{};
-    between.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-    between.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    between.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &between,
-                         0, nullptr, 0, nullptr);
+    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
   }
   pipeline_.recordDispatch(cmd, slot_, push, group_count);
   // A fence alone does not make device writes visible to the host; this barrier does, so a mapped
   // output can be read right after the wait.
-  VkMemoryBarrier after{};
-  after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-  after.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-  after.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0,
-                       nullptr, 0, nullptr);
+  recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                      VK_ACCESS_HOST_READ_BIT);
   return ring_.submit();
 }
 

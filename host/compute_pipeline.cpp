@@ -196,4 +196,13 @@ void ComputePipeline::recordDispatch(VkCommandBuffer cmd, std::uint32_t set_inde
   vkCmdDispatch(cmd, group_count_x, 1, 1);
 }
 
+void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                         VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
+  VkMemoryBarrier barrier{};
+  barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+  barrier.srcAccessMask = src_access;
+  barrier.dstAccessMask = dst_access;
+  vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
 }  // namespace odeskin::vk

@@ -74,4 +74,9 @@ class ComputePipeline {
   std::vector<UniqueBufferView> views_;
 };
 
+// One global memory barrier: `src_access` writes of `src_stage` made visible to `dst_access` of
+// `dst_stage` (no image or buffer ranges: every pass here reads or writes whole buffers).
+void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                         VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
+
 }  // namespace odeskin::vk

@@ -83,4 +83,20 @@ struct SortedBindings {
   }
 };
 
+// A compute pipeline whose set 0 holds `bindings`: those `table` names as uniform texel buffers, the
+// others as storage buffers; `set_count` descriptor sets (ComputePipeline::create's errors).
+inline Result<ComputePipeline> createSortedPipeline(const Device& device, std::span<const std::uint32_t> spirv,
+                                                    std::span<const std::uint32_t> bindings,
+                                                    std::span<const TexelBinding> table,
+                                                    std::uint32_t push_constant_bytes, std::uint32_t set_count) {
+  const SortedBindings sorted = SortedBindings::sort(bindings, table);
+  ComputePipelineDesc desc;
+  desc.spirv = spirv;
+  desc.storage_bindings = sorted.storage;
+  desc.texel_bindings = sorted.texels;
+  desc.push_constant_bytes = push_constant_bytes;
+  desc.descriptor_set_count = set_count;
+  return ComputePipeline::create(device, desc);
+}
+
 }  // namespace odeskin::vk

@@ -68,15 +68,6 @@ void dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, std::uin
   vkCmdDispatch(cmd, x, y, 1);
 }
 
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
-                   VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
-  VkMemoryBarrier barrier{};
-  barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-  barrier.srcAccessMask = src_access;
-  barrier.dstAccessMask = dst_access;
-  vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-}
-
 // kUnavailable, naming the limit, when `options` cannot run on `device` in one dispatch.
 Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, const RuntimeOptions& options) {
   const VkPhysicalDeviceLimits& limits = device.limits();
@@ -181,15 +172,12 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
                                                 ODESKIN_BINDING_FOLDED_SERIES};
   for (const auto& [binding, buffer] : deform_statics_) deform_bindings.push_back(binding);
   for (const vk::FrameBinding& b : layout.bindings()) deform_bindings.push_back(b.binding);
-  vk::ComputePipelineDesc deform_desc;
-  deform_desc.spirv = subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
-                                       : std::span<const std::uint32_t>(kInstancedDeformSharedSpirv);
-  const vk::SortedBindings deform_sorted = vk::SortedBindings::sort(deform_bindings, vk::kDeformTexelBindings);
-  deform_desc.storage_bindings = deform_sorted.storage;
-  deform_desc.texel_bindings = deform_sorted.texels;
-  deform_desc.push_constant_bytes = sizeof(gpu::InstancedPushConstants);
-  deform_desc.descriptor_set_count = framesInFlight();
-  ODESKIN_ASSIGN_OR_RETURN(deform_, vk::ComputePipeline::create(*device_, deform_desc));
+  const std::span<const std::uint32_t> deform_spirv =
+      subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
+                       : std::span<const std::uint32_t>(kInstancedDeformSharedSpirv);
+  ODESKIN_ASSIGN_OR_RETURN(deform_,
+                           vk::createSortedPipeline(*device_, deform_spirv, deform_bindings, vk::kDeformTexelBindings,
+                                                    sizeof(gpu::InstancedPushConstants), framesInFlight()));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
     for (const auto& [binding, buffer] : deform_statics_) ODESKIN_TRY(deform_.bindBuffer(s, binding, buffer.handle()));
     for (const vk::FrameBinding& b : layout.bindings()) {
@@ -204,14 +192,9 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
 
   const std::uint32_t normal_bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
                                            ODESKIN_RT_NORMALS_BINDING_CORNERS, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS};
-  vk::ComputePipelineDesc normals_desc;
-  normals_desc.spirv = kInstanceNormalsSpirv;
-  const vk::SortedBindings normals_sorted = vk::SortedBindings::sort(normal_bindings, vk::kNormalsTexelBindings);
-  normals_desc.storage_bindings = normals_sorted.storage;
-  normals_desc.texel_bindings = normals_sorted.texels;
-  normals_desc.push_constant_bytes = sizeof(gpu::NormalsPushConstants);
-  normals_desc.descriptor_set_count = framesInFlight();
-  ODESKIN_ASSIGN_OR_RETURN(normals_, vk::ComputePipeline::create(*device_, normals_desc));
+  ODESKIN_ASSIGN_OR_RETURN(normals_,
+                           vk::createSortedPipeline(*device_, kInstanceNormalsSpirv, normal_bindings, vk::kNormalsTexelBindings,
+                                                    sizeof(gpu::NormalsPushConstants), framesInFlight()));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
     ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_POSITIONS, slots_[s].positions.handle()));
     ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, corner_offsets_.handle()));
@@ -228,14 +211,9 @@ Status VulkanRuntime::createFoldPipeline(const vk::FrameInputLayout& layout) {
   fold_push_ = gpu::FoldPushConstants{d.modes, d.curve_count, asset().basisEntries(), 0};
   const std::uint32_t entries = d.curve_count * gpu::coefficientsPerCurve(d.modes);
   fold_groups_x_ = (entries + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
-  vk::ComputePipelineDesc fold_desc;
-  fold_desc.spirv = kFoldSeriesSpirv;
-  const vk::SortedBindings sorted = vk::SortedBindings::sort(vk::kFoldBindings, vk::kFoldTexelBindings);
-  fold_desc.storage_bindings = sorted.storage;
-  fold_desc.texel_bindings = sorted.texels;
-  fold_desc.push_constant_bytes = sizeof(gpu::FoldPushConstants);
-  fold_desc.descriptor_set_count = framesInFlight();
-  ODESKIN_ASSIGN_OR_RETURN(fold_, vk::ComputePipeline::create(*device_, fold_desc));
+  ODESKIN_ASSIGN_OR_RETURN(fold_,
+                           vk::createSortedPipeline(*device_, kFoldSeriesSpirv, vk::kFoldBindings, vk::kFoldTexelBindings,
+                                                    sizeof(gpu::FoldPushConstants), framesInFlight()));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
     for (const auto& [binding, buffer] : deform_statics_) {
       if (binding == ODESKIN_BINDING_CURVE_MATERIALS || binding == ODESKIN_BINDING_COEFFICIENTS ||
@@ -281,13 +259,14 @@ void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_
   const std::uint32_t v = asset().vertexCount();
   // The slot's previous frame may still be read (a renderer's vertex fetch, a readback copy) by
   // work submitted after it: finish those reads before this frame writes over them.
-  memoryBarrier(cmd, reuse_stages_, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  vk::recordMemoryBarrier(cmd, reuse_stages_, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   if (instance_count == 0) return;
   // Every key 0xFFFFFFFF: above every float's key, so the first atomicMin of each workgroup wins.
   vkCmdFillBuffer(cmd, slots_[slot].bounds.handle(), 0, VkDeviceSize{instance_count} * sizeof(gpu::BoundsKeys), 0xFFFFFFFFu);
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   if (v > 0) {
     const PackedDeformData& d = asset().packed(0);
     gpu::InstancedPushConstants pc{};
@@ -303,20 +282,20 @@ void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_
     pc.basis_entries = asset().basisEntries();
     // Every instance's basis folded into its own copy of the segment's coefficients first.
     dispatch(cmd, fold_, slot, &fold_push_, sizeof(fold_push_), fold_groups_x_, instance_count);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     dispatch(cmd, deform_, slot, &pc, sizeof(pc), groups_x_, instance_count);
     if (options().normals) {
       // Normals read neighbours' positions: every position of the frame first.
-      memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+      vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
       const gpu::NormalsPushConstants npc{v, instance_count, 0, 0};
       dispatch(cmd, normals_, slot, &npc, sizeof(npc), groups_x_, instance_count);
     }
   }
   // A fence alone does not make device writes visible to the host (mapped bounds and outputs).
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                VK_ACCESS_HOST_READ_BIT);
+  vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
 }
 
 Result<RuntimeFrameBuffers> VulkanRuntime::frameBuffers(std::uint64_t frame) const {
