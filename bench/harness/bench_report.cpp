@@ -34,6 +34,7 @@ std::string toJson(const BenchReport& report) {
   j["build"] = report.build;
   j["mesh"] = report.mesh;
   j["quick"] = report.quick;
+  j["validation"] = report.validation;
   j["records"] = nlohmann::ordered_json::array();
   for (const BenchRecord& r : report.records) {
     nlohmann::ordered_json e;

@@ -51,6 +51,7 @@ struct BenchReport {
   std::string build;         // build type, compiler and flags
   std::string mesh;          // what was tiled
   bool quick = false;
+  bool validation = false;   // the Khronos validation layer checked the Vulkan cases: its work is in their times
   std::vector<BenchRecord> records;
   std::vector<FitStageRecord> fit_stages;
 };

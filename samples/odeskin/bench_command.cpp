@@ -92,14 +92,19 @@ void printFits(const BenchReport& report, std::ostream& out) {
 void printTargets(const BenchReport& report, std::ostream& out) {
   out << "\ntargets (issue 6, from this run):\n";
   auto verdict = [](bool met) { return met ? "met" : "missed"; };
+  // The layer checks every Vulkan call on the host, which the frame times then include.
+  auto vulkan_verdict = [&](bool met) {
+    return report.validation ? "not judged: the validation layer's checks are in the Vulkan times" : verdict(met);
+  };
   for (const char* backend : {"cpu_fast", "vulkan"}) {
     for (const BenchRecord& r : report.records) {
       if (r.kernel != "odeskin" || r.terms != 9 || r.backend != backend || r.threads != 1) continue;
       const double ratio = bench::odeskinOverLbs(report, r);
       if (ratio <= 0.0) continue;
       char line[200];
+      const bool met = ratio <= 1.5;
       std::snprintf(line, sizeof line, "  odeskin N=9 / lbs, %s 1 thread, %zu vertices: %.2f (target <= 1.5: %s)\n",
-                    backend, r.vertices, ratio, verdict(ratio <= 1.5));
+                    backend, r.vertices, ratio, r.backend == "vulkan" ? vulkan_verdict(met) : verdict(met));
       out << line;
     }
   }
@@ -117,7 +122,7 @@ void printTargets(const BenchReport& report, std::ostream& out) {
     char line[200];
     std::snprintf(line, sizeof line,
                   "  vulkan / cpu_fast 1 thread throughput, N=%d, %zu vertices: %.3f (target >= 0.5: %s)\n", v.terms,
-                  v.vertices, ratio, verdict(ratio >= 0.5));
+                  v.vertices, ratio, vulkan_verdict(ratio >= 0.5));
     out << line;
   }
 }
@@ -192,6 +197,7 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
     if (opened.ok()) {
       gpu.emplace(std::move(opened).value());
       report.device = gpu->device.name();
+      report.validation = o.validation;
     } else if (backends->vulkan_required) {
       return fail(Status(opened.status().code(), "vulkan: " + opened.status().message()));
     } else {
@@ -245,7 +251,7 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
     if (Status s = bench::writeFitPlot(o.fit_plot, report); !s.ok()) return fail(s);
   }
   if (!console.quiet) {
-    console.out << "device: " << report.device << "\nmachine: " << report.cpu << ", " << report.hardware_threads
+    console.out << "device: " << report.device << (report.validation ? " (validation layer on)" : "") << "\nmachine: " << report.cpu << ", " << report.hardware_threads
                 << " hardware threads\nbuild: " << report.build << "\nmesh: " << report.mesh << "\n\n";
     printRecords(report, console.out);
     printFits(report, console.out);

@@ -141,6 +141,7 @@ BenchReport sampleReport() {
 TEST(BenchReport, JsonKeepsTheIssueLayout) {
   const nlohmann::json j = nlohmann::json::parse(toJson(sampleReport()));
   EXPECT_EQ(j["device"], "test device");
+  EXPECT_EQ(j["validation"], false);
   ASSERT_EQ(j["records"].size(), 3u);
   for (const auto& r : j["records"]) {
     for (const char* key : {"case", "backend", "threads", "vertices", "terms", "seconds_per_frame", "vertices_per_second"}) {

@@ -91,6 +91,11 @@ TEST_F(BenchCommandGpu, QuickCasesOnTheCatIncludeVulkan) {
   ASSERT_EQ(j["fit_stages"].size(), 1u);
   EXPECT_EQ(j["fit_stages"][0]["vertices"], 7207);
   EXPECT_NE(io.out.str().find("targets (issue 6, from this run)"), std::string::npos);
+  // Under the validation layer the Vulkan times include its checks: recorded, and not judged.
+  EXPECT_EQ(j["validation"], true);
+  EXPECT_NE(io.out.str().find("(validation layer on)"), std::string::npos);
+  EXPECT_NE(io.out.str().find("vulkan 1 thread, 32185 vertices: "), std::string::npos);
+  EXPECT_NE(io.out.str().find("not judged: the validation layer's checks are in the Vulkan times"), std::string::npos);
   fs::remove_all(dir);
 }
 
