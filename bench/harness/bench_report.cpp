@@ -35,6 +35,11 @@ std::string toJson(const BenchReport& report) {
   j["mesh"] = report.mesh;
   j["quick"] = report.quick;
   j["validation"] = report.validation;
+  if (report.device_copy_bytes_per_second > 0.0) {
+    j["device_copy"] = {{"bytes", report.device_copy_bytes}, {"bytes_per_second", report.device_copy_bytes_per_second}};
+  } else {
+    j["device_copy"] = {{"note", report.device_copy_note}};
+  }
   j["records"] = nlohmann::ordered_json::array();
   for (const BenchRecord& r : report.records) {
     nlohmann::ordered_json e;
@@ -49,6 +54,8 @@ std::string toJson(const BenchReport& report) {
     e["upload_seconds"] = r.upload_seconds;
     e["frames"] = r.frames;
     e["max_error"] = r.max_error;
+    e["bytes_per_frame"] = r.bytes_per_frame;
+    e["bytes_per_second"] = r.bytesPerSecond();
     if (r.kernel == "odeskin") {
       const double ratio = odeskinOverLbs(report, r);
       if (ratio > 0.0) e["odeskin_over_lbs"] = ratio;
@@ -76,13 +83,13 @@ std::string toCsv(const BenchReport& report) {
   std::ostringstream out;
   out.precision(9);
   out << "case,backend,threads,vertices,terms,seconds_per_frame,vertices_per_second,gpu_seconds_per_frame,"
-         "upload_seconds,frames,max_error,odeskin_over_lbs\n";
+         "upload_seconds,frames,max_error,odeskin_over_lbs,bytes_per_frame,bytes_per_second\n";
   for (const BenchRecord& r : report.records) {
     out << r.kernel << ',' << r.backend << ',' << r.threads << ',' << r.vertices << ',' << r.terms << ','
         << r.seconds_per_frame << ',' << r.verticesPerSecond() << ',' << r.gpu_seconds_per_frame << ','
         << r.upload_seconds << ',' << r.frames << ',' << r.max_error << ',';
     if (r.kernel == "odeskin") out << odeskinOverLbs(report, r);
-    out << '\n';
+    out << ',' << r.bytes_per_frame << ',' << r.bytesPerSecond() << '\n';
   }
   return out.str();
 }

@@ -24,8 +24,10 @@ struct BenchRecord {
   double upload_seconds = 0.0;      // one-off: GPU upload, or the CPU path's preparation
   int frames = 0;                   // frames timed
   double max_error = 0.0;           // worst |p - p_ref| / longest box side against cpu_ref
+  double bytes_per_frame = 0.0;     // the least a frame moves (frame_traffic.hpp)
 
   double verticesPerSecond() const { return seconds_per_frame > 0.0 ? static_cast<double>(vertices) / seconds_per_frame : 0.0; }
+  double bytesPerSecond() const { return seconds_per_frame > 0.0 ? bytes_per_frame / seconds_per_frame : 0.0; }
 };
 
 // The thesis's Table 6.3 columns for one fit, in seconds.
@@ -52,6 +54,10 @@ struct BenchReport {
   std::string mesh;          // what was tiled
   bool quick = false;
   bool validation = false;   // the Khronos validation layer checked the Vulkan cases: its work is in their times
+  // The Vulkan device's buffer-copy rate (device_bandwidth.hpp), 0 when not measured, and why not.
+  double device_copy_bytes_per_second = 0.0;
+  double device_copy_bytes = 0.0;
+  std::string device_copy_note;
   std::vector<BenchRecord> records;
   std::vector<FitStageRecord> fit_stages;
 };

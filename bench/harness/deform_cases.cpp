@@ -14,6 +14,7 @@
 #include "engine/offline/deform_player.hpp"
 #include "engine/offline/residual_fit.hpp"
 #include "frame_timer.hpp"
+#include "frame_traffic.hpp"
 #include "host/gpu_deformer.hpp"
 #include "host/gpu_lbs.hpp"
 
@@ -74,6 +75,7 @@ class CaseRunner {
     r.threads = threads;
     r.vertices = s_.vertexCount();
     r.terms = deforms() ? terms_ : 0;
+    r.bytes_per_frame = static_cast<double>(frameBytes(s_.packed, s_.frame.segment, deforms()));
     return r;
   }
 

@@ -12,6 +12,7 @@
 #include "bench/harness/bench_plot.hpp"
 #include "bench/harness/bench_report.hpp"
 #include "bench/harness/deform_cases.hpp"
+#include "bench/harness/device_bandwidth.hpp"
 #include "bench/harness/fit_sources.hpp"
 #include "host/device.hpp"
 
@@ -23,6 +24,10 @@ using bench::BenchReport;
 
 // The Runner of the thesis (Table 6.1) has 32,185 vertices: the size the targets are stated at.
 constexpr std::size_t kRunnerVertices = 32'185;
+// Each of the copy probe's two buffers: beyond the last-level caches of GPUs and CPUs alike.
+constexpr VkDeviceSize kCopyProbeBytes = VkDeviceSize{256} << 20;
+// Issue 6 asks for bytes/s against the device's bandwidth from this many vertices on.
+constexpr std::size_t kBandwidthReportVertices = 1'000'000;
 
 struct Backends {
   bool cpu_ref = false, cpu_fast = false, vulkan = false, vulkan_required = false;
@@ -58,7 +63,7 @@ const BenchRecord* find(const BenchReport& r, const std::string& kernel, const s
 }
 
 void printRecords(const BenchReport& report, std::ostream& out) {
-  out << "case     backend  threads  vertices  N   us/frame    Mvert/s   gpu us  upload ms  vs lbs  max err\n";
+  out << "case     backend  threads  vertices  N   us/frame    Mvert/s   gpu us  upload ms  vs lbs  max err     GB/s\n";
   for (const BenchRecord& r : report.records) {
     char line[256];
     const double ratio = r.kernel == "odeskin" ? bench::odeskinOverLbs(report, r) : 0.0;
@@ -66,9 +71,10 @@ void printRecords(const BenchReport& report, std::ostream& out) {
     if (ratio > 0.0) std::snprintf(ratio_text, sizeof ratio_text, "%.2f", ratio);
     char gpu_text[24] = "";
     if (r.backend == "vulkan") std::snprintf(gpu_text, sizeof gpu_text, "%.1f", r.gpu_seconds_per_frame * 1e6);
-    std::snprintf(line, sizeof line, "%-8s %-8s %7u %9zu %2d %10.1f %10.2f %8s %10.2f %7s  %.1e\n", r.kernel.c_str(),
-                  r.backend.c_str(), r.threads, r.vertices, r.terms, r.seconds_per_frame * 1e6,
-                  r.verticesPerSecond() * 1e-6, gpu_text, r.upload_seconds * 1e3, ratio_text, r.max_error);
+    std::snprintf(line, sizeof line, "%-8s %-8s %7u %9zu %2d %10.1f %10.2f %8s %10.2f %7s  %.1e %8.2f\n",
+                  r.kernel.c_str(), r.backend.c_str(), r.threads, r.vertices, r.terms, r.seconds_per_frame * 1e6,
+                  r.verticesPerSecond() * 1e-6, gpu_text, r.upload_seconds * 1e3, ratio_text, r.max_error,
+                  r.bytesPerSecond() * 1e-9);
     out << line;
   }
 }
@@ -84,6 +90,34 @@ void printFits(const BenchReport& report, std::ostream& out) {
                   f.vertices, f.poses, f.rig.c_str(), f.rig_seconds * 1e3, f.curve_identification * 1e3,
                   f.geometric_transform * 1e3, f.fourier_and_deformation * 1e3, f.analytic_solve * 1e3,
                   f.withoutRig() * 1e3);
+    out << line;
+  }
+}
+
+// Vulkan's frame traffic against the device's own copy rate, from 10^6 vertices (issue 6, point 3).
+void printBandwidth(const BenchReport& report, std::ostream& out) {
+  bool header = false;
+  for (const BenchRecord& r : report.records) {
+    if (r.backend != "vulkan" || r.vertices < kBandwidthReportVertices) continue;
+    if (!header) {
+      out << "\nmemory traffic (vulkan, >= " << kBandwidthReportVertices << " vertices; least bytes a frame moves): ";
+      if (report.device_copy_bytes_per_second > 0.0) {
+        char rate[64];
+        std::snprintf(rate, sizeof rate, "device buffer copy %.1f GB/s\n", report.device_copy_bytes_per_second * 1e-9);
+        out << rate;
+      } else {
+        out << "device copy rate " << report.device_copy_note << "\n";
+      }
+      header = true;
+    }
+    char line[200];
+    const double share = report.device_copy_bytes_per_second > 0.0
+                             ? 100.0 * r.bytesPerSecond() / report.device_copy_bytes_per_second
+                             : 0.0;
+    const std::string what = r.kernel + (r.terms > 0 ? " N=" + std::to_string(r.terms) : std::string());
+    std::snprintf(line, sizeof line, "  %s, %zu vertices: %.1f Mvert/s, %.0f bytes/vertex, %.2f GB/s = %.1f%% of the copy rate\n",
+                  what.c_str(), r.vertices, r.verticesPerSecond() * 1e-6,
+                  r.bytes_per_frame / static_cast<double>(r.vertices), r.bytesPerSecond() * 1e-9, share);
     out << line;
   }
 }
@@ -198,6 +232,15 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
       gpu.emplace(std::move(opened).value());
       report.device = gpu->device.name();
       report.validation = o.validation;
+      // The rate the Vulkan records' bytes/s are set against; a device short of memory for the
+      // probe still runs the cases.
+      Result<bench::CopyBandwidth> copy = bench::deviceCopyBandwidth(gpu->device, kCopyProbeBytes);
+      if (copy.ok()) {
+        report.device_copy_bytes = static_cast<double>(copy->bytes);
+        report.device_copy_bytes_per_second = copy->bytes_per_second;
+      } else {
+        report.device_copy_note = "not measured: " + copy.status().message();
+      }
     } else if (backends->vulkan_required) {
       return fail(Status(opened.status().code(), "vulkan: " + opened.status().message()));
     } else {
@@ -208,6 +251,7 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
   } else {
     report.device = "none (not requested)";
   }
+  if (!use_vulkan) report.device_copy_note = "not measured: no Vulkan device in this run";
 
   bench::DeformCaseOptions cases;
   cases.sizes = !o.sizes.empty() ? o.sizes
@@ -256,6 +300,7 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
     printRecords(report, console.out);
     printFits(report, console.out);
     printTargets(report, console.out);
+    printBandwidth(report, console.out);
   }
   console.out << "wrote " << o.json.string() << "\n";
   return kExitOk;

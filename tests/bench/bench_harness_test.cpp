@@ -14,7 +14,9 @@
 #include "bench/harness/bench_plot.hpp"
 #include "bench/harness/bench_report.hpp"
 #include "bench/harness/deform_cases.hpp"
+#include "bench/harness/device_bandwidth.hpp"
 #include "bench/harness/frame_timer.hpp"
+#include "bench/harness/frame_traffic.hpp"
 #include "bench/harness/subdivided_examples.hpp"
 #include "bench/harness/tiled_asset.hpp"
 #include "engine/offline/deform_player.hpp"
@@ -134,7 +136,7 @@ BenchReport sampleReport() {
   r.device = "test device";
   r.records.push_back({"odeskin", "cpu_fast", 1, 1000, 9, 3e-3, 0.0, 0.0, 10, 1e-7});
   r.records.push_back({"lbs", "cpu_fast", 1, 1000, 0, 1e-3, 0.0, 0.0, 10, 1e-7});
-  r.records.push_back({"odeskin", "vulkan", 1, 1000, 9, 4e-3, 3e-3, 0.1, 10, 1e-7});
+  r.records.push_back({"odeskin", "vulkan", 1, 1000, 9, 4e-3, 3e-3, 0.1, 10, 1e-7, 2e5});
   return r;
 }
 
@@ -152,6 +154,9 @@ TEST(BenchReport, JsonKeepsTheIssueLayout) {
   EXPECT_DOUBLE_EQ(j["records"][0]["odeskin_over_lbs"].get<double>(), 3.0);
   EXPECT_FALSE(j["records"][2].contains("odeskin_over_lbs"));  // no vulkan lbs record
   EXPECT_DOUBLE_EQ(j["records"][2]["gpu_seconds_per_frame"].get<double>(), 3e-3);
+  EXPECT_DOUBLE_EQ(j["records"][2]["bytes_per_frame"].get<double>(), 2e5);
+  EXPECT_DOUBLE_EQ(j["records"][2]["bytes_per_second"].get<double>(), 2e5 / 4e-3);
+  EXPECT_EQ(j["device_copy"]["note"], "");  // not measured in this report
   const std::string csv = toCsv(sampleReport());
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
   EXPECT_EQ(csv.rfind("case,backend,threads,vertices,terms,seconds_per_frame,vertices_per_second", 0), 0u);
@@ -200,7 +205,61 @@ TEST(BenchPlot, FitPlotDrawsTheSubdividedSeriesOnly) {
   fs::remove_all(dir);
 }
 
+// A hand-sized asset: 3 vertices in 4 slots, 2 bones, 1 curve of N = 1 (M = 4), 2 segments with
+// rates, 1 material; segment 1 gives vertex 2 a remainder.
+PackedDeformData smallPacked() {
+  PackedDeformData d;
+  d.vertex_count = 3;
+  d.modes = 1;
+  d.curve_count = 1;
+  d.material_count = 1;
+  d.bone_count = 2;
+  d.segment_count = 2;
+  d.influence_layout = 4;
+  d.rest_positions.resize(3);
+  d.bindings.resize(3);
+  d.segment_vertices.assign(6, gpu::SegmentVertex{0, 0, 0, gpu::kNoRemainder});
+  d.segment_vertices[5].remainder_index = 0;
+  d.remainders.resize(1);
+  d.remainder_base = {0, 0};
+  d.curve_materials = {0};
+  d.coefficients.resize(8);
+  d.rates.resize(8);
+  d.influences.resize(12);
+  return d;
+}
+
+TEST(FrameTraffic, CountsEachArrayOfTheFrameOnce) {
+  PackedDeformData d = smallPacked();
+  // Skinning: rest in and positions out (2 x 3 x 16), 12 influences x 8, 2 bones x 48.
+  const std::size_t skin = 96 + 96 + 96;
+  EXPECT_EQ(frameBytes(d, 0, false), skin);
+  // odeskin adds bindings and the segment's correctives (3 x 32), the segment's coefficients and
+  // rates (2 x 4 x 16), one material (4) and 1 x (N + 1) + 1 = 3 basis entries (3 x 8).
+  const std::size_t deform = skin + 96 + 128 + 4 + 24;
+  EXPECT_EQ(frameBytes(d, 0, true), deform);
+  EXPECT_EQ(frameBytes(d, 1, true), deform + 16);  // vertex 2's remainder in segment 1
+  d.rates.clear();
+  EXPECT_EQ(frameBytes(d, 0, true), deform - 64);
+  d.skinning = SkinningMode::kDualQuaternion;  // the bones' dual quaternions too
+  EXPECT_EQ(frameBytes(d, 0, false), skin + 64);
+  d.influence_layout = ODESKIN_INFLUENCES_SPARSE;
+  d.influences.resize(5);
+  d.influence_offsets = {0, 2, 3, 5};
+  EXPECT_EQ(frameBytes(d, 0, false), 96 + 40 + 16 + 96 + 64);
+}
+
 class DeformCases : public testing::GpuTest {};
+
+TEST_F(DeformCases, TheDeviceCopyRateIsMeasured) {
+  Result<CopyBandwidth> copy = deviceCopyBandwidth(device(), VkDeviceSize{4} << 20, 3);
+  ASSERT_TRUE(copy.ok()) << copy.status().toString();
+  EXPECT_EQ(copy->bytes, VkDeviceSize{4} << 20);
+  EXPECT_GT(copy->bytes_per_second, 1e6);
+  EXPECT_TRUE(std::isfinite(copy->bytes_per_second));
+  EXPECT_EQ(deviceCopyBandwidth(device(), 0).status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(deviceCopyBandwidth(device(), 16, 0).status().code(), StatusCode::kInvalidArgument);
+}
 
 TEST_F(DeformCases, VerifiesAndTimesEveryBackendAndKernel) {
   std::map<int, DeformAsset> sources;
@@ -225,6 +284,9 @@ TEST_F(DeformCases, VerifiesAndTimesEveryBackendAndKernel) {
     EXPECT_LE(r.max_error, kVerifyTolerance) << r.kernel << " " << r.backend;
     EXPECT_EQ(r.terms == 0, r.kernel != "odeskin");
     EXPECT_GE(r.frames, 3);
+    // At least the positions in and out, and never more than a few hundred bytes per vertex.
+    EXPECT_GE(r.bytes_per_frame, 32.0 * static_cast<double>(r.vertices));
+    EXPECT_LE(r.bytes_per_frame, 1000.0 * static_cast<double>(r.vertices));
     if (r.backend == "vulkan") {
       EXPECT_GT(r.gpu_seconds_per_frame, 0.0);
     }

@@ -51,6 +51,7 @@ TEST(BenchCommand, WithoutDataTilesTheProceduralArmOnCpuBackends) {
   ASSERT_EQ(runBenchCommand(o, io.console), kExitOk) << io.err.str();
   const nlohmann::json j = readJson(o.json);
   EXPECT_EQ(j["device"], "none (not requested)");
+  EXPECT_EQ(j["device_copy"]["note"], "not measured: no Vulkan device in this run");
   EXPECT_NE(j["mesh"].get<std::string>().find("procedural arm"), std::string::npos);
   for (const char* backend : {"cpu_ref", "cpu_fast"}) {
     EXPECT_TRUE(hasRecord(j, "odeskin", backend, 1, 3000, 3)) << backend;
@@ -91,6 +92,9 @@ TEST_F(BenchCommandGpu, QuickCasesOnTheCatIncludeVulkan) {
   ASSERT_EQ(j["fit_stages"].size(), 1u);
   EXPECT_EQ(j["fit_stages"][0]["vertices"], 7207);
   EXPECT_NE(io.out.str().find("targets (issue 6, from this run)"), std::string::npos);
+  // Frame traffic per record, set against the device's measured copy rate.
+  EXPECT_GT(j["device_copy"]["bytes_per_second"].get<double>(), 0.0);
+  for (const auto& r : j["records"]) EXPECT_GT(r["bytes_per_second"].get<double>(), 0.0) << r["case"] << r["backend"];
   // Under the validation layer the Vulkan times include its checks: recorded, and not judged.
   EXPECT_EQ(j["validation"], true);
   EXPECT_NE(io.out.str().find("(validation layer on)"), std::string::npos);
