@@ -3,7 +3,7 @@
 // bandwidth): vkCmdCopyBuffer between two device-local buffers, timed by timestamp queries (by the
 // submission's wall time where the queue has none), the best of a few copies, counted as 2 x bytes
 // per copy since every byte is read once and written once. The Vulkan records' bytes per second are
-// set against it. On lavapipe it is the host's memcpy rate on one thread.
+// set against it. On lavapipe it is a memcpy on the host.
 #pragma once
 
 #include <cstdint>
