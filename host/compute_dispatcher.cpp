@@ -31,12 +31,7 @@ Result<ComputeDispatcher> ComputeDispatcher::create(const Device& device, const 
 
   // Descriptors are written once: the static buffers never change and each slot keeps its own
   // per-frame buffer, so no descriptor update happens per frame.
-  for (std::uint32_t s = 0; s < desc.frames_in_flight; ++s) {
-    for (const StaticBinding& b : desc.static_bindings) ODESKIN_TRY(d.pipeline_.bindBuffer(s, b.binding, b.buffer));
-    for (const FrameBinding& b : desc.frame_bindings) {
-      ODESKIN_TRY(d.pipeline_.bindBuffer(s, b.binding, d.ring_.inputBuffer(s), b.offset, b.size));
-    }
-  }
+  ODESKIN_TRY(bindListed(d.pipeline_, bindings, desc.static_bindings, desc.frame_bindings, d.ring_));
   if (desc.prepass != nullptr) ODESKIN_TRY(d.createPrepass(device, desc));
   return d;
 }
@@ -45,18 +40,24 @@ Status ComputeDispatcher::createPrepass(const Device& device, const ComputeDispa
   const ComputePrepassDesc& pre = *desc.prepass;
   ODESKIN_ASSIGN_OR_RETURN(prepass_, createSortedPipeline(device, pre.spirv, pre.bindings, pre.texel_bindings,
                                                           pre.push_constant_bytes, desc.frames_in_flight));
-  for (const std::uint32_t binding : pre.bindings) {
+  return bindListed(prepass_, pre.bindings, desc.static_bindings, desc.frame_bindings, ring_);
+}
+
+Status bindListed(ComputePipeline& pipeline, std::span<const std::uint32_t> bindings,
+                  std::span<const StaticBinding> statics, std::span<const FrameBinding> frame_bindings,
+                  const FrameRing& ring) {
+  for (const std::uint32_t binding : bindings) {
     const auto is = [binding](const auto& b) { return b.binding == binding; };
-    const auto st = std::find_if(desc.static_bindings.begin(), desc.static_bindings.end(), is);
-    const auto fr = std::find_if(desc.frame_bindings.begin(), desc.frame_bindings.end(), is);
-    for (std::uint32_t s = 0; s < desc.frames_in_flight; ++s) {
-      if (st != desc.static_bindings.end()) {
-        ODESKIN_TRY(prepass_.bindBuffer(s, binding, st->buffer));
-      } else if (fr != desc.frame_bindings.end()) {
-        ODESKIN_TRY(prepass_.bindBuffer(s, binding, ring_.inputBuffer(s), fr->offset, fr->size));
+    const auto st = std::find_if(statics.begin(), statics.end(), is);
+    const auto fr = std::find_if(frame_bindings.begin(), frame_bindings.end(), is);
+    for (std::uint32_t s = 0; s < pipeline.setCount(); ++s) {
+      if (st != statics.end()) {
+        ODESKIN_TRY(pipeline.bindBuffer(s, binding, st->buffer));
+      } else if (fr != frame_bindings.end()) {
+        ODESKIN_TRY(pipeline.bindBuffer(s, binding, ring.inputBuffer(s), fr->offset, fr->size));
       } else {
-        return invalidArgument("ComputeDispatcher: the prepass binds " + std::to_string(binding) +
-                               ", which is neither a static nor a per-frame binding");
+        return invalidArgument("compute pipeline: binding " + std::to_string(binding) +
+                               " is neither a static nor a per-frame binding");
       }
     }
   }

@@ -54,6 +54,13 @@ struct ComputeDispatcherDesc {
   const ComputePrepassDesc* prepass = nullptr;  // optional; read during create() only
 };
 
+// Points each of `bindings` in descriptor set k of `pipeline` (every k) at the static buffer of that
+// number, or else at its slice of ring slot k's per-frame buffer; kInvalidArgument naming a binding
+// in neither. `ring` needs as many slots as `pipeline` has sets.
+Status bindListed(ComputePipeline& pipeline, std::span<const std::uint32_t> bindings,
+                  std::span<const StaticBinding> statics, std::span<const FrameBinding> frame_bindings,
+                  const FrameRing& ring);
+
 // Stages that may still read or write a deformer's output from an earlier frame on this queue:
 // compute and transfer (readbacks), and vertex fetch where the queue can draw.
 VkPipelineStageFlags outputReuseStages(const Device& device);

@@ -60,6 +60,7 @@ class CaseRunner {
     expected_.resize(s_.vertexCount());
     ODESKIN_TRY(reference(expected_));
     box_ = longestBoxSide(expected_);
+    bytes_per_frame_ = static_cast<double>(frameBytes(s_.packed, s_.frame.segment, deforms()));
     return okStatus();
   }
 
@@ -75,7 +76,7 @@ class CaseRunner {
     r.threads = threads;
     r.vertices = s_.vertexCount();
     r.terms = deforms() ? terms_ : 0;
-    r.bytes_per_frame = static_cast<double>(frameBytes(s_.packed, s_.frame.segment, deforms()));
+    r.bytes_per_frame = bytes_per_frame_;
     return r;
   }
 
@@ -164,6 +165,7 @@ class CaseRunner {
   std::vector<BenchRecord>& out_;
   std::vector<Vec3> expected_;
   double box_ = 1.0;
+  double bytes_per_frame_ = 0.0;  // the same for every backend
 };
 
 }  // namespace

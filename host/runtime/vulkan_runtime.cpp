@@ -214,21 +214,9 @@ Status VulkanRuntime::createFoldPipeline(const vk::FrameInputLayout& layout) {
   ODESKIN_ASSIGN_OR_RETURN(fold_,
                            vk::createSortedPipeline(*device_, kFoldSeriesSpirv, vk::kFoldBindings, vk::kFoldTexelBindings,
                                                     sizeof(gpu::FoldPushConstants), framesInFlight()));
-  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
-    for (const auto& [binding, buffer] : deform_statics_) {
-      if (binding == ODESKIN_BINDING_CURVE_MATERIALS || binding == ODESKIN_BINDING_COEFFICIENTS ||
-          binding == ODESKIN_BINDING_RATES) {
-        ODESKIN_TRY(fold_.bindBuffer(s, binding, buffer.handle()));
-      }
-    }
-    for (const vk::FrameBinding& b : layout.bindings()) {
-      if (b.binding == ODESKIN_RT_BINDING_INSTANCES || b.binding == ODESKIN_RT_BINDING_MODE_BASIS) {
-        ODESKIN_TRY(fold_.bindBuffer(s, b.binding, ring_.inputBuffer(s), b.offset, b.size));
-      }
-    }
-    ODESKIN_TRY(fold_.bindBuffer(s, ODESKIN_BINDING_FOLDED_SERIES, folded_.handle()));
-  }
-  return okStatus();
+  std::vector<vk::StaticBinding> statics = {{ODESKIN_BINDING_FOLDED_SERIES, folded_.handle()}};
+  for (const auto& [binding, buffer] : deform_statics_) statics.push_back({binding, buffer.handle()});
+  return vk::bindListed(fold_, vk::kFoldBindings, statics, layout.bindings(), ring_);
 }
 
 Status VulkanRuntime::submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) {
