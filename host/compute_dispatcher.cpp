@@ -25,6 +25,10 @@ Result<ComputeDispatcher> ComputeDispatcher::create(const Device& device, const 
   std::vector<std::uint32_t> bindings;
   for (const StaticBinding& b : desc.static_bindings) bindings.push_back(b.binding);
   for (const FrameBinding& b : desc.frame_bindings) bindings.push_back(b.binding);
+  if (desc.prepass != nullptr) {
+    const std::span<const std::uint32_t> only = desc.prepass->prepass_only;
+    std::erase_if(bindings, [&](std::uint32_t b) { return std::find(only.begin(), only.end(), b) != only.end(); });
+  }
   ODESKIN_ASSIGN_OR_RETURN(d.pipeline_, createSortedPipeline(device, desc.spirv, bindings, desc.texel_bindings,
                                                              desc.push_constant_bytes, desc.frames_in_flight));
   ODESKIN_ASSIGN_OR_RETURN(d.ring_, FrameRing::create(device, FrameRingDesc{desc.frames_in_flight, desc.frame_bytes}));

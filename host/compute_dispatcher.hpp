@@ -39,6 +39,9 @@ struct ComputePrepassDesc {
   std::span<const std::uint32_t> bindings;
   std::span<const TexelBinding> texel_bindings;
   std::uint32_t push_constant_bytes = 0;
+  // Static or per-frame bindings that only the prepass reads: the main pipeline's layout leaves
+  // them out, so its descriptor sets hold just what its shader declares.
+  std::span<const std::uint32_t> prepass_only;
 };
 
 struct ComputeDispatcherDesc {

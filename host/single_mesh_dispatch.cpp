@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "single_mesh_dispatch.hpp"
 
+#include <iterator>
 #include <vector>
 
 #include "engine/runtime/runtime_layout.hpp"
@@ -8,6 +9,15 @@
 #include "texel_bindings.hpp"
 
 namespace odeskin {
+namespace {
+
+// Bindings only the fold reads: its inputs no deformation shader declares, and the frame's record
+// (a single mesh's shader takes its segment from the push constants).
+constexpr std::uint32_t kSingleMeshFoldOnly[] = {ODESKIN_BINDING_CURVE_MATERIALS, ODESKIN_BINDING_COEFFICIENTS,
+                                                 ODESKIN_BINDING_RATES, ODESKIN_RT_BINDING_INSTANCES};
+static_assert(std::size(kSingleMeshFoldOnly) == std::size(vk::kFoldOnlyBindings) + 1);
+
+}  // namespace
 
 Result<SingleMeshDispatch> SingleMeshDispatch::create(const vk::Device& device, const SingleMeshDispatchDesc& desc) {
   SingleMeshDispatch d;
@@ -52,6 +62,7 @@ Result<SingleMeshDispatch> SingleMeshDispatch::create(const vk::Device& device, 
   fold.bindings = vk::kFoldBindings;
   fold.texel_bindings = vk::kFoldTexelBindings;
   fold.push_constant_bytes = sizeof(gpu::FoldPushConstants);
+  fold.prepass_only = kSingleMeshFoldOnly;
   if (desc.fold_series) dispatcher.prepass = &fold;
   ODESKIN_ASSIGN_OR_RETURN(d.dispatcher_, vk::ComputeDispatcher::create(device, dispatcher));
   return d;

@@ -30,9 +30,6 @@ inline constexpr TexelBinding kDeformTexelBindings[] = {
     {ODESKIN_BINDING_VERTEX_BINDINGS, VK_FORMAT_R32G32B32A32_UINT},     // VertexBinding
     {ODESKIN_BINDING_SEGMENT_VERTICES, VK_FORMAT_R32G32B32A32_UINT},    // SegmentVertex
     {ODESKIN_BINDING_REMAINDERS, VK_FORMAT_R32G32B32A32_SFLOAT},        // Float4
-    {ODESKIN_BINDING_CURVE_MATERIALS, VK_FORMAT_R32_UINT},              // uint
-    {ODESKIN_BINDING_COEFFICIENTS, VK_FORMAT_R32G32B32A32_SFLOAT},      // Float4
-    {ODESKIN_BINDING_RATES, VK_FORMAT_R32G32B32A32_SFLOAT},             // Float4
     {ODESKIN_BINDING_INFLUENCE_OFFSETS, VK_FORMAT_R32_UINT},            // uint
     {ODESKIN_BINDING_INFLUENCES, VK_FORMAT_R32G32_UINT},                // Influence
     {ODESKIN_BINDING_BONES, VK_FORMAT_R32G32B32A32_SFLOAT},             // BoneMatrix: 3 texels (rows)
@@ -54,6 +51,10 @@ inline constexpr TexelBinding kFoldTexelBindings[] = {
 inline constexpr std::uint32_t kFoldBindings[] = {ODESKIN_BINDING_CURVE_MATERIALS, ODESKIN_BINDING_COEFFICIENTS,
                                                   ODESKIN_BINDING_RATES,           ODESKIN_BINDING_MODE_BASIS,
                                                   ODESKIN_RT_BINDING_INSTANCES,    ODESKIN_BINDING_FOLDED_SERIES};
+// The fold's inputs that no deformation shader declares (they read the folded products instead):
+// left out of the deformation pipelines' layouts.
+inline constexpr std::uint32_t kFoldOnlyBindings[] = {ODESKIN_BINDING_CURVE_MATERIALS, ODESKIN_BINDING_COEFFICIENTS,
+                                                      ODESKIN_BINDING_RATES};
 
 inline constexpr TexelBinding kNormalsTexelBindings[] = {
     {ODESKIN_RT_NORMALS_BINDING_POSITIONS, VK_FORMAT_R32G32B32A32_SFLOAT},  // Float4

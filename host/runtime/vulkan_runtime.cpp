@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "vulkan_runtime.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <iterator>
 #include <string>
 
 #include "host/compute_dispatcher.hpp"
@@ -168,9 +170,15 @@ Status VulkanRuntime::createSlots() {
 
 Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
   // One descriptor set per slot, written once: nothing is rebound per frame.
+  // The fold's own inputs stay out of the deformation's layout (createFoldPipeline binds them).
+  auto foldOnly = [](std::uint32_t binding) {
+    return std::ranges::find(vk::kFoldOnlyBindings, binding) != std::end(vk::kFoldOnlyBindings);
+  };
   std::vector<std::uint32_t> deform_bindings = {ODESKIN_RT_BINDING_OUT_POSITIONS, ODESKIN_RT_BINDING_BOUNDS,
                                                 ODESKIN_BINDING_FOLDED_SERIES};
-  for (const auto& [binding, buffer] : deform_statics_) deform_bindings.push_back(binding);
+  for (const auto& [binding, buffer] : deform_statics_) {
+    if (!foldOnly(binding)) deform_bindings.push_back(binding);
+  }
   for (const vk::FrameBinding& b : layout.bindings()) deform_bindings.push_back(b.binding);
   const std::span<const std::uint32_t> deform_spirv =
       subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
@@ -179,7 +187,9 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
                            vk::createSortedPipeline(*device_, deform_spirv, deform_bindings, vk::kDeformTexelBindings,
                                                     sizeof(gpu::InstancedPushConstants), framesInFlight()));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
-    for (const auto& [binding, buffer] : deform_statics_) ODESKIN_TRY(deform_.bindBuffer(s, binding, buffer.handle()));
+    for (const auto& [binding, buffer] : deform_statics_) {
+      if (!foldOnly(binding)) ODESKIN_TRY(deform_.bindBuffer(s, binding, buffer.handle()));
+    }
     for (const vk::FrameBinding& b : layout.bindings()) {
       ODESKIN_TRY(deform_.bindBuffer(s, b.binding, ring_.inputBuffer(s), b.offset, b.size));
     }
