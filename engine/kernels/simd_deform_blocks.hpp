@@ -61,27 +61,30 @@ template <std::uint32_t kL>
 // Folds curve `curve`'s coefficients of frame `f` with its material's time basis: out[3m + k] =
 // gamma_n(m) d_cm,k + psi_n(m) rdot_cm,k, the order of fourier_deform_fast_job's products. Harmonics
 // above the curve's last non-zero one are written as zero, so a two-curve block can run both
-// series to the larger of the two counts.
+// series to the larger of the two counts. The floats are taken in runs that share one basis entry
+// (the constant, each harmonic's cos and sin, the trend), without a branch per float: at 1,000
+// vertices of the cat a frame folds 72 curves for 102 blocks, and a branch per float made the
+// folds a third of the frame.
 inline void foldCurve(const Layout& layout, const Frame& f, std::uint32_t curve, float* out) {
-  const std::uint32_t modes = layout.modes;
   const std::uint32_t m_count = layout.coefficientsPerCurve();
   const std::size_t base = (static_cast<std::size_t>(f.segment) * layout.curve_count + curve) * m_count * 3;
   const float* d = layout.coefficients.data() + base;
   const float* r = layout.has_rates ? layout.rates.data() + base : nullptr;
-  const gpu::ModeBasis* basis = f.basis + static_cast<std::size_t>(layout.curve_materials[curve]) * (modes + 1);
+  const gpu::ModeBasis* basis = f.basis + static_cast<std::size_t>(layout.curve_materials[curve]) * (layout.modes + 1);
   const std::uint32_t used = layout.curve_modes[static_cast<std::size_t>(f.segment) * layout.curve_count + curve];
-  for (std::uint32_t m = 0; m < m_count; ++m) {
-    const std::uint32_t n = m == m_count - 1 ? 0 : (m + 1) / 2;
-    const gpu::ModeBasis b = basis[n];
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t e = 3 * m + k;
-      if (n > used) {
-        out[e] = 0.0f;
-      } else {
-        out[e] = r ? b.gamma * d[e] + b.psi * r[e] : b.gamma * d[e];
-      }
+  // Floats [first, first + count) with basis entry b.
+  auto fold = [&](std::uint32_t first, std::uint32_t count, gpu::ModeBasis b) {
+    if (r != nullptr) {
+      for (std::uint32_t e = first; e < first + count; ++e) out[e] = b.gamma * d[e] + b.psi * r[e];
+    } else {
+      for (std::uint32_t e = first; e < first + count; ++e) out[e] = b.gamma * d[e];
     }
-  }
+  };
+  fold(0, 3, basis[0]);  // m = 0: the constant
+  for (std::uint32_t n = 1; n <= used; ++n) fold(6 * n - 3, 6, basis[n]);  // m = 2n - 1, 2n
+  const std::uint32_t trend = 3 * (m_count - 1);
+  for (std::uint32_t e = 6 * used + 3; e < trend; ++e) out[e] = 0.0f;
+  fold(trend, 3, basis[0]);  // m = 2N + 1: the open curve's trend
 }
 
 // The folded coefficients of the last two curves a worker used. Blocks come sorted by pair, so
