@@ -170,34 +170,31 @@ Status VulkanRuntime::createSlots() {
 
 Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
   // One descriptor set per slot, written once: nothing is rebound per frame.
-  // The fold's own inputs stay out of the deformation's layout (createFoldPipeline binds them).
-  auto foldOnly = [](std::uint32_t binding) {
-    return std::ranges::find(vk::kFoldOnlyBindings, binding) != std::end(vk::kFoldOnlyBindings);
-  };
-  std::vector<std::uint32_t> deform_bindings = {ODESKIN_RT_BINDING_OUT_POSITIONS, ODESKIN_RT_BINDING_BOUNDS,
-                                                ODESKIN_BINDING_FOLDED_SERIES};
-  for (const auto& [binding, buffer] : deform_statics_) {
-    if (!foldOnly(binding)) deform_bindings.push_back(binding);
+  // What every slot shares: the uploaded arrays and the folded coefficients.
+  std::vector<vk::StaticBinding> statics = {{ODESKIN_BINDING_FOLDED_SERIES, folded_.handle()}};
+  for (const auto& [binding, buffer] : deform_statics_) statics.push_back({binding, buffer.handle()});
+  // The deformation reads all of them except the fold's own inputs (createFoldPipeline binds
+  // those), the frame's inputs, and its slot's outputs.
+  std::vector<std::uint32_t> shared;
+  for (const vk::StaticBinding& b : statics) {
+    const bool fold_only = std::ranges::find(vk::kFoldOnlyBindings, b.binding) != std::end(vk::kFoldOnlyBindings);
+    if (!fold_only) shared.push_back(b.binding);
   }
-  for (const vk::FrameBinding& b : layout.bindings()) deform_bindings.push_back(b.binding);
+  for (const vk::FrameBinding& b : layout.bindings()) shared.push_back(b.binding);
+  std::vector<std::uint32_t> deform_bindings = {ODESKIN_RT_BINDING_OUT_POSITIONS, ODESKIN_RT_BINDING_BOUNDS};
+  deform_bindings.insert(deform_bindings.end(), shared.begin(), shared.end());
   const std::span<const std::uint32_t> deform_spirv =
       subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
                        : std::span<const std::uint32_t>(kInstancedDeformSharedSpirv);
   ODESKIN_ASSIGN_OR_RETURN(deform_,
                            vk::createSortedPipeline(*device_, deform_spirv, deform_bindings, vk::kDeformTexelBindings,
                                                     sizeof(gpu::InstancedPushConstants), framesInFlight()));
+  ODESKIN_TRY(vk::bindListed(deform_, shared, statics, layout.bindings(), ring_));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
-    for (const auto& [binding, buffer] : deform_statics_) {
-      if (!foldOnly(binding)) ODESKIN_TRY(deform_.bindBuffer(s, binding, buffer.handle()));
-    }
-    for (const vk::FrameBinding& b : layout.bindings()) {
-      ODESKIN_TRY(deform_.bindBuffer(s, b.binding, ring_.inputBuffer(s), b.offset, b.size));
-    }
     ODESKIN_TRY(deform_.bindBuffer(s, ODESKIN_RT_BINDING_OUT_POSITIONS, slots_[s].positions.handle()));
     ODESKIN_TRY(deform_.bindBuffer(s, ODESKIN_RT_BINDING_BOUNDS, slots_[s].bounds.handle()));
-    ODESKIN_TRY(deform_.bindBuffer(s, ODESKIN_BINDING_FOLDED_SERIES, folded_.handle()));
   }
-  ODESKIN_TRY(createFoldPipeline(layout));
+  ODESKIN_TRY(createFoldPipeline(statics, layout));
   if (!options().normals) return okStatus();
 
   const std::uint32_t normal_bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
@@ -214,7 +211,7 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
   return okStatus();
 }
 
-Status VulkanRuntime::createFoldPipeline(const vk::FrameInputLayout& layout) {
+Status VulkanRuntime::createFoldPipeline(std::span<const vk::StaticBinding> statics, const vk::FrameInputLayout& layout) {
   // One folded buffer serves every slot: each frame's first barrier waits for the compute work of
   // the frames before it, so a fold never overwrites what an earlier frame's deformation reads.
   const PackedDeformData& d = asset().packed(0);
@@ -224,8 +221,6 @@ Status VulkanRuntime::createFoldPipeline(const vk::FrameInputLayout& layout) {
   ODESKIN_ASSIGN_OR_RETURN(fold_,
                            vk::createSortedPipeline(*device_, kFoldSeriesSpirv, vk::kFoldBindings, vk::kFoldTexelBindings,
                                                     sizeof(gpu::FoldPushConstants), framesInFlight()));
-  std::vector<vk::StaticBinding> statics = {{ODESKIN_BINDING_FOLDED_SERIES, folded_.handle()}};
-  for (const auto& [binding, buffer] : deform_statics_) statics.push_back({binding, buffer.handle()});
   return vk::bindListed(fold_, vk::kFoldBindings, statics, layout.bindings(), ring_);
 }
 

@@ -22,6 +22,7 @@
 
 #include "engine/runtime/deform_runtime.hpp"
 #include "host/buffer.hpp"
+#include "host/compute_dispatcher.hpp"
 #include "host/compute_pipeline.hpp"
 #include "host/device.hpp"
 #include "host/frame_inputs.hpp"
@@ -93,7 +94,8 @@ class VulkanRuntime final : public DeformRuntime {
   Status uploadAsset();
   Status createSlots();
   Status createPipelines(const vk::FrameInputLayout& layout);
-  Status createFoldPipeline(const vk::FrameInputLayout& layout);
+  // `statics`: the buffers every slot shares (createPipelines' list).
+  Status createFoldPipeline(std::span<const vk::StaticBinding> statics, const vk::FrameInputLayout& layout);
   void record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const;
 
   struct Slot {
