@@ -36,15 +36,14 @@ void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::sp
                           std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals) {
   static_assert(sizeof(gpu::Float4) == 4 * sizeof(float));
   const std::size_t count = std::min(positions.size(), normals.size());
-  const auto* floats = reinterpret_cast<const float*>(positions.data());
   const __m128 xyz_mask = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
   for (std::size_t i = 0; i < count && i + 1 < corner_offsets.size(); ++i) {
-    const __m128 p = _mm_loadu_ps(floats + 4 * i);
+    const __m128 p = _mm_loadu_ps(&positions[i].x);
     __m128 n = _mm_setzero_ps();
     for (std::uint32_t k = corner_offsets[i]; k < corner_offsets[i + 1]; ++k) {
       const gpu::Corner c = corners[k];
-      const __m128 a = _mm_sub_ps(_mm_loadu_ps(floats + 4 * std::size_t{c.next}), p);
-      const __m128 b = _mm_sub_ps(_mm_loadu_ps(floats + 4 * std::size_t{c.prev}), p);
+      const __m128 a = _mm_sub_ps(_mm_loadu_ps(&positions[c.next].x), p);
+      const __m128 b = _mm_sub_ps(_mm_loadu_ps(&positions[c.prev].x), p);
       n = _mm_add_ps(n, cross(a, b));
     }
     // glm::length: sqrt((x x + y y) + z z).
@@ -52,7 +51,7 @@ void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::sp
     _mm_store_ps(sq, _mm_mul_ps(n, n));
     const float length = std::sqrt((sq[0] + sq[1]) + sq[2]);
     const __m128 unit = length > 0.0f ? _mm_and_ps(_mm_div_ps(n, _mm_set1_ps(length)), xyz_mask) : _mm_setzero_ps();
-    _mm_storeu_ps(reinterpret_cast<float*>(normals.data() + i), unit);
+    _mm_storeu_ps(&normals[i].x, unit);
   }
 }
 
