@@ -8,6 +8,14 @@
 #include <string>
 
 namespace odeskin {
+namespace {
+
+// About 15 us of normals at 4 ns a vertex: enough work per task that scheduling is noise.
+constexpr std::size_t kVertexChunk = 4096;
+
+std::size_t chunkCount(std::size_t vertices) { return (vertices + kVertexChunk - 1) / kVertexChunk; }
+
+}  // namespace
 
 Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOptions& options) {
   ODESKIN_TRY(checkOptions(options));
@@ -26,6 +34,7 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
   rt.bones_.resize(std::size_t{options.capacity} * asset.boneCount());
   rt.basis_.resize(std::size_t{options.capacity} * asset.basisEntries());
   rt.slots_.resize(options.frames_in_flight);
+  rt.chunk_bounds_.resize(std::size_t{std::min(options.capacity, rt.arena().threads())} * chunkCount(v));
   for (Slot& slot : rt.slots_) {
     slot.positions.resize(std::size_t{options.capacity} * v);
     if (options.normals) slot.normals.resize(slot.positions.size());
@@ -43,34 +52,72 @@ Status CpuRuntime::submitSlot(std::uint32_t slot_index, std::uint32_t instance_c
   times.prepare_seconds = std::chrono::duration<double>(prepared - start).count();
 
   Slot& slot = slots_[slot_index];
+  Status status = instance_count < arena().threads() ? deformSpread(slot, instance_count)
+                                                     : deformInstances(slot, instance_count, 1, true);
+  slot.instance_count = instance_count;
+  times.deform_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - prepared).count();
+  return status;
+}
+
+Status CpuRuntime::deformInstance(Slot& slot, std::size_t k, unsigned threads) {
   const std::size_t v = asset().vertexCount();
   const std::size_t b = asset().boneCount();
   const std::size_t e = asset().basisEntries();
-  // Instances are the parallel unit (one thread each, the cache holds one instance's output); a
-  // single instance spreads its vertices over the arena instead.
-  const unsigned per_instance_threads = instance_count == 1 ? 0u : 1u;
+  const gpu::InstanceRecord& r = records_[k];
+  Status status = deformers_[r.preset].deform(r.segment, std::span(bones_).subspan(k * b, b),
+                                              std::span(basis_).subspan(k * e, e),
+                                              std::span(slot.positions).subspan(k * v, v), threads);
+  if (status.ok()) return status;
+  return Status(status.code(), "cpu runtime: instance " + std::to_string(k) + ": " + status.message());
+}
+
+Status CpuRuntime::deformInstances(Slot& slot, std::uint32_t instance_count, unsigned threads, bool outputs) {
+  const std::size_t v = asset().vertexCount();
   std::mutex error_mutex;
   Status first_error;
   arena().parallelFor(instance_count, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
-      const gpu::InstanceRecord& r = records_[k];
-      std::span<gpu::Float4> out = std::span(slot.positions).subspan(k * v, v);
-      Status status = deformers_[r.preset].deform(r.segment, std::span(bones_).subspan(k * b, b),
-                                                  std::span(basis_).subspan(k * e, e), out, per_instance_threads);
+      Status status = deformInstance(slot, k, threads);
       if (!status.ok()) {
         const std::lock_guard<std::mutex> lock(error_mutex);
-        if (first_error.ok()) first_error = Status(status.code(), "cpu runtime: instance " + std::to_string(k) + ": " + status.message());
+        if (first_error.ok()) first_error = std::move(status);
         continue;
       }
+      if (!outputs) continue;
+      const std::span<const gpu::Float4> out = std::span(slot.positions).subspan(k * v, v);
       if (!slot.normals.empty()) {
         computeVertexNormals(asset().cornerOffsets(), asset().corners(), out, std::span(slot.normals).subspan(k * v, v));
       }
       slot.bounds[k] = computeBounds(out);
     }
   });
-  slot.instance_count = instance_count;
-  times.deform_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - prepared).count();
   return first_error;
+}
+
+Status CpuRuntime::deformSpread(Slot& slot, std::uint32_t instance_count) {
+  // threads 0: each instance's deformation splits over this arena (called from inside it).
+  ODESKIN_TRY(deformInstances(slot, instance_count, 0, false));
+  const std::size_t v = asset().vertexCount();
+  const std::size_t chunks = chunkCount(v);
+  arena().parallelFor(instance_count * chunks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t job = begin; job < end; ++job) {
+      const std::size_t k = job / chunks;
+      const std::size_t first = (job % chunks) * kVertexChunk;
+      const std::size_t last = std::min(first + kVertexChunk, v);
+      const std::span<const gpu::Float4> out = std::span(slot.positions).subspan(k * v, v);
+      if (!slot.normals.empty()) {
+        computeVertexNormals(asset().cornerOffsets(), asset().corners(), out, std::span(slot.normals).subspan(k * v, v),
+                             first, last);
+      }
+      chunk_bounds_[job] = computeBounds(out.subspan(first, last - first));
+    }
+  });
+  for (std::size_t k = 0; k < instance_count; ++k) {
+    InstanceBounds bounds;
+    for (std::size_t c = 0; c < chunks; ++c) bounds.merge(chunk_bounds_[k * chunks + c]);
+    slot.bounds[k] = bounds;
+  }
+  return okStatus();
 }
 
 Result<std::span<const gpu::Float4>> CpuRuntime::positions(std::uint64_t frame) {

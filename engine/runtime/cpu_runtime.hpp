@@ -2,7 +2,8 @@
 // The runtime on the CPU (DeformRuntime's API) for engines without compute: every instance is
 // deformed by CpuDeformKernel (float32 at SIMD width, within float rounding of the shader and of the
 // double reference), instances spread over the WorkerArena's threads, then normals and bounds per
-// instance (instance_outputs.hpp). This backend is the reference of the instanced shaders
+// instance (instance_outputs.hpp); with fewer instances than threads, each instance's vertices are
+// spread over the threads instead. This backend is the reference of the instanced shaders
 // (shaders/instanced_deform.comp, shaders/instance_normals.comp). submitFrame() does the work
 // before it returns; wait() has nothing to wait for.
 #pragma once
@@ -52,12 +53,24 @@ class CpuRuntime final : public DeformRuntime {
     std::vector<InstanceBounds> bounds;  // capacity
     std::uint32_t instance_count = 0;
   };
+
+  // Fewer instances than threads: each instance's vertices are spread over the arena, first the
+  // deformation, then normals and bounds in vertex chunks.
+  Status deformSpread(Slot& slot, std::uint32_t instance_count);
+  // Every instance deformed on the arena, one instance per task, each on `threads` (the kernel's
+  // meaning); with `outputs`, its normals and bounds too, while its positions are in cache (the path
+  // when instances are at least as many as threads).
+  Status deformInstances(Slot& slot, std::uint32_t instance_count, unsigned threads, bool outputs);
+  Status deformInstance(Slot& slot, std::size_t k, unsigned threads);
+
   std::vector<CpuDeformKernel> deformers_;  // one per material preset (the SIMD kernel, prepared once)
   // This frame's inputs; one set suffices, since the frame is done when submitFrame returns.
   std::vector<gpu::InstanceRecord> records_;
   std::vector<gpu::BoneMatrix> bones_;
   std::vector<gpu::ModeBasis> basis_;
   std::vector<Slot> slots_;
+  // Bounds of each vertex chunk of each instance when fewer instances than threads share the arena.
+  std::vector<InstanceBounds> chunk_bounds_;
 };
 
 }  // namespace odeskin

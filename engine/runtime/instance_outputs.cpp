@@ -33,11 +33,12 @@ inline __m128 cross(__m128 a, __m128 b) {
 // (the normals were twice the deformation's time in the CPU runtime), with every lane's value
 // rounded as the scalar form below rounds it (no fused multiply-adds in a baseline x86-64 build).
 void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
-                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals) {
+                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals,
+                          std::size_t begin, std::size_t end) {
   static_assert(sizeof(gpu::Float4) == 4 * sizeof(float));
-  const std::size_t count = std::min(positions.size(), normals.size());
+  const std::size_t count = std::min({positions.size(), normals.size(), end});
   const __m128 xyz_mask = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
-  for (std::size_t i = 0; i < count && i + 1 < corner_offsets.size(); ++i) {
+  for (std::size_t i = begin; i < count && i + 1 < corner_offsets.size(); ++i) {
     const __m128 p = _mm_loadu_ps(&positions[i].x);
     __m128 n = _mm_setzero_ps();
     for (std::uint32_t k = corner_offsets[i]; k < corner_offsets[i + 1]; ++k) {
@@ -60,9 +61,10 @@ void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::sp
 }  // namespace
 
 void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
-                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals) {
-  const std::size_t count = std::min(positions.size(), normals.size());
-  for (std::size_t i = 0; i < count && i + 1 < corner_offsets.size(); ++i) {
+                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals,
+                          std::size_t begin, std::size_t end) {
+  const std::size_t count = std::min({positions.size(), normals.size(), end});
+  for (std::size_t i = begin; i < count && i + 1 < corner_offsets.size(); ++i) {
     const glm::vec3 p = xyz(positions[i]);
     glm::vec3 n(0.0f);
     for (std::uint32_t k = corner_offsets[i]; k < corner_offsets[i + 1]; ++k) {
@@ -76,6 +78,16 @@ void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::sp
 }
 
 #endif
+
+void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
+                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals) {
+  computeVertexNormals(corner_offsets, corners, positions, normals, 0, normals.size());
+}
+
+void InstanceBounds::merge(const InstanceBounds& later) {
+  min = glm::min(min, later.min);
+  max = glm::max(max, later.max);
+}
 
 InstanceBounds computeBounds(std::span<const gpu::Float4> positions) {
   InstanceBounds b;

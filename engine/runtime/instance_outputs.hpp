@@ -24,12 +24,20 @@ namespace odeskin {
 //   positions, normals: V each (xyz; normals get w = 0).
 void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
                           std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals);
+// The normals of vertices [begin, end) only (positions and normals still the whole instance's), so
+// threads can share one instance; each vertex's normal is the same number either way.
+void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
+                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals,
+                          std::size_t begin, std::size_t end);
 
 // Axis-aligned box of one instance's deformed vertices; empty (min = +inf, max = -inf) without any.
 struct InstanceBounds {
   glm::vec3 min{std::numeric_limits<float>::infinity()};
   glm::vec3 max{-std::numeric_limits<float>::infinity()};
   bool empty() const { return !(min.x <= max.x); }
+  // Grows this box by `later`, the box of vertices after this one's: the same box as one pass over
+  // both, to the bit (ties keep the earlier value, as the pass does).
+  void merge(const InstanceBounds& later);
 };
 
 // Min and max of the xyz of `positions` (exact: no rounding is involved).
