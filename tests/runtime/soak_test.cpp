@@ -5,7 +5,8 @@
 // grown beyond the bounds below. Every 500th frame (and the last), four instances are compared with
 // the double reference (1e-5 of the box's longest side, the fast path's tolerance), and every
 // instance's bounds must be exactly the min and max of its positions; every frame's bounds must be
-// finite and non-empty.
+// finite and non-empty. A second run holds one cat on four threads (the path that spreads an
+// instance's vertices over the threads) to the same checks for 2,000 frames.
 //
 // The CI configuration plays the cylinder (420 vertices, 3 segments), so that the run stays well
 // under a minute under AddressSanitizer on 2 cores. The long run is the same program:
@@ -31,14 +32,15 @@ using testing::SoakConfig;
 // while allocator and thread-stack noise stays under it.
 constexpr double kResidentGrowthMiB = 2.0;
 
-TEST(Soak, CpuRuntimeTenThousandFramesOfAHundredInstances) {
-  const SoakConfig config = SoakConfig::fromEnvironment(SoakConfig{});
+// Plays config.frames frames on a CpuRuntime of `threads` threads (0: all), as an engine would.
+void soakCpuRuntime(const SoakConfig& config, unsigned threads) {
   const DeformAsset* source = testing::soakAsset(config.mesh);
   ASSERT_NE(source, nullptr);
   Result<RuntimeAsset> asset = RuntimeAsset::create(*source, testing::presetOptions());
   ASSERT_TRUE(asset.ok()) << asset.status().toString();
   RuntimeOptions options;
   options.capacity = config.instances;
+  options.threads = threads;
   Result<CpuRuntime> created = CpuRuntime::create(*asset, options);
   ASSERT_TRUE(created.ok()) << created.status().toString();
   CpuRuntime& rt = *created;
@@ -137,6 +139,23 @@ TEST(Soak, CpuRuntimeTenThousandFramesOfAHundredInstances) {
   // The runtime's contract (deform_runtime.hpp): no method allocates after create().
   EXPECT_EQ(allocations_in_frames, 0u);
   EXPECT_GE(checks, config.frames / config.check_every * config.checked_instances);
+}
+
+TEST(Soak, CpuRuntimeTenThousandFramesOfAHundredInstances) {
+  soakCpuRuntime(SoakConfig::fromEnvironment(SoakConfig{}), 0);
+}
+
+// One instance on more threads than instances: the path that spreads its vertices over the
+// threads (deformation, then normals and bounds in chunks), held to the same contract. The cat
+// has two chunks of vertices.
+TEST(Soak, CpuRuntimeOneCatSpreadOverFourThreads) {
+  SoakConfig config;
+  config.mesh = "cat";
+  config.instances = 1;
+  config.frames = 2000;
+  config.check_every = 250;
+  config.checked_instances = 1;
+  soakCpuRuntime(config, 4);
 }
 
 }  // namespace
