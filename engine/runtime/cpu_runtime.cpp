@@ -52,8 +52,12 @@ Status CpuRuntime::submitSlot(std::uint32_t slot_index, std::uint32_t instance_c
   times.prepare_seconds = std::chrono::duration<double>(prepared - start).count();
 
   Slot& slot = slots_[slot_index];
-  Status status = instance_count < arena().threads() ? deformSpread(slot, instance_count)
-                                                     : deformInstances(slot, instance_count, 1, true);
+  // Whole rounds of one instance per thread, then the remainder (fewer instances than threads)
+  // spread over all of them, so that no thread idles through a last, part-filled round.
+  const std::uint32_t whole = instance_count - instance_count % arena().threads();
+  Status status = deformInstances(slot, 0, whole, 1, true);
+  Status rest = deformSpread(slot, whole, instance_count);
+  if (status.ok()) status = std::move(rest);
   slot.instance_count = instance_count;
   times.deform_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - prepared).count();
   return status;
@@ -71,12 +75,12 @@ Status CpuRuntime::deformInstance(Slot& slot, std::size_t k, unsigned threads) {
   return Status(status.code(), "cpu runtime: instance " + std::to_string(k) + ": " + status.message());
 }
 
-Status CpuRuntime::deformInstances(Slot& slot, std::uint32_t instance_count, unsigned threads, bool outputs) {
+Status CpuRuntime::deformInstances(Slot& slot, std::uint32_t first, std::uint32_t end, unsigned threads, bool outputs) {
   const std::size_t v = asset().vertexCount();
   std::mutex error_mutex;
   Status first_error;
-  arena().parallelFor(instance_count, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
+  arena().parallelFor(end - first, 1, [&](std::size_t begin_task, std::size_t end_task) {
+    for (std::size_t k = first + begin_task; k < first + end_task; ++k) {
       Status status = deformInstance(slot, k, threads);
       if (!status.ok()) {
         const std::lock_guard<std::mutex> lock(error_mutex);
@@ -94,27 +98,28 @@ Status CpuRuntime::deformInstances(Slot& slot, std::uint32_t instance_count, uns
   return first_error;
 }
 
-Status CpuRuntime::deformSpread(Slot& slot, std::uint32_t instance_count) {
+Status CpuRuntime::deformSpread(Slot& slot, std::uint32_t first, std::uint32_t end) {
+  if (first == end) return okStatus();
   // threads 0: each instance's deformation splits over this arena (called from inside it).
-  ODESKIN_TRY(deformInstances(slot, instance_count, 0, false));
+  ODESKIN_TRY(deformInstances(slot, first, end, 0, false));
   const std::size_t v = asset().vertexCount();
   const std::size_t chunks = chunkCount(v);
-  arena().parallelFor(instance_count * chunks, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t job = begin; job < end; ++job) {
-      const std::size_t k = job / chunks;
-      const std::size_t first = (job % chunks) * kVertexChunk;
-      const std::size_t last = std::min(first + kVertexChunk, v);
+  arena().parallelFor((end - first) * chunks, 1, [&](std::size_t begin_job, std::size_t end_job) {
+    for (std::size_t job = begin_job; job < end_job; ++job) {
+      const std::size_t k = first + job / chunks;
+      const std::size_t from = (job % chunks) * kVertexChunk;
+      const std::size_t to = std::min(from + kVertexChunk, v);
       const std::span<const gpu::Float4> out = std::span(slot.positions).subspan(k * v, v);
       if (!slot.normals.empty()) {
         computeVertexNormals(asset().cornerOffsets(), asset().corners(), out, std::span(slot.normals).subspan(k * v, v),
-                             first, last);
+                             from, to);
       }
-      chunk_bounds_[job] = computeBounds(out.subspan(first, last - first));
+      chunk_bounds_[job] = computeBounds(out.subspan(from, to - from));
     }
   });
-  for (std::size_t k = 0; k < instance_count; ++k) {
+  for (std::size_t k = first; k < end; ++k) {
     InstanceBounds bounds;
-    for (std::size_t c = 0; c < chunks; ++c) bounds.merge(chunk_bounds_[k * chunks + c]);
+    for (std::size_t c = 0; c < chunks; ++c) bounds.merge(chunk_bounds_[(k - first) * chunks + c]);
     slot.bounds[k] = bounds;
   }
   return okStatus();

@@ -2,10 +2,10 @@
 // The runtime on the CPU (DeformRuntime's API) for engines without compute: every instance is
 // deformed by CpuDeformKernel (float32 at SIMD width, within float rounding of the shader and of the
 // double reference), instances spread over the WorkerArena's threads, then normals and bounds per
-// instance (instance_outputs.hpp); with fewer instances than threads, each instance's vertices are
-// spread over the threads instead. This backend is the reference of the instanced shaders
-// (shaders/instanced_deform.comp, shaders/instance_normals.comp). submitFrame() does the work
-// before it returns; wait() has nothing to wait for.
+// instance (instance_outputs.hpp); the instances left over after whole rounds of one per thread
+// have their vertices spread over the threads instead. This backend is the reference of the
+// instanced shaders (shaders/instanced_deform.comp, shaders/instance_normals.comp). submitFrame()
+// does the work before it returns; wait() has nothing to wait for.
 #pragma once
 
 #include <cstdint>
@@ -54,13 +54,12 @@ class CpuRuntime final : public DeformRuntime {
     std::uint32_t instance_count = 0;
   };
 
-  // Fewer instances than threads: each instance's vertices are spread over the arena, first the
-  // deformation, then normals and bounds in vertex chunks.
-  Status deformSpread(Slot& slot, std::uint32_t instance_count);
-  // Every instance deformed on the arena, one instance per task, each on `threads` (the kernel's
-  // meaning); with `outputs`, its normals and bounds too, while its positions are in cache (the path
-  // when instances are at least as many as threads).
-  Status deformInstances(Slot& slot, std::uint32_t instance_count, unsigned threads, bool outputs);
+  // Instances [first, end), fewer than threads: each one's deformation spreads over the arena,
+  // then its normals and bounds in vertex chunks.
+  Status deformSpread(Slot& slot, std::uint32_t first, std::uint32_t end);
+  // Instances [first, end) deformed on the arena, one instance per task, each on `threads` (the
+  // kernel's meaning); with `outputs`, its normals and bounds too, while its positions are in cache.
+  Status deformInstances(Slot& slot, std::uint32_t first, std::uint32_t end, unsigned threads, bool outputs);
   Status deformInstance(Slot& slot, std::size_t k, unsigned threads);
 
   std::vector<CpuDeformKernel> deformers_;  // one per material preset (the SIMD kernel, prepared once)
@@ -69,7 +68,7 @@ class CpuRuntime final : public DeformRuntime {
   std::vector<gpu::BoneMatrix> bones_;
   std::vector<gpu::ModeBasis> basis_;
   std::vector<Slot> slots_;
-  // Bounds of each vertex chunk of each instance when fewer instances than threads share the arena.
+  // Bounds of each vertex chunk of each instance that deformSpread takes (fewer than threads).
   std::vector<InstanceBounds> chunk_bounds_;
 };
 

@@ -314,14 +314,15 @@ TEST(CpuRuntime, ThreadCountDoesNotChangeTheResult) {
   EXPECT_EQ(worstGap(*one.normals(*a), *all.normals(*b)).gap, 0.0);
 }
 
-// Fewer instances than threads take the other path (each instance's vertices spread over the
-// threads, normals and bounds in chunks of 4,096 vertices: the cat has two); one thread takes the
-// instance-per-thread path. Every output must be the same to the bit.
-TEST(CpuRuntime, FewerInstancesThanThreadsGiveTheSameOutputs) {
+// On 4 threads, instances left over after whole rounds of one per thread (all of 1, 2 or 3; the
+// fifth of 5, the last two of 6) take the other path: each one's vertices spread over the threads,
+// normals and bounds in chunks of 4,096 vertices (the cat has two). One thread takes the
+// instance-per-thread path throughout. Every output must be the same to the bit.
+TEST(CpuRuntime, InstancesSpreadOverThreadsGiveTheSameOutputs) {
   const RuntimeAsset asset = makeAsset(testing::catAsset());
-  CpuRuntime one = makeRuntime(asset, 3, 1);
-  CpuRuntime spread = makeRuntime(asset, 3, 4);
-  for (std::uint32_t count = 1; count <= 3; ++count) {
+  CpuRuntime one = makeRuntime(asset, 6, 1);
+  CpuRuntime spread = makeRuntime(asset, 6, 4);
+  for (const std::uint32_t count : {1u, 2u, 3u, 5u, 6u}) {
     for (CpuRuntime* rt : {&one, &spread}) {
       ASSERT_TRUE(rt->setInstanceCount(count).ok());
       for (std::uint32_t k = 0; k < count; ++k) ASSERT_TRUE(rt->setInstance(k, InstanceState::atTime(0.8 + 1.3 * k)).ok());
