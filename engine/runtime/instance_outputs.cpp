@@ -79,6 +79,28 @@ void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::sp
 
 #endif
 
+void buildCorners(const FaceList& faces, std::size_t vertex_count, std::vector<std::uint32_t>& triangles,
+                  std::vector<std::uint32_t>& offsets, std::vector<gpu::Corner>& corners) {
+  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+    const std::uint32_t begin = faces.face_offsets[f];
+    const std::uint32_t end = faces.face_offsets[f + 1];
+    for (std::uint32_t k = begin + 1; k + 1 < end; ++k) {
+      triangles.insert(triangles.end(), {faces.indices[begin], faces.indices[k], faces.indices[k + 1]});
+    }
+  }
+  offsets.assign(vertex_count + 1, 0);
+  for (std::uint32_t v : triangles) ++offsets[v + 1];
+  for (std::size_t i = 0; i < vertex_count; ++i) offsets[i + 1] += offsets[i];
+  corners.resize(triangles.size());
+  std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const std::uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+    corners[fill[a]++] = gpu::Corner{b, c};
+    corners[fill[b]++] = gpu::Corner{c, a};
+    corners[fill[c]++] = gpu::Corner{a, b};
+  }
+}
+
 void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
                           std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals) {
   computeVertexNormals(corner_offsets, corners, positions, normals, 0, normals.size());

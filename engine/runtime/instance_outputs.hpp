@@ -1,18 +1,27 @@
 // SPDX-License-Identifier: MIT
 // The per-instance outputs besides positions: vertex normals recomputed from the deformed
-// triangles, and the axis-aligned bounding box. CPU references of shaders/instance_normals.comp
-// and of the bounds reduction in shaders/instanced_deform.comp (same float operations, same order).
+// triangles (with the corner lists they gather from), and the axis-aligned bounding box. CPU
+// references of shaders/instance_normals.comp and of the bounds reduction in
+// shaders/instanced_deform.comp (same float operations, same order).
 #pragma once
 
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "../core/types.hpp"
 #include "runtime_layout.hpp"
 
 namespace odeskin {
+
+// Fans of every polygon, and around each vertex the (next, prev) of its triangles in face order:
+// the gather list instance_normals.comp and computeVertexNormals walk in the same order.
+//   triangles: appended, 3 indices each; offsets: V + 1; corners: 3 per triangle.
+void buildCorners(const FaceList& faces, std::size_t vertex_count, std::vector<std::uint32_t>& triangles,
+                  std::vector<std::uint32_t>& offsets, std::vector<gpu::Corner>& corners);
 
 // Why recomputed, not rotated: the analytic residual (series and remainders) changes the surface's
 // shape between keys, which the bones' rotation of rest normals cannot show. Each normal is the

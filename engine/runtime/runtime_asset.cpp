@@ -5,35 +5,12 @@
 
 #include "../io/asset_file.hpp"
 #include "../offline/residual_fit.hpp"
+#include "instance_outputs.hpp"
 
 namespace odeskin {
 namespace {
 
 constexpr std::string_view kAssetPresetName = "asset";
-
-// Fans of every polygon, and around each vertex the (next, prev) of its triangles in face order:
-// the gather list instance_normals.comp and computeVertexNormals walk in the same order.
-void buildCorners(const FaceList& faces, std::size_t vertex_count, std::vector<std::uint32_t>& triangles,
-                  std::vector<std::uint32_t>& offsets, std::vector<gpu::Corner>& corners) {
-  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
-    const std::uint32_t begin = faces.face_offsets[f];
-    const std::uint32_t end = faces.face_offsets[f + 1];
-    for (std::uint32_t k = begin + 1; k + 1 < end; ++k) {
-      triangles.insert(triangles.end(), {faces.indices[begin], faces.indices[k], faces.indices[k + 1]});
-    }
-  }
-  offsets.assign(vertex_count + 1, 0);
-  for (std::uint32_t v : triangles) ++offsets[v + 1];
-  for (std::size_t i = 0; i < vertex_count; ++i) offsets[i + 1] += offsets[i];
-  corners.resize(triangles.size());
-  std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
-  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
-    const std::uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
-    corners[fill[a]++] = gpu::Corner{b, c};
-    corners[fill[b]++] = gpu::Corner{c, a};
-    corners[fill[c]++] = gpu::Corner{a, b};
-  }
-}
 
 // Every index the shaders compute must fit a 32-bit uint.
 Status checkIndexRange(const PackedDeformData& p, std::size_t preset_count) {

@@ -20,24 +20,20 @@ namespace odeskin {
 namespace {
 
 struct Corners {
-  std::vector<std::uint32_t> offsets{0};
+  std::vector<std::uint32_t> triangles;
+  std::vector<std::uint32_t> offsets;
   std::vector<gpu::Corner> corners;
 };
 
-// The corner lists of triangles over `v` vertices, in RuntimeAsset's order (each vertex's corners
-// in the order of its triangles).
+// The corner lists of triangles over `v` vertices, as RuntimeAsset builds them.
 Corners cornersOf(const std::vector<std::array<std::uint32_t, 3>>& triangles, std::uint32_t v) {
-  std::vector<std::vector<gpu::Corner>> per(v);
+  FaceList faces;
   for (const auto& t : triangles) {
-    per[t[0]].push_back({t[1], t[2]});
-    per[t[1]].push_back({t[2], t[0]});
-    per[t[2]].push_back({t[0], t[1]});
+    faces.indices.insert(faces.indices.end(), t.begin(), t.end());
+    faces.face_offsets.push_back(static_cast<std::uint32_t>(faces.indices.size()));
   }
   Corners out;
-  for (const auto& list : per) {
-    out.corners.insert(out.corners.end(), list.begin(), list.end());
-    out.offsets.push_back(static_cast<std::uint32_t>(out.corners.size()));
-  }
+  buildCorners(faces, v, out.triangles, out.offsets, out.corners);
   return out;
 }
 
