@@ -10,6 +10,7 @@
 #include "engine/core/disjoint_sets.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_skeleton_levels.hpp"
+#include "engine/rig/curve_skeleton_parts.hpp"
 #include "engine/rig/mesh_topology.hpp"
 #include "engine/rig/surface_distance.hpp"
 #include "rig_test_meshes.hpp"
@@ -149,6 +150,40 @@ TEST(CurveSkeleton, HopSweepCountsOneComponentAndStopsAtCountedVertices) {
   EXPECT_EQ(hops[offset], 2);      // (0, 0): two diagonals back
   EXPECT_EQ(hops[offset + 4], 4);  // (4, 0): no diagonal runs (+1, -1)
   EXPECT_EQ(hops[24], 4);
+}
+
+// A contour whose points are numbered 0..n-1 with point i on edge (i, i + 1) at t = 0.5.
+LevelContour contourOf(std::size_t n, std::vector<std::array<std::uint32_t, 2>> segments, bool closed) {
+  LevelContour c;
+  for (std::uint32_t i = 0; i < n; ++i) c.points.push_back({i, i + 1, 0.5});
+  c.segments = std::move(segments);
+  c.closed = closed;
+  return c;
+}
+
+std::vector<std::uint32_t> walk(const LevelContour& contour) {
+  std::vector<std::uint32_t> order;
+  for (const CurvePoint& p : orderedContour(contour, 3).points) order.push_back(p.a);
+  return order;
+}
+
+TEST(CurveSkeleton, OrderedContourWalksARingFromPointZeroTowardsItsFirstSegment) {
+  // The ring 0-2-4-1-3-0, its segments in no order; point 0's first segment is (3, 0).
+  const LevelContour ring = contourOf(5, {{1, 4}, {3, 0}, {2, 4}, {0, 2}, {1, 3}}, true);
+  EXPECT_EQ(walk(ring), (std::vector<std::uint32_t>{0, 3, 1, 4, 2}));
+  const IsoCurve curve = orderedContour(ring, 3);
+  EXPECT_TRUE(curve.closed);
+  EXPECT_EQ(curve.part, 3u);
+  // Two points joined by two segments (a level through a fin of two triangles) stay two points.
+  EXPECT_EQ(walk(contourOf(2, {{0, 1}, {1, 0}}, true)), (std::vector<std::uint32_t>{0, 1}));
+}
+
+TEST(CurveSkeleton, OrderedContourWalksAnArcFromItsFirstEnd) {
+  // The arc 3-0-4-2-1: its ends are 1 and 3, and the walk starts at the lower-numbered one.
+  const LevelContour arc = contourOf(5, {{4, 2}, {0, 3}, {1, 2}, {0, 4}}, false);
+  EXPECT_EQ(walk(arc), (std::vector<std::uint32_t>{1, 2, 4, 0, 3}));
+  EXPECT_FALSE(orderedContour(arc, 0).closed);
+  EXPECT_EQ(walk(contourOf(2, {{1, 0}}, false)), (std::vector<std::uint32_t>{0, 1}));
 }
 
 TEST(CurveSkeleton, RingsOfATubeAreClosedAndJoinTheirRegions) {
