@@ -244,6 +244,12 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
     }
     return n > 0 ? sum / static_cast<double>(n) : 0.0;
   };
+  // Every node's anchors go into one array: sized once for the root and the curves (regions add a few).
+  std::size_t anchor_count = root_anchors.size();
+  for (std::uint32_t c = 0; c < graph.contours.size(); ++c) {
+    if (tree.kept(c)) anchor_count += graph.contours[c].points.size();
+  }
+  s.anchors.reserve(anchor_count);
   addSkeletonNode(s, SkeletonNodeKind::kRoot, -1, static_cast<std::uint32_t>(parts.region_part[tree.root]), regionRadius(tree.root),
                   root_anchors, rest);
   region_node[tree.root] = 0;
@@ -257,8 +263,7 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
       IsoCurve curve = orderedContour(contour, part);
       if (contour.closed) {
         contour_node[c] = static_cast<std::int32_t>(s.nodeCount());
-        addSkeletonNode(s, SkeletonNodeKind::kCurve, from, part, contour.radius, curveAnchors(curve.points, curve.closed, rest),
-                        rest);
+        addCurveNode(s, SkeletonNodeKind::kCurve, from, part, contour.radius, curve.points, curve.closed, rest);
       } else {
         contour_node[c] = from;  // an arc cut off by a hole or rim: its centroid is off the axis
       }

@@ -98,9 +98,8 @@ CurveSkeleton skeletonFromPartCurves(std::span<const Vec3> rest, const LevelGrap
         curves.push_back(curve);
         continue;
       }
-      std::vector<SkeletonAnchor> anchors = curveAnchors(curve.points, curve.closed, rest);
       const std::int32_t node = static_cast<std::int32_t>(s.nodeCount());
-      addSkeletonNode(s, SkeletonNodeKind::kCurve, previous, p, 0.0, anchors, rest);
+      addCurveNode(s, SkeletonNodeKind::kCurve, previous, p, 0.0, curve.points, curve.closed, rest);
       double radius = 0.0;
       for (const CurvePoint& q : curve.points) radius += glm::length(curvePointPosition(rest, q) - s.positions.back());
       s.radii.back() = last_radius = radius / static_cast<double>(std::max<std::size_t>(1, curve.points.size()));

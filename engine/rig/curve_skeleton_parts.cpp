@@ -55,6 +55,21 @@ SkeletonNodeKind regionKind(const LevelTree& tree, std::uint32_t region, bool* h
   return SkeletonNodeKind::kCurve;
 }
 
+namespace {
+
+// The node's fields beside its anchors, which the caller has appended to s.anchors.
+void appendNode(CurveSkeleton& s, SkeletonNodeKind kind, std::int32_t parent, std::uint32_t part, double radius,
+                const Vec3& position) {
+  s.positions.push_back(position);
+  s.radii.push_back(radius);
+  s.kinds.push_back(kind);
+  s.parents.push_back(parent);
+  s.parts.push_back(part);
+  s.anchor_offsets.push_back(static_cast<std::uint32_t>(s.anchors.size()));
+}
+
+}  // namespace
+
 void addSkeletonNode(CurveSkeleton& s, SkeletonNodeKind kind, std::int32_t parent, std::uint32_t part, double radius,
                      std::span<const SkeletonAnchor> anchors, std::span<const Vec3> rest) {
   Vec3 sum(0.0);
@@ -63,13 +78,43 @@ void addSkeletonNode(CurveSkeleton& s, SkeletonNodeKind kind, std::int32_t paren
     sum += a.weight * curvePointPosition(rest, a.point);
     total += a.weight;
   }
-  s.positions.push_back(total > 0.0 ? sum / total : sum);
-  s.radii.push_back(radius);
-  s.kinds.push_back(kind);
-  s.parents.push_back(parent);
-  s.parts.push_back(part);
   s.anchors.insert(s.anchors.end(), anchors.begin(), anchors.end());
-  s.anchor_offsets.push_back(static_cast<std::uint32_t>(s.anchors.size()));
+  appendNode(s, kind, parent, part, radius, total > 0.0 ? sum / total : sum);
+}
+
+void addCurveNode(CurveSkeleton& s, SkeletonNodeKind kind, std::int32_t parent, std::uint32_t part, double radius,
+                  std::span<const CurvePoint> points, bool closed, std::span<const Vec3> rest) {
+  // The anchors go straight into the skeleton, and each point's position is computed once for
+  // both the segment lengths and the mean.
+  const std::size_t n = points.size();
+  const std::size_t first = s.anchors.size();
+  s.anchors.resize(first + n);
+  const std::span<SkeletonAnchor> anchors(s.anchors.data() + first, n);
+  std::vector<Vec3> at(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    anchors[i].point = points[i];
+    at[i] = curvePointPosition(rest, points[i]);
+  }
+  // Each segment's length goes half to either end: the anchors' mean is the length-weighted centroid.
+  const std::size_t segments = n == 0 ? 0 : closed ? n : n - 1;
+  for (std::size_t k = 0; k < segments; ++k) {
+    const std::size_t j = k + 1 == n ? 0 : k + 1;
+    const double length = glm::length(at[j] - at[k]);
+    anchors[k].weight += 0.5 * length;
+    anchors[j].weight += 0.5 * length;
+  }
+  double total = 0.0;
+  for (const SkeletonAnchor& a : anchors) total += a.weight;
+  if (!(total > 0.0)) {
+    for (SkeletonAnchor& a : anchors) a.weight = 1.0;
+  }
+  Vec3 sum(0.0);
+  total = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sum += anchors[i].weight * at[i];
+    total += anchors[i].weight;
+  }
+  appendNode(s, kind, parent, part, radius, total > 0.0 ? sum / total : sum);
 }
 
 std::vector<SkeletonAnchor> regionAnchors(const LevelGraph& graph, std::uint32_t region) {
@@ -102,31 +147,6 @@ std::vector<SkeletonAnchor> tipAnchors(const LevelGraph& graph, std::uint32_t re
   std::vector<SkeletonAnchor> anchors;
   anchors.reserve(rim.size());
   for (const std::uint32_t v : rim) anchors.push_back({CurvePoint{v, v, 0.0}, 1.0});
-  return anchors;
-}
-
-std::vector<SkeletonAnchor> curveAnchors(std::span<const CurvePoint> points, bool closed, std::span<const Vec3> rest) {
-  // Each segment's length goes half to either end: the anchors' mean is the length-weighted centroid.
-  // Each point's position is computed once, not once per segment it ends.
-  std::vector<SkeletonAnchor> anchors(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) anchors[i].point = points[i];
-  if (points.empty()) return anchors;
-  const std::size_t segments = closed ? points.size() : points.size() - 1;
-  const Vec3 first = curvePointPosition(rest, points[0]);
-  Vec3 at = first;
-  for (std::size_t k = 0; k < segments; ++k) {
-    const std::size_t j = (k + 1) % points.size();
-    const Vec3 next = j == 0 ? first : curvePointPosition(rest, points[j]);
-    const double length = glm::length(next - at);
-    anchors[k].weight += 0.5 * length;
-    anchors[j].weight += 0.5 * length;
-    at = next;
-  }
-  double total = 0.0;
-  for (const SkeletonAnchor& a : anchors) total += a.weight;
-  if (!(total > 0.0)) {
-    for (SkeletonAnchor& a : anchors) a.weight = 1.0;
-  }
   return anchors;
 }
 

@@ -38,14 +38,17 @@ SkeletonNodeKind regionKind(const LevelTree& tree, std::uint32_t region, bool* h
 // Appends a node whose position (and anchors) is the weighted mean of `anchors` on `rest`.
 void addSkeletonNode(CurveSkeleton& s, SkeletonNodeKind kind, std::int32_t parent, std::uint32_t part, double radius,
                      std::span<const SkeletonAnchor> anchors, std::span<const Vec3> rest);
+// Appends a curve's node: its anchors are the curve's points, each weighted by half the length of
+// the segments it ends (all 1 if the curve has no length), so the node is the length-weighted centroid.
+void addCurveNode(CurveSkeleton& s, SkeletonNodeKind kind, std::int32_t parent, std::uint32_t part, double radius,
+                  std::span<const CurvePoint> points, bool closed, std::span<const Vec3> rest);
 
-// Anchors: a region's own vertices (weight 1 each); a curve's segment midpoints (weight: length).
+// A region's anchors: its own vertices (weight 1 each).
 std::vector<SkeletonAnchor> regionAnchors(const LevelGraph& graph, std::uint32_t region);
 // A tip's anchors: where its cap is open (a tube's rim, a hole at the end of a limb) the whole
 // rim's vertices (the boundary loops it touches), whose centre is the end of the limb; otherwise
 // the cap's vertices.
 std::vector<SkeletonAnchor> tipAnchors(const LevelGraph& graph, std::uint32_t region, const MeshTopology& mesh);
-std::vector<SkeletonAnchor> curveAnchors(std::span<const CurvePoint> points, bool closed, std::span<const Vec3> rest);
 
 // The contour's points in order along it (a closed one from point 0, an open one from an end).
 IsoCurve orderedContour(const LevelContour& contour, std::uint32_t part);

@@ -186,6 +186,35 @@ TEST(CurveSkeleton, OrderedContourWalksAnArcFromItsFirstEnd) {
   EXPECT_EQ(walk(contourOf(2, {{1, 0}}, false)), (std::vector<std::uint32_t>{0, 1}));
 }
 
+TEST(CurveSkeleton, CurveNodeIsTheLengthWeightedCentroid) {
+  // A closed square of side 1 with an extra point halfway along its first side: the anchors weigh
+  // half of each segment at either end, so the node is the square's centre, not the points' mean.
+  const std::vector<Vec3> rest{Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+  std::vector<CurvePoint> points;
+  for (std::uint32_t i = 0; i < 5; ++i) points.push_back({i, i, 0.0});
+  CurveSkeleton s;
+  addCurveNode(s, SkeletonNodeKind::kCurve, -1, 2, 0.25, points, true, rest);
+  ASSERT_EQ(s.nodeCount(), 1u);
+  EXPECT_NEAR(glm::length(s.positions[0] - Vec3(0.5, 0.5, 0.0)), 0.0, 1e-15);
+  EXPECT_EQ(s.parts[0], 2u);
+  EXPECT_EQ(s.radii[0], 0.25);
+  ASSERT_EQ(s.anchor_offsets, (std::vector<std::uint32_t>{0, 5}));
+  const double expected[5] = {0.75, 0.5, 0.75, 1.0, 1.0};
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_DOUBLE_EQ(s.anchors[i].weight, expected[i]) << i;
+  // Open, the last side is left out; a curve of no length weighs its points equally.
+  addCurveNode(s, SkeletonNodeKind::kCurve, 0, 2, 0.0, points, false, rest);
+  EXPECT_DOUBLE_EQ(s.anchors[5].weight, 0.25);
+  EXPECT_DOUBLE_EQ(s.anchors[9].weight, 0.5);
+  const std::vector<Vec3> collapsed(5, Vec3(2.0, 0.0, 0.0));
+  addCurveNode(s, SkeletonNodeKind::kCurve, 1, 2, 0.0, points, true, collapsed);
+  EXPECT_EQ(s.positions[2], Vec3(2.0, 0.0, 0.0));
+  for (std::size_t i = 10; i < 15; ++i) EXPECT_EQ(s.anchors[i].weight, 1.0);
+  EXPECT_EQ(s.anchor_offsets.back(), 15u);
+  // The skeleton's positions on the rest mesh reproduce the nodes from the anchors.
+  const std::vector<Vec3> again = curveSkeletonPositions(s, rest);
+  for (std::size_t n = 0; n < 2; ++n) EXPECT_NEAR(glm::length(again[n] - s.positions[n]), 0.0, 1e-15) << n;
+}
+
 TEST(CurveSkeleton, RingsOfATubeAreClosedAndJoinTheirRegions) {
   const testing::TestMesh tube = closedTube(41, 16, 4.0, 0.5);
   const MeshTopology mesh = meshTopology(tube.positions, tube.faces);
