@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "curve_skeleton_parts.hpp"
 
+#include <algorithm>
+#include <array>
+
 #include <glm/geometric.hpp>
 
 namespace odeskin {
@@ -150,20 +153,65 @@ std::vector<SkeletonAnchor> tipAnchors(const LevelGraph& graph, std::uint32_t re
   return anchors;
 }
 
+namespace {
+
+// The walk of a contour with a point on three or more segments: a level through an edge of
+// three or more triangles (a non-manifold mesh). Each point keeps its first and its last
+// neighbour, an open contour starts at its first point with fewer than two, and the walk stops at
+// a point already taken.
+IsoCurve walkBranchingContour(const LevelContour& contour, std::uint32_t part) {
+  const std::size_t n = contour.points.size();
+  std::vector<std::array<std::int32_t, 2>> next(n, {-1, -1});
+  for (const auto& s : contour.segments) {
+    for (int side = 0; side < 2; ++side) {
+      auto& slot = next[s[static_cast<std::size_t>(side)]];
+      (slot[0] < 0 ? slot[0] : slot[1]) = static_cast<std::int32_t>(s[static_cast<std::size_t>(1 - side)]);
+    }
+  }
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (next[i][1] < 0) {
+      start = i;
+      break;
+    }
+  }
+  IsoCurve curve;
+  curve.closed = contour.closed;
+  curve.part = part;
+  curve.points.reserve(n);
+  std::vector<char> seen(n, 0);
+  std::int32_t previous = -1;
+  for (auto at = static_cast<std::int32_t>(start); at >= 0 && !seen[static_cast<std::size_t>(at)];) {
+    const auto i = static_cast<std::size_t>(at);
+    seen[i] = 1;
+    curve.points.push_back(contour.points[i]);
+    const std::int32_t step = next[i][0] != previous ? next[i][0] : next[i][1];
+    previous = at;
+    at = step;
+  }
+  return curve;
+}
+
+}  // namespace
+
 IsoCurve orderedContour(const LevelContour& contour, std::uint32_t part) {
-  // Every point ends at most two segments (a crossing lies on one edge, in at most two
-  // triangles), so the contour is one path or one cycle. Each point keeps its neighbours XORed
-  // (numbered from 1, 0 for none) and their count: the walk's next point is the link XOR the one
-  // it came from, without the branch on which neighbour that was (a coin toss for the predictor).
+  // Where every point ends at most two segments (a crossing lies on one edge, in at most two
+  // triangles of a manifold mesh), the contour is one path or one cycle. Each point keeps its
+  // neighbours XORed (numbered from 1, 0 for none) and their count: the walk's next point is the
+  // link XOR the one it came from, without the branch on which neighbour that was (a coin toss
+  // for the predictor) and without visited flags. The same walk as walkBranchingContour's there.
   const std::size_t n = contour.points.size();
   std::vector<std::uint32_t> links(n, 0);
-  std::vector<std::uint8_t> degree(n, 0);
+  std::vector<std::uint32_t> degree(n, 0);
   for (const auto& s : contour.segments) {
     links[s[0]] ^= s[1] + 1;
     links[s[1]] ^= s[0] + 1;
     ++degree[s[0]];
     ++degree[s[1]];
   }
+  std::uint32_t most = 0;
+  for (const std::uint32_t d : degree) most = std::max(most, d);
+  if (most > 2) return walkBranchingContour(contour, part);
   // An open contour starts at its first end; a closed one at point 0, towards its first segment's other point.
   std::size_t start = 0;
   while (start < n && degree[start] >= 2) ++start;

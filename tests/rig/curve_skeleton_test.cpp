@@ -186,6 +186,36 @@ TEST(CurveSkeleton, OrderedContourWalksAnArcFromItsFirstEnd) {
   EXPECT_EQ(walk(contourOf(2, {{1, 0}}, false)), (std::vector<std::uint32_t>{0, 1}));
 }
 
+TEST(CurveSkeleton, OrderedContourThroughANonManifoldEdgeKeepsFirstAndLastNeighbours) {
+  // Point 1 ends three segments (a level through an edge of three triangles): it keeps its first
+  // neighbour (0) and its last (3); the walk starts at the end 3 and stops where it meets a point
+  // already taken.
+  EXPECT_EQ(walk(contourOf(4, {{0, 1}, {1, 2}, {2, 0}, {1, 3}}, false)), (std::vector<std::uint32_t>{3, 1, 0, 2}));
+}
+
+TEST(CurveSkeleton, NonManifoldFinsGiveATubesSkeleton) {
+  // Fins hung on 30 of a tube's axial edges (three triangles on each): the levels cross them, and
+  // their rings have points on three segments.
+  testing::TestMesh tube = closedTube(41, 16, 4.0, 0.5);
+  for (std::uint32_t i = 5; i < 35; ++i) {
+    const auto fin = static_cast<std::uint32_t>(tube.positions.size());
+    tube.positions.push_back(tube.positions[i * 16] + Vec3(0.05, 0.0, 0.6));
+    tube.triangle(i * 16, (i + 1) * 16, fin);
+  }
+  Result<CurveSkeletonResult> r = buildCurveSkeleton(tube.positions, tube.faces);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(countKind(r->skeleton, SkeletonNodeKind::kTip), 2u);
+  EXPECT_EQ(countKind(r->skeleton, SkeletonNodeKind::kJunction), 0u);
+  ASSERT_FALSE(r->curves.empty());
+  for (const IsoCurve& curve : r->curves) {
+    ASSERT_FALSE(curve.points.empty());
+    for (const CurvePoint& p : curve.points) {
+      EXPECT_LT(p.a, tube.positions.size());
+      EXPECT_LT(p.b, tube.positions.size());
+    }
+  }
+}
+
 TEST(CurveSkeleton, CurveNodeIsTheLengthWeightedCentroid) {
   // A closed square of side 1 with an extra point halfway along its first side: the anchors weigh
   // half of each segment at either end, so the node is the square's centre, not the points' mean.
