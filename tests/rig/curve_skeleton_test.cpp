@@ -198,9 +198,10 @@ TEST(CurveSkeleton, NonManifoldFinsGiveATubesSkeleton) {
   // their rings have points on three segments.
   testing::TestMesh tube = closedTube(41, 16, 4.0, 0.5);
   for (std::uint32_t i = 5; i < 35; ++i) {
+    const std::uint32_t a = i * 16;  // ring i's first vertex; ring i + 1's is a + 16
     const auto fin = static_cast<std::uint32_t>(tube.positions.size());
-    tube.positions.push_back(tube.positions[i * 16] + Vec3(0.05, 0.0, 0.6));
-    tube.triangle(i * 16, (i + 1) * 16, fin);
+    tube.positions.push_back(tube.positions[a] + Vec3(0.05, 0.0, 0.6));
+    tube.triangle(a, a + 16, fin);
   }
   Result<CurveSkeletonResult> r = buildCurveSkeleton(tube.positions, tube.faces);
   ASSERT_TRUE(r.ok()) << r.status().message();
