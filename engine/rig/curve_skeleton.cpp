@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -320,11 +321,21 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
   }
+  // A distance here is a sum of at most V edges, none longer than the box's diagonal, and squares
+  // of such lengths are taken on the way: where the diagonal, or V of them, overflows, distances
+  // would turn into infinities, which read as unreached vertices.
+  const double diagonal = glm::length(hi - lo);
+  if (!std::isfinite(diagonal * static_cast<double>(rest.size()))) {
+    const Vec3 extent = hi - lo;
+    char span[32];
+    std::snprintf(span, sizeof span, "%g", std::max({extent.x, extent.y, extent.z}));
+    return invalidArgument(std::string("curve skeleton: the mesh is too large for double-precision distances (its bounding box spans ") +
+                           span + "); scale it down");
+  }
   const double spacing = options.level_spacing > 0.0
                              ? options.level_spacing
-                             : std::min(kDefaultSpacingEdges * mean_edge, glm::length(hi - lo) / kMinLevelsPerDiagonal);
-  const PruneRule prune{options.prune_radii, options.prune_fraction * glm::length(hi - lo),
-                        options.prune_thin_fraction * glm::length(hi - lo)};
+                             : std::min(kDefaultSpacingEdges * mean_edge, diagonal / kMinLevelsPerDiagonal);
+  const PruneRule prune{options.prune_radii, options.prune_fraction * diagonal, options.prune_thin_fraction * diagonal};
 
   // Pass 1, coarse (edge paths, levels kFirstPassSpacing apart: it only has to find the centre):
   // from an extremity, the far end of a breadth-first sweep from any vertex of the largest component.

@@ -50,6 +50,14 @@ TEST(CurveSkeleton, RejectsBadInput) {
   options = {};
   options.prune_fraction = 1.5;
   EXPECT_EQ(buildCurveSkeleton(tube.positions, tube.faces, options).status().code(), StatusCode::kInvalidArgument);
+  // Finite, but so large that squared lengths overflow (this crashed in the level tree before the check).
+  std::vector<Vec3> huge = tube.positions;
+  for (Vec3& p : huge) p *= 1e200;
+  const Status too_large = buildCurveSkeleton(huge, tube.faces).status();
+  EXPECT_EQ(too_large.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(too_large.message().find("too large"), std::string::npos) << too_large.message();
+  for (Vec3& p : huge) p *= 1e-200 * 1e150;  // squares still finite: rigged as the tube
+  EXPECT_TRUE(buildCurveSkeleton(huge, tube.faces).ok());
 }
 
 TEST(CurveSkeleton, TopologyOfACube) {
