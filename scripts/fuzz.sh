@@ -111,13 +111,18 @@ for t in $targets; do
     -rss_limit_mb=2048 -malloc_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 > "$log" 2>&1
   rc=$?
   set -e
-  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
-  rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1 || true)
+  rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1 || true)
+  if [[ -z "$execs" ]]; then  # -fork prints no final stats; its last progress line has "#inputs: cov: ... exec/s N"
+    last=$(grep -E '^#[0-9]+: cov:' "$log" | tail -1 || true)
+    execs=$(sed -E 's/^#([0-9]+):.*/\1/' <<< "$last")
+    rate=$(grep -oE 'exec/s [0-9]+' <<< "$last" | grep -oE '[0-9]+' || true)
+  fi
   units=$(ls "$corpus" | wc -l)
   if ((rc != 0)); then
     failed+=("$t")
     echo "fuzz.sh: $t FAILED (exit $rc) after $(($(date +%s) - t0)) s; log: $log"
-    grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error|odeskin fuzz:|.*(Test unit|artifact) written to)' "$log" | head -8 | sed 's/^/  /'
+    grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error|odeskin fuzz:|.*(Test unit|artifact) written to)' "$log" | head -8 | sed 's/^/  /' || true
   else
     echo "fuzz.sh: $t ok: ${execs:-?} inputs in $(($(date +%s) - t0)) s (${rate:-?}/s), corpus $units files"
   fi
