@@ -9,6 +9,7 @@
 #include <string>
 
 
+#include "../core/position_box.hpp"
 #include "../mesh/adjacency.hpp"
 #include "../mesh/face_fans.hpp"
 #include "../mesh/poly_mesh.hpp"
@@ -34,9 +35,7 @@ Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const Skele
                   const Influences& influences, const CurveOptions& options) {
   const std::size_t count = rest.size();
   if (count == 0) return invalidArgument("iso-curves: the mesh has no vertices");
-  for (std::size_t i = 0; i < count; ++i) {
-    if (!finite(rest[i])) return invalidArgument("iso-curves: vertex " + std::to_string(i) + " is not finite");
-  }
+  ODESKIN_TRY(checkedPositionBox(rest, "iso-curves").status());
   const std::size_t bones = skeleton.boneCount();
   if (bones == 0) return invalidArgument("iso-curves: the skeleton has no bones");
   if (skeleton.tails.size() != bones) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <set>
 
+#include "../core/position_box.hpp"
 #include "../curves/iso_curves.hpp"
 #include "../rig/auto_rig.hpp"
 #include "../rig/curve_rig.hpp"
@@ -37,7 +38,9 @@ Status checkExamples(const ExampleSet& ex) {
       return invalidArgument("fit: " + label + " has " + std::to_string(ex.poses[k].size()) + " vertices, the bind mesh " +
                              std::to_string(v_count));
     }
+    ODESKIN_TRY(checkedPositionBox(ex.poses[k], "fit: " + label).status());
   }
+  ODESKIN_TRY(checkedPositionBox(ex.rest_positions, "fit: the bind mesh").status());
   for (std::uint32_t index : ex.faces.indices) {
     if (index >= v_count) return invalidArgument("fit: a face uses vertex " + std::to_string(index) + " of " + std::to_string(v_count));
   }

@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 
 #include <glm/geometric.hpp>
 
+#include "../core/position_box.hpp"
 #include "../curves/edge_loops.hpp"
 #include "curve_skeleton_levels.hpp"
 #include "curve_skeleton_parts.hpp"
@@ -35,13 +35,10 @@ constexpr double kQuadDominant = 0.8;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
-Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const CurveSkeletonOptions& options) {
+// The input's errors, or the rest mesh's bounding box.
+Result<PositionBox> checkInput(std::span<const Vec3> rest, const FaceList& faces, const CurveSkeletonOptions& options) {
   if (rest.size() < 4) return invalidArgument("curve skeleton: the mesh has " + std::to_string(rest.size()) + " vertices, needs at least 4");
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    if (!finite(rest[i])) return invalidArgument("curve skeleton: vertex " + std::to_string(i) + " is not finite");
-  }
+  ODESKIN_ASSIGN_OR_RETURN(PositionBox box, checkedPositionBox(rest, "curve skeleton"));
   if (faces.face_offsets.empty() || faces.face_offsets.front() != 0 || faces.face_offsets.back() != faces.indices.size() ||
       !std::is_sorted(faces.face_offsets.begin(), faces.face_offsets.end())) {
     return invalidArgument("curve skeleton: face offsets are not a compressed row layout of the face indices");
@@ -65,7 +62,7 @@ Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const Curve
       !(options.prune_fraction < 1.0) || !(options.prune_thin_fraction >= 0.0) || !(options.prune_thin_fraction < 1.0)) {
     return invalidArgument("curve skeleton: prune_radii must be >= 0, prune_fraction and prune_thin_fraction in [0, 1)");
   }
-  return okStatus();
+  return box;
 }
 
 // The far end of a breadth-first sweep (hop counts) from the smallest vertex of the largest
@@ -307,7 +304,7 @@ std::vector<Vec3> curveSkeletonPositions(const CurveSkeleton& skeleton, std::spa
 
 Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const FaceList& faces,
                                                const CurveSkeletonOptions& options) {
-  ODESKIN_TRY(checkInput(rest, faces, options));
+  ODESKIN_ASSIGN_OR_RETURN(const PositionBox box, checkInput(rest, faces, options));
   const Clock::time_point topology_start = Clock::now();
   const MeshTopology mesh = meshTopology(rest, faces);
   double edge_sum = 0.0;
@@ -316,26 +313,10 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   if (!(mean_edge > 0.0)) return degenerate("curve skeleton: every edge of the mesh has length 0");
   const double seconds_topology = secondsSince(topology_start);
   const Clock::time_point start = Clock::now();
-  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (const Vec3& p : rest) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  // A distance here is a sum of at most V edges, none longer than the box's diagonal, and squares
-  // of such lengths are taken on the way: where the diagonal, or V of them, overflows, distances
-  // would turn into infinities, which read as unreached vertices.
-  const double diagonal = glm::length(hi - lo);
-  if (!std::isfinite(diagonal * static_cast<double>(rest.size()))) {
-    const Vec3 extent = hi - lo;
-    char span[32];
-    std::snprintf(span, sizeof span, "%g", std::max({extent.x, extent.y, extent.z}));
-    return invalidArgument(std::string("curve skeleton: the mesh is too large for double-precision distances (its bounding box spans ") +
-                           span + "); scale it down");
-  }
   const double spacing = options.level_spacing > 0.0
                              ? options.level_spacing
-                             : std::min(kDefaultSpacingEdges * mean_edge, diagonal / kMinLevelsPerDiagonal);
-  const PruneRule prune{options.prune_radii, options.prune_fraction * diagonal, options.prune_thin_fraction * diagonal};
+                             : std::min(kDefaultSpacingEdges * mean_edge, box.diagonal / kMinLevelsPerDiagonal);
+  const PruneRule prune{options.prune_radii, options.prune_fraction * box.diagonal, options.prune_thin_fraction * box.diagonal};
 
   // Pass 1, coarse (edge paths, levels kFirstPassSpacing apart: it only has to find the centre):
   // from an extremity, the far end of a breadth-first sweep from any vertex of the largest component.

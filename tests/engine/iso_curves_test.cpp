@@ -250,6 +250,18 @@ TEST(IsoCurves, RejectsBadInput) {
   o.min_points = 2;
   EXPECT_EQ(buildIsoCurves(m.positions, m.faces, sk, in, o).status().code(), StatusCode::kInvalidArgument);
 
+  // Finite, but so large that squared lengths overflow: the plane cuts recursed until the stack
+  // ran out (SIGSEGV) before the check. A tube 1e150 long still gets its curves.
+  std::vector<Vec3> huge = m.positions;
+  for (Vec3& p : huge) p *= 1e200;
+  const Skeleton huge_sk = skeletonOf({{{0, 0, 0}, {2e200, 0, 0}}}, {-1});
+  const Result<CurveSet> too_large = buildIsoCurves(huge, m.faces, huge_sk, in);
+  EXPECT_EQ(too_large.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(too_large.status().message().find("iso-curves: the mesh is too large"), std::string::npos)
+      << too_large.status().message();
+  for (Vec3& p : huge) p *= 1e-50;
+  EXPECT_TRUE(buildIsoCurves(huge, m.faces, skeletonOf({{{0, 0, 0}, {2e150, 0, 0}}}, {-1}), in).ok());
+
   // A third triangle on an edge already shared by two: non-manifold, named.
   Mesh bad = m;
   addFace(bad.faces, {0, 1, 13});

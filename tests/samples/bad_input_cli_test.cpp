@@ -238,6 +238,20 @@ class BadInputCli : public ::testing::Test {
     writeText(d / "empty.obj", "");
     writeText(d / "nan.obj", replaceFirst(pose2, "v ", "v nan 0 0"));
     writeText(d / "inf.obj", replaceFirst(pose2, "v ", "v 0 inf 0"));
+    // Finite, but 1e200 times the cylinder: squared lengths overflow (the rig and the plane cuts crashed on it).
+    {
+      std::vector<std::string> ls = lines(pose2);
+      for (std::string& l : ls) {
+        if (l.rfind("v ", 0) != 0) continue;
+        std::istringstream in(l.substr(2));
+        double x = 0.0, y = 0.0, z = 0.0;
+        in >> x >> y >> z;
+        std::ostringstream out;
+        out << "v " << x * 1e200 << " " << y * 1e200 << " " << z * 1e200;
+        l = out.str();
+      }
+      writeText(d / "huge.obj", joined(ls));
+    }
     writeText(d / "tet.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n");
     // Same vertices, the first face's corners rotated: the face lists differ.
     {
@@ -376,6 +390,11 @@ TEST_F(BadInputCli, BadMeshesPosesAndWeightsFailNamingTheFile) {
        {"nan.obj:", "vertex needs 3 finite coordinates"}},
       {"fit_inf", {"fit", in("good1.obj"), in("inf.obj"), "-o", "{out}"}, "x.odsk", 1,
        {"inf.obj:", "vertex needs 3 finite coordinates"}},
+      {"fit_huge", {"fit", in("good1.obj"), in("huge.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"huge.obj: the mesh is too large for double-precision distances"}},
+      {"fit_huge_given_rig", {"fit", in("huge.obj"), in("huge.obj"), "--bind", in("huge.obj"), "--rig", rig, w, (kCylinder / "cylinder.DMAT").string(),
+                              "-o", "{out}"},
+       "x.odsk", 1, {"huge.obj: the mesh is too large for double-precision distances"}},
       {"fit_degenerate_face", {"fit", in("degenerate1.obj"), in("degenerate2.obj"), "-o", "{out}"}, "x.odsk", 1,
        {"degenerate1.obj: face 1 repeats a vertex"}},
       {"fit_nonmanifold", {"fit", in("nonmanifold1.obj"), in("nonmanifold2.obj"), "-o", "{out}"}, "x.odsk", 1,
@@ -405,6 +424,8 @@ TEST_F(BadInputCli, BadMeshesPosesAndWeightsFailNamingTheFile) {
       {"rig_empty", {"rig", in("empty.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "empty.obj: no vertices"}},
       {"rig_nan", {"rig", in("nan.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "nan.obj:", "finite"}},
       {"rig_collapsed", {"rig", in("collapsed.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "collapsed.obj: curve skeleton: ", "length 0"}},
+      {"rig_huge", {"rig", in("huge.obj"), "-o", "{out}"}, "x.tgf", 1,
+       {"rig: ", "huge.obj: curve skeleton: the mesh is too large for double-precision distances", "scale it down"}},
       {"reconstruct_empty", {"reconstruct", in("empty.obj"), "-o", "{out}"}, "x.obj", 1, {"empty.obj: no vertices"}},
       {"reconstruct_nonmanifold", {"reconstruct", in("nonmanifold2.obj"), "-o", "{out}"}, "x.obj", 1,
        {"nonmanifold2.obj: edge", "not manifold"}},

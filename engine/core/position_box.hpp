@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+// The check a geometry stage makes of a mesh's positions before it measures lengths on them: every
+// coordinate finite, and the mesh small enough that a squared length, and a sum of as many edge
+// lengths as there are vertices, stay finite in double precision. A mesh 1e200 across passes a
+// finiteness check, but its squared edge lengths overflow: the curve rig's distance sweeps then read
+// every vertex as unreached, and the plane cuts of the curve identification recurse without end
+// (both crashed before this check).
+#pragma once
+
+#include <span>
+#include <string>
+
+#include "result.hpp"
+#include "types.hpp"
+
+namespace odeskin {
+
+struct PositionBox {
+  Vec3 lo{0.0};
+  Vec3 hi{0.0};
+  double diagonal = 0.0;  // |hi - lo|
+};
+
+// The positions' bounding box. kInvalidArgument "<who>: vertex I is not finite" for the first such
+// vertex, or "<who>: the mesh is too large for double-precision distances (its bounding box spans
+// S); scale it down" when the diagonal times the vertex count overflows. No positions: a zero box.
+Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const std::string& who);
+
+}  // namespace odeskin
