@@ -11,13 +11,15 @@
 
 namespace odeskin {
 
-Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const std::string& who) {
+Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const std::string& who,
+                                       std::size_t first_number) {
   if (positions.empty()) return PositionBox{};
+  const std::string prefix = who.empty() ? who : who + ": ";
   Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Vec3& p = positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      return invalidArgument(who + ": vertex " + std::to_string(i) + " is not finite");
+      return invalidArgument(prefix + "vertex " + std::to_string(first_number + i) + " is not finite");
     }
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
@@ -29,7 +31,7 @@ Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const st
     const Vec3 extent = hi - lo;
     char span[32];
     std::snprintf(span, sizeof span, "%g", std::max({extent.x, extent.y, extent.z}));
-    return invalidArgument(who + ": the mesh is too large for double-precision distances (its bounding box spans " + span +
+    return invalidArgument(prefix + "the mesh is too large for double-precision distances (its bounding box spans " + span +
                            "); scale it down");
   }
   return PositionBox{lo, hi, diagonal};

@@ -24,6 +24,9 @@ struct PositionBox {
 // The positions' bounding box. kInvalidArgument "<who>: vertex I is not finite" for the first such
 // vertex, or "<who>: the mesh is too large for double-precision distances (its bounding box spans
 // S); scale it down" when the diagonal times the vertex count overflows. No positions: a zero box.
-Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const std::string& who);
+// An empty `who` leaves the "<who>: " out; vertices are numbered from `first_number` (1 where the
+// caller's other messages number vertices as OBJ files do).
+Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const std::string& who,
+                                       std::size_t first_number = 0);
 
 }  // namespace odeskin
