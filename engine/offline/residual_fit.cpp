@@ -19,6 +19,7 @@
 #include "fourier_fit.hpp"
 #include "time_basis.hpp"
 #include "../core/parallel.hpp"
+#include "../core/position_box.hpp"
 
 namespace odeskin {
 namespace {
@@ -121,13 +122,9 @@ Status checkInput(const FitInput& in, const FitOptions& opt) {
     if (in.key_poses[k].size() != in.bone_count) {
       return mismatch("bone transforms of pose " + std::to_string(k), in.key_poses[k].size(), in.bone_count);
     }
-    for (std::size_t i = 0; i < v_count; ++i) {
-      const Vec3& p = in.poses[k][i];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-        return invalidArgument("fit: pose " + std::to_string(k) + " vertex " + std::to_string(i) + " is not finite");
-      }
-    }
+    ODESKIN_TRY(checkedPositionBox(in.poses[k], "fit: pose " + std::to_string(k)).status());
   }
+  ODESKIN_TRY(checkedPositionBox(in.rest_positions, "fit: the bind mesh").status());
   if (in.bindings.size() != v_count) return mismatch("bindings", in.bindings.size(), v_count);
   if (in.bone_pivots.size() != in.bone_count) return mismatch("bone_pivots", in.bone_pivots.size(), in.bone_count);
   if (!opt.curve_materials.empty() && opt.curve_materials.size() != in.curves.size()) {

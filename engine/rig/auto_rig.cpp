@@ -24,6 +24,7 @@
 #include "vertex_weight_fit.hpp"
 #include "weight_rows.hpp"
 #include "../core/parallel.hpp"
+#include "../core/position_box.hpp"
 
 namespace odeskin {
 namespace {
@@ -48,25 +49,17 @@ constexpr int kBoneSweeps = 5;
 // carry no motion to derive bones from.
 constexpr double kStaticMotion = 1e-9;
 
-bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
 Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const std::vector<std::vector<Vec3>>& poses,
                   const AutoRigOptions& options) {
   if (rest.empty()) return invalidArgument("auto rig: the bind mesh has no vertices");
   if (poses.size() < 2) return invalidArgument("auto rig: needs at least 2 example poses, got " + std::to_string(poses.size()));
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    if (!finite(rest[i])) return invalidArgument("auto rig: bind vertex " + std::to_string(i) + " is not finite");
-  }
+  ODESKIN_TRY(checkedPositionBox(rest, "auto rig: the bind mesh").status());
   for (std::size_t k = 0; k < poses.size(); ++k) {
     if (poses[k].size() != rest.size()) {
       return invalidArgument("auto rig: pose " + std::to_string(k) + " has " + std::to_string(poses[k].size()) +
                              " vertices, the bind mesh " + std::to_string(rest.size()));
     }
-    for (std::size_t i = 0; i < rest.size(); ++i) {
-      if (!finite(poses[k][i])) {
-        return invalidArgument("auto rig: pose " + std::to_string(k) + " vertex " + std::to_string(i) + " is not finite");
-      }
-    }
+    ODESKIN_TRY(checkedPositionBox(poses[k], "auto rig: pose " + std::to_string(k)).status());
   }
   if (options.bones < 0 || static_cast<std::size_t>(options.bones) * 3 > rest.size()) {
     return invalidArgument("auto rig: bones must be 0 (automatic) or at most a third of the " +

@@ -26,6 +26,7 @@
 #include "../offline/residual_fit.hpp"
 #include "weight_rows.hpp"
 #include "../core/parallel.hpp"
+#include "../core/position_box.hpp"
 
 namespace odeskin {
 namespace {
@@ -75,12 +76,7 @@ Result<Influences> distanceWeights(std::span<const Vec3> rest, const FaceList& f
     return invalidArgument("distance weights: smoothing_iterations must not be negative, got " +
                            std::to_string(options.smoothing_iterations));
   }
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    const Vec3& p = rest[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      return invalidArgument("distance weights: vertex " + std::to_string(i) + " is not finite");
-    }
-  }
+  ODESKIN_TRY(checkedPositionBox(rest, "distance weights").status());
   ODESKIN_TRY(checkFaces(faces, rest.size(), "distance weights"));
 
   const double box = rest.empty() ? 1.0 : std::max(longestBoxSide(rest), std::numeric_limits<double>::min());

@@ -16,7 +16,8 @@ struct DistanceWeightOptions {
   int smoothing_iterations = 10; // Laplacian smoothing over the mesh's vertex graph
 };
 
-// kInvalidArgument for a skeleton without bones, bad faces, or options out of range.
+// kInvalidArgument for a skeleton without bones, bad faces, positions not finite or too large
+// (checkedPositionBox), or options out of range.
 Result<Influences> distanceWeights(std::span<const Vec3> rest, const FaceList& faces, const Skeleton& skeleton,
                                    const DistanceWeightOptions& options = {});
 

@@ -14,6 +14,7 @@
 
 #include "bone_fit.hpp"
 #include "../core/parallel.hpp"
+#include "../core/position_box.hpp"
 
 namespace odeskin {
 namespace {
@@ -94,21 +95,14 @@ Status checkBoneFitInputs(std::span<const Vec3> rest, const std::vector<std::vec
   if (vertex_count == 0) return invalidArgument("fit bone transforms: the bind mesh has no vertices");
   if (poses.empty()) return invalidArgument("fit bone transforms: no poses");
   ODESKIN_TRY(validateInfluences(influences, vertex_count, static_cast<std::uint32_t>(bone_count)));
-  for (std::size_t i = 0; i < vertex_count; ++i) {
-    if (!finite(rest[i])) return invalidArgument("fit bone transforms: bind vertex " + std::to_string(i) + " is not finite");
-  }
+  ODESKIN_TRY(checkedPositionBox(rest, "fit bone transforms: the bind mesh").status());
   for (std::size_t k = 0; k < poses.size(); ++k) {
     if (poses[k].size() != vertex_count) {
       return invalidArgument("fit bone transforms: pose " + std::to_string(k) + " has " +
                              std::to_string(poses[k].size()) + " vertices, the bind mesh " +
                              std::to_string(vertex_count));
     }
-    for (std::size_t i = 0; i < vertex_count; ++i) {
-      if (!finite(poses[k][i])) {
-        return invalidArgument("fit bone transforms: pose " + std::to_string(k) + " vertex " + std::to_string(i) +
-                               " is not finite");
-      }
-    }
+    ODESKIN_TRY(checkedPositionBox(poses[k], "fit bone transforms: pose " + std::to_string(k)).status());
   }
   return okStatus();
 }

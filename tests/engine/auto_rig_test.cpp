@@ -223,7 +223,19 @@ TEST(AutoRig, BadInput) {
   EXPECT_EQ(code({}), StatusCode::kInvalidArgument);
   poses = s.poses;
   poses[2][5].y = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(code(poses), StatusCode::kInvalidArgument);
+  const Status nan_pose = autoRig(rest, faces, poses).status();
+  EXPECT_EQ(nan_pose.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(nan_pose.message().find("auto rig: pose 2: vertex 5 is not finite"), std::string::npos) << nan_pose.message();
+  // Finite, but its squared lengths overflow: refused, where it once gave a one-bone rig.
+  std::vector<Vec3> huge_rest = rest;
+  poses = s.poses;
+  for (Vec3& p : huge_rest) p *= 1e200;
+  for (std::vector<Vec3>& pose : poses) {
+    for (Vec3& p : pose) p *= 1e200;
+  }
+  const Status huge = autoRig(huge_rest, faces, poses).status();
+  EXPECT_EQ(huge.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(huge.message().find("auto rig: the bind mesh: the mesh is too large"), std::string::npos) << huge.message();
   EXPECT_EQ(code({rest, rest, rest}), StatusCode::kDegenerate);
   EXPECT_EQ(autoRig({}, FaceList{}, {{}, {}}).status().code(), StatusCode::kInvalidArgument);
   FaceList bad = faces;

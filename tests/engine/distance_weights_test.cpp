@@ -184,6 +184,15 @@ TEST(DistanceWeights, BadInput) {
   std::vector<Vec3> positions = mesh.positions;
   positions[3].z = std::numeric_limits<double>::infinity();
   EXPECT_EQ(distanceWeights(positions, mesh.faces, skeleton).status().code(), StatusCode::kInvalidArgument);
+  // Finite, but its squared distances overflow: refused, not weights from infinite distances.
+  positions = mesh.positions;
+  for (Vec3& p : positions) p *= 1e200;
+  Skeleton huge = skeleton;
+  for (Vec3& p : huge.heads) p *= 1e200;
+  for (Vec3& p : huge.tails) p *= 1e200;
+  const Status too_large = distanceWeights(positions, mesh.faces, huge).status();
+  EXPECT_EQ(too_large.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(too_large.message().find("distance weights: the mesh is too large"), std::string::npos) << too_large.message();
   for (const auto& change : {+[](DistanceWeightOptions& o) { o.max_influences = 0; },
                              +[](DistanceWeightOptions& o) { o.falloff_power = 0.0; },
                              +[](DistanceWeightOptions& o) { o.falloff_power = std::numeric_limits<double>::quiet_NaN(); },

@@ -223,10 +223,17 @@ TEST(FitRigidBoneTransforms, BadInputIsRejectedWithAClearMessage) {
   };
   std::vector<Vec3> nan_pose = pose;
   nan_pose[17].y = std::numeric_limits<double>::quiet_NaN();
-  rejected(rig.rest, {pose, nan_pose}, rig.influences, rig.skeleton, "pose 1 vertex 17 is not finite");
+  rejected(rig.rest, {pose, nan_pose}, rig.influences, rig.skeleton, "pose 1: vertex 17 is not finite");
   std::vector<Vec3> nan_rest = rig.rest;
   nan_rest[5].z = std::numeric_limits<double>::infinity();
-  rejected(nan_rest, {pose}, rig.influences, rig.skeleton, "bind vertex 5 is not finite");
+  rejected(nan_rest, {pose}, rig.influences, rig.skeleton, "the bind mesh: vertex 5 is not finite");
+  // Finite, but the alignment's products of coordinates overflow: refused, not a wrong rotation.
+  std::vector<Vec3> huge_rest = rig.rest;
+  std::vector<Vec3> huge_pose = pose;
+  for (Vec3& p : huge_rest) p *= 1e200;
+  for (Vec3& p : huge_pose) p *= 1e200;
+  rejected(huge_rest, {pose}, rig.influences, rig.skeleton, "the bind mesh: the mesh is too large");
+  rejected(rig.rest, {pose, huge_pose}, rig.influences, rig.skeleton, "pose 1: the mesh is too large");
   rejected(rig.rest, {}, rig.influences, rig.skeleton, "no poses");
   std::vector<Vec3> short_pose(pose.begin(), pose.end() - 1);
   rejected(rig.rest, {short_pose}, rig.influences, rig.skeleton, "pose 0 has 119 vertices");

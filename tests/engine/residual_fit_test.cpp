@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "engine/offline/residual_fit.hpp"
 
+#include <limits>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -222,6 +224,13 @@ TEST(ResidualFit, NearlyOpposedBlendsAreReboundToTheirDominantBone) {
   EXPECT_EQ(report.ill_conditioned, 0u);
 }
 
+// The status is kInvalidArgument and its message holds `expected`.
+void expectRejected(const Result<DeformAsset>& result, const std::string& expected) {
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(result.status().message().find(expected), std::string::npos) << result.status().message();
+}
+
 TEST(ResidualFit, RejectsMismatchedInput) {
   Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
   ASSERT_TRUE(arm.ok());
@@ -230,7 +239,13 @@ TEST(ResidualFit, RejectsMismatchedInput) {
   EXPECT_EQ(fitDeformAsset(in, FitOptions{}).status().code(), StatusCode::kInvalidArgument);
   in = arm->fit_input;
   in.poses[1][5].y = std::nan("");
-  EXPECT_EQ(fitDeformAsset(in, FitOptions{}).status().code(), StatusCode::kInvalidArgument);
+  expectRejected(fitDeformAsset(in, FitOptions{}), "fit: pose 1: vertex 5 is not finite");
+  in = arm->fit_input;
+  in.rest_positions[7].x = std::numeric_limits<double>::infinity();
+  expectRejected(fitDeformAsset(in, FitOptions{}), "fit: the bind mesh: vertex 7 is not finite");
+  in = arm->fit_input;
+  for (Vec3& p : in.poses[0]) p *= 1e200;  // finite, but its squared lengths overflow
+  expectRejected(fitDeformAsset(in, FitOptions{}), "fit: pose 0: the mesh is too large");
   in = arm->fit_input;
   in.poses.pop_back();
   in.key_poses.pop_back();
