@@ -9,6 +9,7 @@
 
 #include "mesh_network_deviation.hpp"
 #include "../core/parallel.hpp"
+#include "../core/position_box.hpp"
 
 namespace odeskin {
 namespace {
@@ -134,12 +135,7 @@ Result<NetworkDescription> MeshNetwork::describe(std::span<const Vec3> positions
     return invalidArgument("the pose has " + std::to_string(positions.size()) + " vertices, the network's mesh " +
                            std::to_string(disk_.vertex_count));
   }
-  for (std::size_t v = 0; v < positions.size(); ++v) {
-    const Vec3& p = positions[v];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      return invalidArgument("vertex " + std::to_string(v + 1) + " of the pose is not finite");
-    }
-  }
+  ODESKIN_TRY(checkedPositionBox(positions, "the pose", 1).status());
   const std::vector<Vec3> x = diskPositions(disk_, positions);
   const std::uint32_t rows = options_.rows, n = curvePoints();
   NetworkDescription d;

@@ -77,7 +77,8 @@ class MeshNetwork {
   const std::vector<Vec2>& vertexParameters() const { return vertex_uv_; }
 
   // The network of a pose of the mesh: the samples read on `positions` (vertexCount() of them, the
-  // extraction mesh's order). kInvalidArgument for a wrong count or a non-finite position.
+  // extraction mesh's order). kInvalidArgument for a wrong count or positions not finite or too
+  // large ("the pose: ...", checkedPositionBox).
   Result<NetworkDescription> describe(std::span<const Vec3> positions) const;
   // describe, then Network::build.
   Result<Network> build(std::span<const Vec3> positions) const;

@@ -9,6 +9,8 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseLU>
 
+#include "../core/position_box.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -278,12 +280,7 @@ std::vector<Vec3> diskPositions(const MeshDisk& disk, std::span<const Vec3> posi
 Result<MeshDisk> parameteriseDisk(std::span<const Vec3> positions, const FaceList& faces) {
   if (positions.size() < 3) return invalidArgument("a mesh needs at least 3 vertices, got " + std::to_string(positions.size()));
   if (positions.size() >= (std::size_t{1} << 31)) return invalidArgument("too many vertices");
-  for (std::size_t v = 0; v < positions.size(); ++v) {
-    const Vec3& p = positions[v];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      return invalidArgument("vertex " + std::to_string(v + 1) + " is not finite");
-    }
-  }
+  ODESKIN_TRY(checkedPositionBox(positions, "", 1).status());
   MeshDisk disk;
   disk.vertex_count = positions.size();
   ODESKIN_ASSIGN_OR_RETURN(disk.triangles, triangulate(faces, positions.size()));

@@ -7,6 +7,7 @@
 
 #include <Eigen/SparseCholesky>
 
+#include "../core/position_box.hpp"
 
 namespace odeskin {
 namespace {
@@ -45,6 +46,8 @@ Result<PoseFlags> flagVertices(std::span<const Vec3> reference, std::span<const 
   }
   if (!(ratio > 1.0) || !std::isfinite(ratio)) return invalidArgument("the stretch ratio must be a finite number > 1");
   ODESKIN_TRY(checkFaces(faces, reference.size()));
+  ODESKIN_TRY(checkedPositionBox(reference, "the reference", 1).status());
+  ODESKIN_TRY(checkedPositionBox(pose, "the pose", 1).status());
   PoseFlags flags;
   flags.flagged.assign(reference.size(), 0);
   for (const auto& [a, b] : meshEdges(faces)) {

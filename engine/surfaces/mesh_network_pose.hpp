@@ -28,7 +28,9 @@ struct PoseFlags {
   double max_stretch = 0.0;           // the largest edge length ratio pose / reference
 };
 
-// kInvalidArgument for different vertex counts, a face index out of range, or ratio <= 1 or NaN.
+// kInvalidArgument for different vertex counts, a face index out of range, positions not finite or
+// too large for edge lengths ("the reference: ..." or "the pose: ...", checkedPositionBox), or
+// ratio <= 1 or NaN.
 // Edges of zero reference length count as stretched if they have any length in the pose.
 Result<PoseFlags> flagVertices(std::span<const Vec3> reference, std::span<const Vec3> pose, const FaceList& faces,
                                double ratio);

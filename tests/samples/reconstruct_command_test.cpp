@@ -200,6 +200,10 @@ TEST(ReconstructCommand, BadInputsFailNamingTheFile) {
   const fs::path flipped = write(dir / "in" / "flipped.obj", changed);
   const fs::path garbage = dir / "in" / "garbage.obj";
   std::ofstream(garbage) << "v 0 0 nan\nf 1 1 1\n";
+  // The mesh and a pose scaled to 1e200 across: finite, but their squared lengths overflow.
+  ObjMesh scaled = *readObj(in.pose);
+  for (Vec3& p : scaled.positions) p *= 1e200;
+  const fs::path huge = write(dir / "in" / "huge.obj", scaled);
 
   std::vector<CommandCase<ReconstructCommandOptions>> cases;
   const auto with = [&](const std::function<void(ReconstructCommandOptions&)>& change, const std::string& message) {
@@ -214,6 +218,8 @@ TEST(ReconstructCommand, BadInputsFailNamingTheFile) {
   with([&](auto& o) { o.mesh = garbage; }, "garbage.obj");
   with([&](auto& o) { o.poses = {in.pose, closed}; }, closed.string() + ": 4 vertices, " + in.mesh.string() + " has 1353");
   with([&](auto& o) { o.poses = {flipped}; }, flipped.string() + ": face 11 differs");
+  with([&](auto& o) { o.mesh = huge; }, huge.string() + ": the mesh is too large for double-precision distances");
+  with([&](auto& o) { o.poses = {huge}; }, huge.string() + ": the pose: the mesh is too large for double-precision distances");
   with([&](auto& o) { o.shape = "1,80.76291422570652,0"; }, "--shape 1,80.76291422570652,0: ");
   with([&](auto& o) { o.shape = "0,3,1"; }, "--shape 0,3,1: ");
   testing::expectRejected(cases, run, kExitFailure, "reconstruct");

@@ -225,6 +225,10 @@ TEST(MeshNetwork, BadMeshesAndOptionsAreRefused) {
   std::vector<Vec3> nan = mesh.positions;
   nan[5].y = NAN;
   refused(nan, indices, "vertex 6 is not finite");
+  // Finite, but its squared lengths overflow: refused as such, not as a rim that is not convex.
+  std::vector<Vec3> huge = mesh.positions;
+  for (Vec3& p : huge) p *= 1e200;
+  refused(huge, indices, "the mesh is too large for double-precision distances");
 }
 
 TEST(MeshNetworkPose, StretchedEdgesFlagRenumberedVerticesAndFillingRestoresThem) {
@@ -249,6 +253,15 @@ TEST(MeshNetworkPose, StretchedEdgesFlagRenumberedVerticesAndFillingRestoresThem
   const std::vector<std::uint8_t> all(pose.size(), 1);
   EXPECT_EQ(fillFlagged(reference.positions, pose, reference.faces, all).status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(flagVertices(reference.positions, pose, reference.faces, 1.0).status().code(), StatusCode::kInvalidArgument);
+  // A pose too large for its edge lengths is refused, not every edge flagged as stretched.
+  std::vector<Vec3> huge = truth;
+  for (Vec3& p : huge) p *= 1e200;
+  const Status too_large = flagVertices(reference.positions, huge, reference.faces, 4.0).status();
+  EXPECT_EQ(too_large.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(too_large.message().find("the pose: the mesh is too large"), std::string::npos) << too_large.message();
+  std::vector<Vec3> nan = truth;
+  nan[7].x = NAN;
+  EXPECT_EQ(flagVertices(reference.positions, nan, reference.faces, 4.0).status().message(), "the pose: vertex 8 is not finite");
 }
 
 // The face-poses data (docs/surfaces.md, "Reconstructing a real face"): the default network's figures.
