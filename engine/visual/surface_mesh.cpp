@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "surface_mesh.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
+
+#include <glm/geometric.hpp>
 
 namespace odeskin::visual {
 
@@ -38,18 +42,23 @@ std::vector<Vec3> vertexNormals(std::span<const Vec3> positions, const FaceList&
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {
     const std::uint32_t begin = faces.face_offsets[f];
     const std::uint32_t end = faces.face_offsets[f + 1];
-    // Newell's method: exact for planar polygons, a sensible average for warped ones.
+    // Newell's method: exact for planar polygons, a sensible average for warped ones. Corners are
+    // taken from the first one: products of absolute positions would cancel to noise on a face far
+    // from the origin next to its size.
+    const Vec3& origin = positions[faces.indices[begin]];
     Vec3 n(0.0);
     for (std::uint32_t i = begin; i < end; ++i) {
-      const Vec3& p = positions[faces.indices[i]];
-      const Vec3& q = positions[faces.indices[i + 1 < end ? i + 1 : begin]];
+      const Vec3 p = positions[faces.indices[i]] - origin;
+      const Vec3 q = positions[faces.indices[i + 1 < end ? i + 1 : begin]] - origin;
       n += glm::cross(p, q);
     }
     for (std::uint32_t i = begin; i < end; ++i) normals[faces.indices[i]] += n;
   }
   for (Vec3& n : normals) {
-    const double length = glm::length(n);
-    n = length > 0.0 ? n / length : Vec3(0.0, 0.0, 1.0);
+    // Divided by its largest component first: on a tiny mesh (faces 1e-150 across) the squared
+    // length of the area vector underflows to 0.
+    const double largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+    n = largest > 0.0 ? glm::normalize(n / largest) : Vec3(0.0, 0.0, 1.0);
   }
   return normals;
 }

@@ -47,6 +47,21 @@ TEST(SurfaceMesh, NormalsAreAreaWeightedAndUnit) {
   EXPECT_EQ(lonely[0], Vec3(0, 0, 1));
 }
 
+TEST(SurfaceMesh, NormalsDoNotDependOnSizeOrPlace) {
+  // A square tilted about x. Far from the origin (1e9 times its size), products of absolute
+  // positions cancel to noise; at 1e-150 across, the area vector's squared length underflows.
+  const std::vector<Vec3> square{{0, 0, 0}, {1, 0, 0}, {1, 0.6, 0.8}, {0, 0.6, 0.8}};
+  const Vec3 expected(0.0, -0.8, 0.6);
+  for (const auto& [scale, offset] : {std::pair{1.0, Vec3(1e9, -2e9, 3e9)}, std::pair{1e-150, Vec3(0.0)},
+                                      std::pair{1e150, Vec3(0.0)}}) {
+    std::vector<Vec3> p;
+    for (const Vec3& q : square) p.push_back(scale * q + offset);
+    for (const Vec3& n : vertexNormals(p, faces({{0, 1, 2, 3}}))) {
+      EXPECT_LT(glm::length(n - expected), 1e-6) << scale << ": " << n.x << " " << n.y << " " << n.z;
+    }
+  }
+}
+
 TEST(VertexError, IsDistanceOverTheLongestBoxSide) {
   const std::vector<Vec3> ref{{0, 0, 0}, {5, 4, 0}};  // longest side 5 (the diagonal would be 6.4)
   const std::vector<Vec3> p{{0, 0, 1}, {5, 4, 0}};
@@ -99,6 +114,9 @@ TEST(ViewGeometry, AppliesTheViewInDoublePrecision) {
   EXPECT_FLOAT_EQ(out[0].value, 0.25f);
   EXPECT_FLOAT_EQ(surfaceVertices(view, p, n)[0].value, 0.0f);
   EXPECT_EQ(viewPoints(view, p)[0], glm::vec3(-2.0f, 2.0f, 3.0f));
+  // A uniform scale in the view (the renderer's, to fit float's range) leaves normals unit length.
+  const glm::dmat4 scaled = glm::dmat4(glm::dmat3(1e-120)) * view;
+  EXPECT_FLOAT_EQ(surfaceVertices(scaled, p, n)[0].normal[1], 1.0f);
 }
 
 }  // namespace
