@@ -9,6 +9,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../core/position_box.hpp"
+
 namespace odeskin::visual {
 namespace {
 
@@ -93,6 +95,8 @@ ViewBasis viewBasis(const ViewSpec& view) {
 Status checkFraming(std::span<const Vec3> points, double aspect, const ViewSpec& view) {
   if (points.empty()) return invalidArgument("view: nothing to frame (no vertices)");
   if (!(aspect > 0.0 && std::isfinite(aspect))) return invalidArgument("view: the image aspect must be positive");
+  // A camera for points too far apart for their squared distances would stand at infinity.
+  ODESKIN_TRY(checkedPositionBox(points, "view").status());
   return validateViewSpec(view);
 }
 
@@ -119,7 +123,9 @@ Camera cameraAt(const Vec3& eye, const ViewBasis& basis, std::span<const Vec3> p
     farthest = std::max(farthest, depth);
   }
   Camera camera;
-  camera.view = glm::lookAt(eye, eye - basis.dir, view.up);
+  // The view turns before it moves: a target at eye - dir is eye itself once eye is much longer
+  // than 1 (1e16 times), and glm::lookAt would then look nowhere.
+  camera.view = glm::translate(glm::lookAt(Vec3(0.0), -basis.dir, view.up), -eye);
   camera.fov_y_rad = radians(view.fov_y_deg);
   camera.aspect = aspect;
   // Planes just outside the points: tight planes keep depth precision.

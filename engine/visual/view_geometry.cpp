@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "view_geometry.hpp"
 
+#include <glm/geometric.hpp>
+
 namespace odeskin::visual {
 
 std::vector<SurfaceVertex> surfaceVertices(const glm::dmat4& view, std::span<const Vec3> positions,
                                            std::span<const Vec3> normals, std::span<const double> values) {
-  const glm::dmat3 rotation(view);
+  // The view may carry a uniform scale (the renderer's, to fit float's range): normals lose it.
+  const glm::dmat3 linear(view);
+  const glm::dmat3 rotation = linear / glm::length(linear[0]);
   std::vector<SurfaceVertex> out(positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const glm::vec3 p(view * glm::dvec4(positions[i], 1.0));

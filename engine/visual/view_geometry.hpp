@@ -14,9 +14,9 @@
 
 namespace odeskin::visual {
 
-// Vertex i: position view p_i, normal R n_i (R the rotation part of `view`, which is rigid), value
-// values[i] (0 when `values` is empty). Precondition: normals and a non-empty `values` have
-// positions.size() entries.
+// Vertex i: position view p_i, normal R n_i (R the rotation part of `view`, which is rigid up to a
+// uniform scale; R leaves the scale out), value values[i] (0 when `values` is empty).
+// Precondition: normals and a non-empty `values` have positions.size() entries.
 std::vector<SurfaceVertex> surfaceVertices(const glm::dmat4& view, std::span<const Vec3> positions,
                                            std::span<const Vec3> normals, std::span<const double> values = {});
 

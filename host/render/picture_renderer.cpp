@@ -2,7 +2,10 @@
 #include "picture_renderer.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/visual/curve_lines.hpp"
 #include "engine/visual/view_geometry.hpp"
@@ -38,6 +41,9 @@ Result<visual::Image> PictureRenderer::draw(const visual::PictureLayout& layout,
                            std::to_string(layout.panel_left.size()));
   }
   for (std::size_t i = 0; i < panels.size(); ++i) ODESKIN_TRY(validatePanel(panels[i], i));
+  if (!(camera.far > 0.0 && std::isfinite(camera.far))) {
+    return invalidArgument("picture: the camera's far plane must be positive and finite");
+  }
   if (renderer_.width() != layout.panel_width || renderer_.height() != layout.panel_height) {
     ODESKIN_ASSIGN_OR_RETURN(renderer_, OffscreenRenderer::create(*device_, {layout.panel_width, layout.panel_height,
                                                                              style_.samples}));
@@ -47,18 +53,27 @@ Result<visual::Image> PictureRenderer::draw(const visual::PictureLayout& layout,
                                 : std::max(1.5f, 0.0045f * static_cast<float>(layout.panel_height));
   const float heat_max = static_cast<float>(layout.heat_max.value_or(1.0));
 
+  // The GPU draws in float, which holds neither a mesh 1e150 across nor one 1e-150 across: view
+  // space is divided by the far plane's depth first (in double). Scaling view space and both clip
+  // planes together leaves the picture as it was.
+  const double unit = 1.0 / camera.far;
+  const glm::dmat4 view = glm::scale(glm::dmat4(1.0), glm::dvec3(unit)) * camera.view;
+  visual::Camera scaled = camera;
+  scaled.near *= unit;
+  scaled.far = 1.0;
+
   std::vector<visual::Image> images;
   std::vector<std::vector<std::string>> labels;
   for (const PanelContent& panel : panels) {
     const std::vector<visual::SurfaceVertex> vertices =
-        visual::surfaceVertices(camera.view, panel.positions, panel.normals, panel.heat);
-    const std::vector<glm::vec3> endpoints = visual::viewPoints(camera.view, panel.curve_endpoints);
+        visual::surfaceVertices(view, panel.positions, panel.normals, panel.heat);
+    const std::vector<glm::vec3> endpoints = visual::viewPoints(view, panel.curve_endpoints);
     std::vector<glm::vec3> colours;
     colours.reserve(panel.curve_ids.size());
     for (std::uint32_t id : panel.curve_ids) colours.push_back(visual::curveColour(id));
 
     FrameDraw frame;
-    frame.projection = glm::mat4(camera.projection());
+    frame.projection = glm::mat4(scaled.projection());
     SurfaceDraw surface;
     surface.vertices = vertices;
     surface.triangles = panel.triangles;
@@ -68,7 +83,7 @@ Result<visual::Image> PictureRenderer::draw(const visual::PictureLayout& layout,
     frame.surfaces.push_back(surface);
     if (!endpoints.empty()) {
       frame.curves.push_back(
-          CurveDraw{endpoints, colours, curve_width, static_cast<float>(0.002 * scene_size)});
+          CurveDraw{endpoints, colours, curve_width, static_cast<float>(0.002 * scene_size * unit)});
     }
     ODESKIN_ASSIGN_OR_RETURN(visual::Image image, renderer_.render(frame));
     images.push_back(std::move(image));

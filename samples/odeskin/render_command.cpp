@@ -9,6 +9,7 @@
 #include <system_error>
 #include <tuple>
 
+#include "engine/core/position_box.hpp"
 #include "engine/visual/compose.hpp"
 #include "engine/visual/png_writer.hpp"
 #include "engine/visual/vertex_error.hpp"
@@ -137,6 +138,8 @@ Result<Panels> loadPanels(const RenderOptions& o, int& code) {
         if (input.status().code() == StatusCode::kOutOfRange) code = kExitUsage;
         return input.status();
       }
+      // Framing measures lengths: a mesh too large for them fails here, naming its file.
+      ODESKIN_TRY(checkedPositionBox(input->positions, path.string()).status());
       inputs.push_back(std::move(input).value());
       skin_only_flags.push_back(skin_only);
     }
@@ -149,6 +152,7 @@ Result<Panels> loadPanels(const RenderOptions& o, int& code) {
   std::optional<RenderInput> reference;
   if (o.heat) {
     ODESKIN_ASSIGN_OR_RETURN(RenderInput ref, loadRenderInput(*o.heat, RenderInputOptions{o.t, false}));
+    ODESKIN_TRY(checkedPositionBox(ref.positions, "--heat: " + o.heat->string()).status());
     reference = std::move(ref);
   }
 

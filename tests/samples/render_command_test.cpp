@@ -4,10 +4,12 @@
 // the CPU errors, turntable frames differ, curves show; bad input fails with one line and exit 1,
 // bad options with exit 2, and nothing is written then.
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -16,6 +18,7 @@
 #include <stb/stb_image.h>
 
 #include "engine/io/asset_file.hpp"
+#include "engine/io/obj_io.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/offline/procedural_arm.hpp"
 #include "engine/visual/curve_lines.hpp"
@@ -193,6 +196,41 @@ TEST_F(RenderCommand, HeatMapMatchesTheCpuErrorsAndDrawsAColourBar) {
   EXPECT_EQ(countIf(crop(readPng(dir / "fixed.png"), 0, 250), red), 0u);
 }
 
+// The GPU draws in float, which holds neither 1e150 nor 1e-150: the picture of a mesh must not
+// depend on its size (these drew nothing before).
+TEST_F(RenderCommand, SizeAndPlaceDoNotChangeThePicture) {
+  const fs::path dir = scratch("scale");
+  Result<ObjMesh> mesh = readObj(kCylinder / "cylinder.obj");
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  auto draw = [&](const std::string& name, double scale, const Vec3& offset) {
+    ObjMesh moved = *mesh;
+    for (Vec3& p : moved.positions) p = scale * p + offset;
+    EXPECT_TRUE(writeObj(dir / (name + ".obj"), moved.positions, moved.faces).ok());
+    RenderOptions o = options({dir / (name + ".obj")}, dir / (name + ".png"));
+    o.size = "240x160";
+    o.no_labels = true;
+    Captured io;
+    EXPECT_EQ(render(o, io), kExitOk) << name << ": " << io.err.str();
+    return readPng(dir / (name + ".png"));
+  };
+  const Image reference = draw("unit", 1.0, Vec3(0.0));
+  const Rgba8 background{247, 247, 249, 255};
+  const std::size_t covered = countIf(reference, [&](Rgba8 p) { return p != background; });
+  ASSERT_GT(covered, 240u * 160u / 10);
+  for (const auto& [name, scale, offset] : {std::tuple{"huge", 1e150, Vec3(-3e150, 0.0, 1e150)},
+                                            std::tuple{"tiny", 1e-150, Vec3(0.0, 2e-150, 0.0)}}) {
+    const Image image = draw(name, scale, offset);
+    ASSERT_EQ(image.pixels.size(), reference.pixels.size()) << name;
+    // Rounding may move an edge pixel's coverage; no more than 1% of the mesh's pixels differ.
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+      const Rgba8 a = image.pixels[i], b = reference.pixels[i];
+      differ += std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)}) > 8 ? 1 : 0;
+    }
+    EXPECT_LT(differ, covered / 100) << name << ": " << differ << " of " << covered << " pixels differ";
+  }
+}
+
 TEST_F(RenderCommand, BadInputFailsWithOneLineAndExitCode1) {
   const fs::path dir = scratch("bad_input");
   std::vector<CommandCase<RenderOptions>> cases;
@@ -203,6 +241,12 @@ TEST_F(RenderCommand, BadInputFailsWithOneLineAndExitCode1) {
   const fs::path corrupt = dir / "corrupt.odsk";
   std::ofstream(corrupt) << "not an asset";
   cases.push_back({options({corrupt}, dir / "x.png"), "corrupt.odsk: not an odeskin asset"});
+  Result<ObjMesh> cylinder = readObj(kCylinder / "cylinder.obj");
+  ASSERT_TRUE(cylinder.ok());
+  for (Vec3& p : cylinder->positions) p *= 1e200;
+  const fs::path huge = dir / "huge.obj";
+  ASSERT_TRUE(writeObj(huge, cylinder->positions, cylinder->faces).ok());
+  cases.push_back({options({huge}, dir / "x.png"), huge.string() + ": the mesh is too large for double-precision distances"});
   testing::expectRejected(cases, [](const RenderOptions& o, Captured& io) { return render(o, io); }, kExitFailure,
                           "render");
   EXPECT_FALSE(fs::exists(dir / "x.png"));

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -133,6 +134,17 @@ TEST(Camera, RejectsWhatCannotBeFramed) {
   view = ViewSpec{};
   view.azimuth_deg = std::nan("");
   EXPECT_EQ(framePoints(points, 1.0, view).status().code(), StatusCode::kInvalidArgument);
+  // Points that are not finite, or whose squared distances overflow, give no camera (it would be
+  // at infinity, and the picture empty).
+  const std::vector<Vec3> nan{{0, 0, 0}, {1, std::nan(""), 1}};
+  EXPECT_EQ(framePoints(nan, 1.0, ViewSpec{}).status().message(), "view: vertex 1 is not finite");
+  const std::vector<Vec3> huge{{0, 0, 0}, {1e200, 1e200, 1e200}};
+  const double turns[] = {0.0, 90.0};
+  for (const Status& refused : {framePoints(huge, 1.0, ViewSpec{}).status(), turntableCameras(huge, 1.0, ViewSpec{}, turns).status()}) {
+    EXPECT_EQ(refused.code(), StatusCode::kInvalidArgument);
+    EXPECT_NE(refused.message().find("view: the mesh is too large for double-precision distances"), std::string::npos)
+        << refused.message();
+  }
   // One point repeated is framed as a unit box around it: it lands near the middle.
   const std::vector<Vec3> same(3, Vec3(2.0, 3.0, 4.0));
   Result<Camera> camera = framePoints(same, 1.0, ViewSpec{});
