@@ -24,16 +24,24 @@ Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const st
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
   }
+  const Vec3 extent = hi - lo;
+  const double side = std::max({extent.x, extent.y, extent.z});
+  auto refused = [&](const char* size, const char* advice) {
+    char span[32];
+    std::snprintf(span, sizeof span, "%g", side);
+    return invalidArgument(prefix + "the mesh is too " + size + " for double-precision distances (its bounding box spans " +
+                           span + "); scale it " + advice);
+  };
   // A path's length is a sum of at most V edges, none longer than the diagonal; the diagonal is
   // itself a square root of a sum of squares, so its being finite bounds every squared length.
-  const double diagonal = glm::length(hi - lo);
-  if (!std::isfinite(diagonal * static_cast<double>(positions.size()))) {
-    const Vec3 extent = hi - lo;
-    char span[32];
-    std::snprintf(span, sizeof span, "%g", std::max({extent.x, extent.y, extent.z}));
-    return invalidArgument(prefix + "the mesh is too large for double-precision distances (its bounding box spans " + span +
-                           "); scale it down");
-  }
+  const double diagonal = glm::length(extent);
+  if (!std::isfinite(diagonal * static_cast<double>(positions.size()))) return refused("large", "down");
+  // The other end: squares below double's normal range lose their digits (a cat 1e-160 across got
+  // 48 joints from the curve rig where it gets 31 at any size above 1e-100; at 1e-200 its edges
+  // all measured 0). A box 1e-100 across leaves edges down to 1e-50 of it their full precision. The
+  // longest side, not the diagonal, whose square may itself underflow. All at one point is the
+  // caller's case.
+  if (side > 0.0 && side < kMinPositionBoxSpan) return refused("small", "up");
   return PositionBox{lo, hi, diagonal};
 }
 

@@ -21,9 +21,15 @@ struct PositionBox {
   double diagonal = 0.0;  // |hi - lo|
 };
 
+// Below this longest bounding-box side (and above 0) positions are refused as too small: squared
+// edge lengths would fall out of double's normal range and lose their digits.
+inline constexpr double kMinPositionBoxSpan = 1e-100;
+
 // The positions' bounding box. kInvalidArgument "<who>: vertex I is not finite" for the first such
-// vertex, or "<who>: the mesh is too large for double-precision distances (its bounding box spans
-// S); scale it down" when the diagonal times the vertex count overflows. No positions: a zero box.
+// vertex, "<who>: the mesh is too large for double-precision distances (its bounding box spans S);
+// scale it down" when the diagonal times the vertex count overflows, or "<who>: the mesh is too
+// small ... scale it up" for a longest side in (0, kMinPositionBoxSpan). No positions, or all at
+// one point: a box of diagonal 0.
 // An empty `who` leaves the "<who>: " out; vertices are numbered from `first_number` (1 where the
 // caller's other messages number vertices as OBJ files do).
 Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const std::string& who,

@@ -51,5 +51,17 @@ TEST(CheckedPositionBox, RefusesMeshesTooLargeForLengths) {
   EXPECT_FALSE(checkedPositionBox(std::vector<Vec3>{Vec3(0.0), Vec3(1e160)}, "rig").ok());
 }
 
+TEST(CheckedPositionBox, RefusesMeshesTooSmallForLengths) {
+  expectRefused(checkedPositionBox(std::vector<Vec3>{Vec3(0.0), Vec3(5e-120, 0.0, 0.0)}, "rig"),
+                "rig: the mesh is too small for double-precision distances (its bounding box spans 5e-120); scale it up");
+  // So small that the diagonal's square is 0.
+  EXPECT_FALSE(checkedPositionBox(std::vector<Vec3>{Vec3(0.0), Vec3(3e-200, 4e-200, 0.0)}, "rig").ok());
+  EXPECT_TRUE(checkedPositionBox(std::vector<Vec3>{Vec3(0.0), Vec3(1e-100, 0.0, 0.0)}, "rig").ok());
+  // All at one point is not too small: the callers say what they need instead.
+  const Result<PositionBox> point = checkedPositionBox(std::vector<Vec3>(3, Vec3(1e-200)), "rig");
+  ASSERT_TRUE(point.ok());
+  EXPECT_EQ(point->diagonal, 0.0);
+}
+
 }  // namespace
 }  // namespace odeskin

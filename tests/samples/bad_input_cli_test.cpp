@@ -238,8 +238,9 @@ class BadInputCli : public ::testing::Test {
     writeText(d / "empty.obj", "");
     writeText(d / "nan.obj", replaceFirst(pose2, "v ", "v nan 0 0"));
     writeText(d / "inf.obj", replaceFirst(pose2, "v ", "v 0 inf 0"));
-    // Finite, but 1e200 times the cylinder: squared lengths overflow (the rig and the plane cuts crashed on it).
-    {
+    // Finite, but 1e200 times the cylinder: squared lengths overflow (the rig and the plane cuts
+    // crashed on it); 1e-200 times: they underflow.
+    for (const auto& [name, scale] : {std::pair{"huge.obj", 1e200}, std::pair{"tiny.obj", 1e-200}}) {
       std::vector<std::string> ls = lines(pose2);
       for (std::string& l : ls) {
         if (l.rfind("v ", 0) != 0) continue;
@@ -247,10 +248,10 @@ class BadInputCli : public ::testing::Test {
         double x = 0.0, y = 0.0, z = 0.0;
         in >> x >> y >> z;
         std::ostringstream out;
-        out << "v " << x * 1e200 << " " << y * 1e200 << " " << z * 1e200;
+        out << "v " << x * scale << " " << y * scale << " " << z * scale;
         l = out.str();
       }
-      writeText(d / "huge.obj", joined(ls));
+      writeText(d / name, joined(ls));
     }
     writeText(d / "tet.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n");
     // Same vertices, the first face's corners rotated: the face lists differ.
@@ -426,6 +427,10 @@ TEST_F(BadInputCli, BadMeshesPosesAndWeightsFailNamingTheFile) {
       {"rig_collapsed", {"rig", in("collapsed.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "collapsed.obj: curve skeleton: ", "length 0"}},
       {"rig_huge", {"rig", in("huge.obj"), "-o", "{out}"}, "x.tgf", 1,
        {"rig: ", "huge.obj: curve skeleton: the mesh is too large for double-precision distances", "scale it down"}},
+      {"rig_tiny", {"rig", in("tiny.obj"), "-o", "{out}"}, "x.tgf", 1,
+       {"rig: ", "tiny.obj: curve skeleton: the mesh is too small for double-precision distances", "scale it up"}},
+      {"fit_tiny", {"fit", in("good1.obj"), in("tiny.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"tiny.obj: the mesh is too small for double-precision distances"}},
       {"reconstruct_empty", {"reconstruct", in("empty.obj"), "-o", "{out}"}, "x.obj", 1, {"empty.obj: no vertices"}},
       {"reconstruct_nonmanifold", {"reconstruct", in("nonmanifold2.obj"), "-o", "{out}"}, "x.obj", 1,
        {"nonmanifold2.obj: edge", "not manifold"}},
