@@ -6,6 +6,7 @@
 #include <limits>
 #include <system_error>
 
+#include "../io/gltf_buffer_builder.hpp"
 #include "../offline/deform_player.hpp"
 #include "../offline/residual_fit.hpp"
 #include "baked_export.hpp"
@@ -68,6 +69,7 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   std::vector<Vec3> base(asset.vertexCount());
   for (std::size_t i = 0; i < base.size(); ++i) base[i] = asset.rest_positions[i] + asset.segments.front().base_residuals[i];
   report.box = longestBoxSide(base);
+  ODESKIN_TRY(gltf::checkFloat32Positions(base, "export"));
 
   report.bake_reason = compactExportProblem(asset);
   if (o.bake || !report.bake_reason.empty()) {

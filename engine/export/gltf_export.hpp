@@ -64,8 +64,9 @@ struct GltfExportReport {
 std::string compactExportProblem(const DeformAsset& asset);
 
 // Writes `path` through a temporary file and rename (no half-written file on failure). Errors:
-// kInvalidArgument for options out of range (tolerance not in [1e-8, 0.01], fps not in (0, 1000]) and
-// for assets the writers reject; DeformPlayer::create's errors; kIoError naming `path`.
+// kInvalidArgument for options out of range (tolerance not in [1e-8, 0.01], fps not in (0, 1000]),
+// a mesh beyond glTF's float32 range (gltf::checkFloat32Positions) and for assets the writers
+// reject; DeformPlayer::create's errors; kIoError naming `path`.
 Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesystem::path& path,
                                     const GltfExportOptions& options);
 

@@ -25,6 +25,7 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
         return invalidArgument("baked glTF: frame " + std::to_string(f) + " has a non-finite position");
       }
     }
+    ODESKIN_TRY(gltf::checkFloat32Positions(frames[f], "baked glTF: frame " + std::to_string(f)));
     if (!std::isfinite(seconds[f]) || seconds[f] < 0.0 || (f > 0 && !(seconds[f] > seconds[f - 1]))) {
       return invalidArgument("baked glTF: frame times must be non-negative and increasing");
     }
@@ -40,7 +41,7 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
                      const BakedGlbOptions& options) {
-  ODESKIN_TRY(checkInput(faces, frames, seconds));
+  if (Status s = checkInput(faces, frames, seconds); !s.ok()) return Status(s.code(), path.string() + ": " + s.message());
   tinygltf::Model m = gltf::newModel(options.generator);
 
   const std::vector<std::uint32_t> triangles = gltf::fanTriangles(faces);

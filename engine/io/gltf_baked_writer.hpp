@@ -29,7 +29,8 @@ struct BakedGlbOptions {
 
 // frames: F >= 1 vertex arrays of one mesh; seconds: F increasing times (seconds[0] >= 0).
 // Polygons are triangulated as fans. Written through a temporary file and rename. Errors:
-// kInvalidArgument (sizes, indices, non-finite values, times not increasing), kIoError naming the path.
+// kInvalidArgument naming the path (sizes, indices, non-finite values, positions beyond glTF's
+// float32 range: gltf::checkFloat32Positions, times not increasing), kIoError naming the path.
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
                      const BakedGlbOptions& options = {});

@@ -2,9 +2,38 @@
 #include "gltf_buffer_builder.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <limits>
 
+#include <glm/common.hpp>
+
 namespace odeskin::gltf {
+
+Status checkFloat32Positions(std::span<const Vec3> positions, const std::string& who) {
+  constexpr double kLargest = 1e38;
+  constexpr double kSmallestSpan = 1e-30;
+  if (positions.empty()) return okStatus();
+  Vec3 lo = positions.front(), hi = positions.front();
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const Vec3& p = positions[i];
+    if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kLargest) {
+      return invalidArgument(who + ": vertex " + std::to_string(i) +
+                             " is outside glTF's float32 range (|coordinate| up to 1e+38); scale the mesh down");
+    }
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const Vec3 extent = hi - lo;
+  const double side = std::max({extent.x, extent.y, extent.z});
+  if (side > 0.0 && side < kSmallestSpan) {
+    char span[32];
+    std::snprintf(span, sizeof span, "%g", side);
+    return invalidArgument(who + ": the mesh spans " + span +
+                           ", too small for glTF's float32 positions (at least 1e-30); scale it up");
+  }
+  return okStatus();
+}
 
 tinygltf::Model newModel(const std::string& generator) {
   tinygltf::Model m;

@@ -35,14 +35,17 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
       }
     }
   }
+  for (std::size_t i = 0; i < v_count; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(positions[i][k])) return invalidArgument(path.string() + ": vertex " + std::to_string(i) + " is not finite");
+    }
+  }
+  ODESKIN_TRY(gltf::checkFloat32Positions(positions, path.string()));
   std::vector<float> xyz;
   std::vector<float> weights(kSlots * v_count, 0.0f);
   std::vector<std::uint16_t> joints(kSlots * v_count, 0);
   for (std::size_t i = 0; i < v_count; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(positions[i][k])) return invalidArgument(path.string() + ": vertex " + std::to_string(i) + " is not finite");
-      xyz.push_back(static_cast<float>(positions[i][k]));
-    }
+    for (int k = 0; k < 3; ++k) xyz.push_back(static_cast<float>(positions[i][k]));
     std::vector<std::pair<double, std::uint32_t>> row;
     for (std::uint32_t k = rig.influences.offsets[i]; k < rig.influences.offsets[i + 1]; ++k) {
       row.push_back({rig.influences.weights[k], rig.influences.bones[k]});

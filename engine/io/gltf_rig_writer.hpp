@@ -17,7 +17,8 @@ namespace odeskin {
 
 // positions and faces: the bind mesh (polygons fanned into triangles); rig: skeleton and
 // influences over it. Written through a temporary and rename. kInvalidArgument for sizes, invalid
-// influences or skeleton, non-finite values, more than 65536 bones; kIoError naming the path.
+// influences or skeleton, non-finite values, positions beyond glTF's float32 range
+// (gltf::checkFloat32Positions), more than 65536 bones; kIoError naming the path.
 Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces, const Rig& rig,
                    const std::string& generator = "odeskin rig");
 

@@ -33,6 +33,7 @@ Status writeSurfaceGlb(const std::filesystem::path& path, const SurfaceMesh& mes
       return invalidArgument("surface glTF: vertex " + std::to_string(i) + " is not finite");
     }
   }
+  ODESKIN_TRY(gltf::checkFloat32Positions(mesh.positions, "surface glTF"));
   const std::vector<std::uint32_t> triangles = gltf::fanTriangles(mesh.faces);
   tinygltf::Model m = gltf::newModel(generator);
   tinygltf::Primitive primitive;

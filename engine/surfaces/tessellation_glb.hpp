@@ -13,8 +13,9 @@
 
 namespace odeskin {
 
-// normals: one per vertex (vertexNormals). kInvalidArgument for a size mismatch or a coordinate that
-// is not finite; kIoError naming `path` when it cannot be written.
+// normals: one per vertex (vertexNormals). kInvalidArgument for a size mismatch, a coordinate that
+// is not finite, or positions beyond glTF's float32 range (gltf::checkFloat32Positions); kIoError
+// naming `path` when it cannot be written.
 Status writeSurfaceGlb(const std::filesystem::path& path, const SurfaceMesh& mesh, std::span<const Vec3> normals,
                        const std::string& generator = "odeskin surface");
 

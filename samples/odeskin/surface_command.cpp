@@ -203,7 +203,10 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   const std::vector<Vec3> normals = vertexNormals(*mesh);
   if (Status s = writeSurfaceGlb(o.output, *mesh, normals); !s.ok()) {
     if (!obj.empty()) std::filesystem::remove(obj, ec);  // all or nothing
-    return reportError(console, "surface: " + s.message(), kExitFailure);
+    // A mesh the glTF cannot hold (float32's range) is this network's; write errors name the file.
+    const bool about_input = s.code() == StatusCode::kInvalidArgument;
+    return reportError(console, "surface: " + (about_input ? o.network.string() + ": " : std::string()) + s.message(),
+                       kExitFailure);
   }
   if (!console.quiet) printSummary(console.out, o, *network, resolution, report, obj);
   if (report_out) *report_out = report;

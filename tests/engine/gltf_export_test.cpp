@@ -610,6 +610,13 @@ TEST_F(GltfExportTest, RejectsBadOptionsAndAssets) {
   ASSERT_FALSE(report.ok());
   EXPECT_NE(report.status().message().find("cycle"), std::string::npos);
   asset.bone_parents.clear();
+  // A vertex beyond float32's range: refused up front, where a morph target failed on it before.
+  DeformAsset far = asset;
+  far.rest_positions[3] *= 1e50;
+  report = exportGltf(far, dir_ / "x.glb", GltfExportOptions{});
+  ASSERT_FALSE(report.ok());
+  EXPECT_NE(report.status().message().find("export: vertex 3 is outside glTF's float32 range"), std::string::npos)
+      << report.status().message();
   asset.segments[0].coefficients.pop_back();  // inconsistent sizes
   EXPECT_FALSE(exportGltf(asset, dir_ / "x.glb", GltfExportOptions{}).ok());
   EXPECT_FALSE(fs::exists(dir_ / "x.glb"));

@@ -167,6 +167,8 @@ TEST(SurfaceCommand, BadNetworksNameTheFileAndFieldAndLeaveNothing) {
   const fs::path huge = writeText(dir / "huge.json", replaced(sheet, "\"lambda\": 1}", "\"lambda\": 1e999}"));
   const fs::path resonant = writeText(dir / "resonant.json", replaced(sheet, "\"eta\": 3", "\"eta\": 80.78355056537535"));
   const fs::path zero_rho = writeText(dir / "zero_rho.json", replaced(sheet, "\"rho\": 1", "\"rho\": 0"));
+  // One control point at 1e50: the surface reaches beyond what glTF's float32 positions hold.
+  const fs::path far = writeText(dir / "far.json", replaced(sheet, "[3, 0, 0]]}", "[3, 0, 1e50]]}"));
   auto options = [&](const fs::path& network) {
     SurfaceCommandOptions o;
     o.network = network;
@@ -183,6 +185,8 @@ TEST(SurfaceCommand, BadNetworksNameTheFileAndFieldAndLeaveNothing) {
       {options(huge), huge.string() + ": shape.lambda: invalid JSON"},
       {options(resonant), resonant.string() + ": patch (row 0, column 0): ode6: resonant shape parameters"},
       {options(zero_rho), zero_rho.string() + ": patch (row 0, column 0): ode6: rho = 0"},
+      {options(far), far.string() + ": surface glTF: vertex"},
+      {options(far), "is outside glTF's float32 range"},
       {options(kNetworks / "fig4_1b.json"), "erratum F9"},
       {options(dir / "absent.json"), (dir / "absent.json").string() + ": cannot open"},
   };
