@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "deform_asset.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 
 #include "../kernels/fourier_deform_job.hpp"
@@ -13,6 +15,33 @@ Status fieldSize(const std::string& field, std::size_t got, std::size_t expected
   if (got == expected) return okStatus();
   return invalidArgument("deform asset: " + field + " has " + std::to_string(got) + " entries, expected " +
                          std::to_string(expected));
+}
+
+// The packed layout is float32: a value beyond 1e38 would deform to infinities on the fast CPU path
+// and the GPU (1e38 leaves room for the sums of the deformation).
+Status checkFloat32(std::span<const Vec3> values, const std::string& field) {
+  constexpr double kLargest = 1e38;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const Vec3& v = values[i];
+    if (!(std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}) <= kLargest)) {
+      return invalidArgument("deform asset: " + field + " " + std::to_string(i) +
+                             " is outside float32's range (|coordinate| up to 1e+38): the packed layout cannot hold it");
+    }
+  }
+  return okStatus();
+}
+
+Status checkFloat32(const DeformAsset& a) {
+  ODESKIN_TRY(checkFloat32(a.rest_positions, "rest position"));
+  for (std::size_t s = 0; s < a.segments.size(); ++s) {
+    const DeformSegment& seg = a.segments[s];
+    const std::string in = "segment " + std::to_string(s) + " ";
+    ODESKIN_TRY(checkFloat32(seg.base_residuals, in + "base residual"));
+    ODESKIN_TRY(checkFloat32(seg.remainders, in + "remainder"));
+    ODESKIN_TRY(checkFloat32(seg.coefficients, in + "coefficient"));
+    ODESKIN_TRY(checkFloat32(seg.rates, in + "rate"));
+  }
+  return okStatus();
 }
 
 }  // namespace
@@ -110,6 +139,7 @@ Status validateDeformAsset(const DeformAsset& a) {
 
 Result<PackedDeformData> packDeformAsset(const DeformAsset& a, std::uint32_t influence_layout) {
   ODESKIN_TRY(validateDeformAsset(a));
+  ODESKIN_TRY(checkFloat32(a));
   PackedDeformData p;
   p.vertex_count = static_cast<std::uint32_t>(a.vertexCount());
   p.modes = static_cast<std::uint32_t>(a.modes);

@@ -405,6 +405,31 @@ TEST(CpuDeformKernel, PerFrameInputsAreValidated) {
   EXPECT_EQ((FourierDeformFastJob{&*packed, 2, bones, basis, out, 1}).validate().code(), StatusCode::kInvalidArgument);
 }
 
+// The packed layout is float32: an asset with a value beyond 1e38 is refused when packed, where it
+// deformed to infinities before.
+TEST(CpuDeformKernel, AssetsBeyondFloatRangeAreRefusedWhenPacked) {
+  Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
+  ASSERT_TRUE(arm.ok());
+  Result<DeformAsset> fitted = fitDeformAsset(arm->fit_input, FitOptions{});
+  ASSERT_TRUE(fitted.ok()) << fitted.status().toString();
+  ASSERT_TRUE(packDeformAsset(*fitted).ok());
+  auto refused = [](const DeformAsset& a, const std::string& names) {
+    const Result<PackedDeformData> packed = packDeformAsset(a);
+    ASSERT_FALSE(packed.ok()) << names;
+    EXPECT_EQ(packed.status().code(), StatusCode::kInvalidArgument);
+    EXPECT_NE(packed.status().message().find(names), std::string::npos) << packed.status().message();
+  };
+  DeformAsset a = *fitted;
+  a.rest_positions[3] *= 1e50;
+  refused(a, "deform asset: rest position 3 is outside float32's range");
+  a = *fitted;
+  a.segments[0].coefficients[5].y = -1e39;
+  refused(a, "deform asset: segment 0 coefficient 5 is outside float32's range");
+  a = *fitted;
+  a.segments[0].base_residuals[2].z = std::numeric_limits<double>::infinity();
+  refused(a, "deform asset: segment 0 base residual 2");
+}
+
 TEST(CpuDeformKernel, BadPackedDataIsRejectedAtCreate) {
   const PackedDeformData good = testing::randomPackedData(packedOptions());
   ASSERT_TRUE(CpuDeformKernel::create(good).ok());
