@@ -61,10 +61,10 @@ struct FitReport {
 };
 
 // Errors: kInvalidArgument (sizes, indices, a curve point off the mesh or without its v, fewer
-// than 2 poses, a pose or the bind mesh with a position that is not finite or too large for
-// double-precision lengths: checkedPositionBox), kIllPosed (a curve with too few points for N when !adaptive_modes, a resonant
-// material mode), and the
-// errors of fitFourier / ModeTimeBasis::create, each prefixed with the curve or material concerned.
+// than 2 poses, a pose or the bind mesh with a position that is not finite, or too large or
+// small for double-precision lengths: checkedPositionBox), kIllPosed (a curve with too few points
+// for N when !adaptive_modes, a resonant material mode), and the errors of fitFourier /
+// ModeTimeBasis::create, each prefixed with the curve or material concerned.
 Result<DeformAsset> fitDeformAsset(const FitInput& input, const FitOptions& options, FitReport* report = nullptr);
 
 // Recomputes every segment's carried rates from its predecessor with the asset's current materials

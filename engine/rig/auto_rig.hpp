@@ -36,8 +36,9 @@ struct AutoRigReport {
 // key_poses (K x B; the identity for every bone in a pose equal to the bind mesh).
 // Measured on cat-poses (10 poses, 7207 vertices, ~1.3 s on one core): 32 bones, mean error
 // 1/120 of the mean motion; horse-gallop frames 1, 5, .., 25: 32 bones, 1/84.
-// kInvalidArgument for sizes, positions not finite or too large (checkedPositionBox), bad faces,
-// options out of range or fewer than 2 poses; kDegenerate if the poses do not move or the mesh is a line.
+// kInvalidArgument for sizes, positions not finite or too large or small for double-precision
+// lengths (checkedPositionBox), bad faces, options out of range or fewer than 2 poses; kDegenerate
+// if the poses do not move or the mesh is a line.
 Result<Rig> autoRig(std::span<const Vec3> rest, const FaceList& faces, const std::vector<std::vector<Vec3>>& poses,
                     const AutoRigOptions& options = {}, AutoRigReport* report = nullptr);
 

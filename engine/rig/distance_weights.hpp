@@ -17,7 +17,7 @@ struct DistanceWeightOptions {
 };
 
 // kInvalidArgument for a skeleton without bones, bad faces, positions not finite or too large
-// (checkedPositionBox), or options out of range.
+// or small for double-precision lengths (checkedPositionBox), or options out of range.
 Result<Influences> distanceWeights(std::span<const Vec3> rest, const FaceList& faces, const Skeleton& skeleton,
                                    const DistanceWeightOptions& options = {});
 

@@ -27,8 +27,8 @@ Result<RigidTransform> weightedKabsch(std::span<const Vec3> from, std::span<cons
 // so the transforms are then refined by SSDR bone sweeps (Le & Deng 2012) to minimise the LBS
 // error of each pose: with exact LBS data they are recovered exactly (the cylinder's .Tmat to
 // their 6 printed digits).
-// kInvalidArgument: no poses, sizes, positions not finite or too large (checkedPositionBox), influences
-// or skeleton invalid.
+// kInvalidArgument: no poses, sizes, positions not finite or too large or small for
+// double-precision lengths (checkedPositionBox), influences or skeleton invalid.
 Result<std::vector<std::vector<RigidTransform>>> fitBoneTransforms(std::span<const Vec3> rest,
                                                                    const std::vector<std::vector<Vec3>>& poses,
                                                                    const Influences& influences,

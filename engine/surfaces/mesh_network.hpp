@@ -78,7 +78,7 @@ class MeshNetwork {
 
   // The network of a pose of the mesh: the samples read on `positions` (vertexCount() of them, the
   // extraction mesh's order). kInvalidArgument for a wrong count or positions not finite or too
-  // large ("the pose: ...", checkedPositionBox).
+  // large or small for double-precision lengths ("the pose: ...", checkedPositionBox).
   Result<NetworkDescription> describe(std::span<const Vec3> positions) const;
   // describe, then Network::build.
   Result<Network> build(std::span<const Vec3> positions) const;

@@ -43,9 +43,10 @@ struct MeshDisk {
 std::vector<Vec3> diskPositions(const MeshDisk& disk, std::span<const Vec3> positions);
 
 // The disk and its parameters. kInvalidArgument (the message names the vertex, edge or face) for:
-// fewer than 3 vertices; positions not finite or too large (checkedPositionBox, vertices numbered
-// from 1); a face index out of range; a vertex in no face; an edge used by more than
-// two faces or twice in one direction (not manifold, or faces not consistently oriented); a vertex
+// fewer than 3 vertices; positions not finite or too large or small for double-precision lengths
+// (checkedPositionBox, vertices numbered from 1); a face index out of range; a vertex in no face;
+// an edge used by more than two faces or twice in one direction (not manifold, or faces not
+// consistently oriented); a vertex
 // where two boundary loops touch; a closed mesh (no rim); a mesh that is not a disk once its holes
 // are filled (several pieces, or handles: V - E + F != 1); a rim of fewer than 4 vertices or whose
 // four corners do not follow each other around it; a zero-length edge or a face with a straight

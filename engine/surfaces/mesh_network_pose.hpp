@@ -29,7 +29,7 @@ struct PoseFlags {
 };
 
 // kInvalidArgument for different vertex counts, a face index out of range, positions not finite or
-// too large for edge lengths ("the reference: ..." or "the pose: ...", checkedPositionBox), or
+// too large or small for edge lengths ("the reference: ..." or "the pose: ...", checkedPositionBox), or
 // ratio <= 1 or NaN.
 // Edges of zero reference length count as stretched if they have any length in the pose.
 Result<PoseFlags> flagVertices(std::span<const Vec3> reference, std::span<const Vec3> pose, const FaceList& faces,
