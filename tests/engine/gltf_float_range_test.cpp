@@ -31,7 +31,7 @@ FaceList quad() {
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("odeskin_gltf_float_range_" + std::to_string(::getpid()) + "_" + name);
+  fs::path dir = fs::temp_directory_path() / ("odeskin_gltf_float_range_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -54,8 +54,8 @@ TEST(SurfaceMesh, NormalsDoNotDependOnSizeOrPlace) {
   const Vec3 expected(0.0, -0.8, 0.6);
   for (const auto& [scale, offset] : {std::pair{1.0, Vec3(1e9, -2e9, 3e9)}, std::pair{1e-150, Vec3(0.0)},
                                       std::pair{1e150, Vec3(0.0)}}) {
-    std::vector<Vec3> p;
-    for (const Vec3& q : square) p.push_back(scale * q + offset);
+    std::vector<Vec3> p(square.size());
+    for (std::size_t i = 0; i < square.size(); ++i) p[i] = scale * square[i] + offset;
     for (const Vec3& n : vertexNormals(p, faces({{0, 1, 2, 3}}))) {
       EXPECT_LT(glm::length(n - expected), 1e-6) << scale << ": " << n.x << " " << n.y << " " << n.z;
     }
