@@ -56,6 +56,11 @@ Result<RigidTransform> weightedKabsch(std::span<const Vec3> from, std::span<cons
     if (weights[i] == 0.0) continue;
     h.noalias() += weights[i] * toEigen(from[i] - from_centroid) * toEigen(to[i] - to_centroid).transpose();
   }
+  // Points 1e200 apart are finite, but their products are not; the SVD would call them collinear.
+  if (!h.allFinite()) {
+    return invalidArgument("kabsch: the points are too far apart for double precision (their products overflow); "
+                           "scale them down");
+  }
   return kabschFromCovariance(h, from_centroid, to_centroid);
 }
 

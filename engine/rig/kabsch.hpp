@@ -13,7 +13,8 @@
 namespace odeskin {
 
 // Points with weight 0 are ignored. kInvalidArgument for mismatched sizes, negative or non-finite
-// weights, or a non-finite point with a positive weight; kDegenerate when the weighted points do
+// weights, a non-finite point with a positive weight, or points so far apart that their products
+// overflow; kDegenerate when the weighted points do
 // not determine a rotation (fewer than 3 non-collinear points with weight > 0; numerically, the
 // weighted cross-covariance's second singular value below 1e-9 of its first). When a reflection
 // would fit better, the best proper rotation (det +1) is returned.

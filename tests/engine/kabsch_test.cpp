@@ -183,6 +183,12 @@ TEST(WeightedKabsch, BadAndDegenerateInput) {
   // Three non-collinear points are enough.
   weights[2] = 0.5;
   EXPECT_TRUE(weightedKabsch(from, to, weights).ok());
+  // Finite points whose products overflow: refused as such, not as collinear points.
+  std::vector<Vec3> far = from;
+  for (Vec3& p : far) p *= 1e200;
+  const Status overflow = weightedKabsch(far, far, weights).status();
+  EXPECT_EQ(overflow.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(overflow.message().find("too far apart for double precision"), std::string::npos) << overflow.message();
 }
 
 struct Cylinder {
