@@ -74,6 +74,7 @@ TEST(GltfFloatRange, BakedAndRigWritersRefuseAndWriteNothing) {
   ASSERT_TRUE(writeRigGlb(dir / "unit.glb", square(1.0), quad(), rig).ok());
   expectMessage(writeRigGlb(dir / "tiny.glb", square(1e-40), quad(), rig), (dir / "tiny.glb").string() + ": the mesh spans 1e-40");
   EXPECT_FALSE(fs::exists(dir / "tiny.glb"));
+  fs::remove_all(dir);
 }
 
 }  // namespace
