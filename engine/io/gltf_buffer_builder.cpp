@@ -8,19 +8,19 @@
 
 #include <glm/common.hpp>
 
+#include "../core/float32_range.hpp"
+
 namespace odeskin::gltf {
 
 Status checkFloat32Positions(std::span<const Vec3> positions, const std::string& who) {
-  constexpr double kLargest = 1e38;
   constexpr double kSmallestSpan = 1e-30;
   if (positions.empty()) return okStatus();
+  if (const std::size_t i = firstBeyondFloat32(positions); i < positions.size()) {
+    return invalidArgument(who + ": vertex " + std::to_string(i) +
+                           " is outside glTF's float32 range (|coordinate| up to 1e+38); scale the mesh down");
+  }
   Vec3 lo = positions.front(), hi = positions.front();
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    const Vec3& p = positions[i];
-    if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kLargest) {
-      return invalidArgument(who + ": vertex " + std::to_string(i) +
-                             " is outside glTF's float32 range (|coordinate| up to 1e+38); scale the mesh down");
-    }
+  for (const Vec3& p : positions) {
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
   }

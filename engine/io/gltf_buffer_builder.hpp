@@ -20,9 +20,9 @@ namespace odeskin::gltf {
 // glTF stores positions as float32: a coordinate beyond float's range would be written as an
 // infinity (and its accessor's min/max as null), and a mesh far below float's normal range as
 // zeros. kInvalidArgument "<who>: vertex I is outside glTF's float32 range (|coordinate| up to
-// 1e+38); scale the mesh down" (1e38 leaves room for a morph target's difference of two
-// positions), or "<who>: the mesh spans S, too small for glTF's float32 positions (at least
-// 1e-30); scale it up" for a longest box side in (0, 1e-30). Positions must be finite.
+// 1e+38); scale the mesh down" (kFloat32CoordinateLimit, the packed deform data's bound too), or
+// "<who>: the mesh spans S, too small for glTF's float32 positions (at least 1e-30); scale it up"
+// for a longest box side in (0, 1e-30). Positions must be finite.
 Status checkFloat32Positions(std::span<const Vec3> positions, const std::string& who);
 
 // A glTF 2.0 model with one empty buffer, ready for appendView.

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "deform_asset.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <span>
 #include <string>
 
+#include "../core/float32_range.hpp"
 #include "../kernels/fourier_deform_job.hpp"
 
 namespace odeskin {
@@ -17,18 +17,13 @@ Status fieldSize(const std::string& field, std::size_t got, std::size_t expected
                          std::to_string(expected));
 }
 
-// The packed layout is float32: a value beyond 1e38 would deform to infinities on the fast CPU path
-// and the GPU (1e38 leaves room for the sums of the deformation).
+// The packed layout is float32: a value beyond its range would deform to infinities on the fast
+// CPU path and the GPU.
 Status checkFloat32(std::span<const Vec3> values, const std::string& field) {
-  constexpr double kLargest = 1e38;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const Vec3& v = values[i];
-    if (!(std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}) <= kLargest)) {
-      return invalidArgument("deform asset: " + field + " " + std::to_string(i) +
-                             " is outside float32's range (|coordinate| up to 1e+38): the packed layout cannot hold it");
-    }
-  }
-  return okStatus();
+  const std::size_t i = firstBeyondFloat32(values);
+  if (i == values.size()) return okStatus();
+  return invalidArgument("deform asset: " + field + " " + std::to_string(i) +
+                         " is outside float32's range (|coordinate| up to 1e+38): the packed layout cannot hold it");
 }
 
 Status checkFloat32(const DeformAsset& a) {

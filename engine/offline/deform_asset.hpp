@@ -63,7 +63,7 @@ Status validateDeformAsset(const DeformAsset& asset);
 // Float32 GPU layout (gpu_layout.h). influence_layout: 0 keeps every influence in sparse rows; 4 or
 // 8 requests fixed slots (kInvalidArgument if a vertex has more; prune first). kInvalidArgument
 // naming the field and element for a position, residual, remainder, coefficient or rate beyond
-// 1e38 (float32 would hold infinities); validateDeformAsset's errors.
+// 1e38 (kFloat32CoordinateLimit: float32 would hold infinities); validateDeformAsset's errors.
 Result<PackedDeformData> packDeformAsset(const DeformAsset& asset, std::uint32_t influence_layout = 0);
 
 }  // namespace odeskin
