@@ -20,10 +20,14 @@ static_assert(std::endian::native == std::endian::little, "glTF buffers are litt
 constexpr std::size_t kMaxUnbackedValues = std::size_t{1} << 27;
 constexpr std::size_t kMinUnbackedCount = std::size_t{1} << 16;
 
+std::size_t bufferBytes(const tinygltf::Model& model) {
+  std::size_t bytes = 0;
+  for (const tinygltf::Buffer& b : model.buffers) bytes += b.data.size();
+  return bytes;
+}
+
 std::size_t unbackedCountLimit(const tinygltf::Model& model, std::size_t components) {
-  std::size_t buffer_bytes = 0;
-  for (const tinygltf::Buffer& b : model.buffers) buffer_bytes += b.data.size();
-  return std::min(kMaxUnbackedValues / components, std::max(buffer_bytes, kMinUnbackedCount));
+  return std::min(kMaxUnbackedValues / components, std::max(bufferBytes(model), kMinUnbackedCount));
 }
 
 std::size_t componentSize(int component_type) {
@@ -216,7 +220,26 @@ Status applySparse(const tinygltf::Model& model, const tinygltf::Accessor& a, co
 
 }  // namespace
 
-Result<AccessorData> readAccessor(const tinygltf::Model& model, int index, const AccessorRequest& request) {
+DecodeBudget::DecodeBudget(const tinygltf::Model& model) {
+  const std::size_t bytes = bufferBytes(model);
+  limit_ = bytes > std::numeric_limits<std::size_t>::max() / kValuesPerByte
+               ? std::numeric_limits<std::size_t>::max()
+               : std::max(bytes * kValuesPerByte, kMinValues);
+}
+
+Status DecodeBudget::charge(std::size_t values, const std::string& what) {
+  if (values > limit_ - spent_) {
+    return parseError(what + ": its " + std::to_string(values) + " values would bring what the file decodes past " +
+                      std::to_string(limit_) + " values (" + std::to_string(kValuesPerByte) +
+                      " per byte of its buffers, at least " + std::to_string(kMinValues) +
+                      "); accessors, primitives, morph targets or animation channels repeat too often");
+  }
+  spent_ += values;
+  return okStatus();
+}
+
+Result<AccessorData> readAccessor(const tinygltf::Model& model, int index, const AccessorRequest& request,
+                                  DecodeBudget& budget) {
   std::string where = "accessor " + std::to_string(index) + " (" + request.what + ")";
   if (index < 0 || index >= static_cast<int>(model.accessors.size())) {
     return parseError(where + " does not exist (" + std::to_string(model.accessors.size()) + " accessors)");
@@ -265,6 +288,8 @@ Result<AccessorData> readAccessor(const tinygltf::Model& model, int index, const
     data.values.assign(a.count * data.components, 0.0);
   }
   if (a.sparse.isSparse) ODESKIN_TRY(applySparse(model, a, l, where, data.values));
+  // Charged once decoded: one accessor is bounded by the checks above, the sum only by the budget.
+  ODESKIN_TRY(budget.charge(data.values.size(), where));
   return data;
 }
 

@@ -51,13 +51,36 @@ struct AccessorData {
   double at(std::size_t element, std::size_t component) const { return values[element * components + component]; }
 };
 
+// The values one read of a file may decode, summed over every accessor it reads and every morph
+// target it fills with zeros. Each accessor alone is bounded by the bytes behind it, but accessors
+// may share those bytes, and primitives, morph targets and animation channels may repeat them, so a
+// file of a few kilobytes could otherwise ask for gigabytes. The total may reach kValuesPerByte per
+// byte of the file's buffers, and kMinValues in any case: a file that reads each byte once stays
+// far inside it, even when dozens of primitives share one vertex buffer.
+class DecodeBudget {
+ public:
+  static constexpr std::size_t kValuesPerByte = 32;
+  static constexpr std::size_t kMinValues = std::size_t{1} << 24;  // 128 MiB as doubles
+
+  explicit DecodeBudget(const tinygltf::Model& model);
+  // Counts `values` more; kParseError naming `what` if the total would pass limit().
+  Status charge(std::size_t values, const std::string& what);
+  std::size_t limit() const { return limit_; }
+
+ private:
+  std::size_t limit_ = 0;
+  std::size_t spent_ = 0;
+};
+
 // Decodes accessor `index`: base data through its bufferView (byteOffset, byteStride; zeros when it
 // has none), normalized integers mapped to [0, 1] or [-1, 1] as the spec says, then the sparse
 // substitutions on top. kParseError naming the accessor index and its role: index out of range, a
 // type or format the request does not accept, a count other than the required one, a bufferView or
 // buffer out of range, data past the end of its bufferView or buffer, a byteStride smaller than an
 // element, non-finite floats, sparse indices not strictly increasing or >= count, a count without
-// a bufferView above one element per byte of the file's buffers (at least 65536; at most 2^27 values).
-Result<AccessorData> readAccessor(const tinygltf::Model& model, int index, const AccessorRequest& request);
+// a bufferView above one element per byte of the file's buffers (at least 65536; at most 2^27 values),
+// or more values than are left in `budget` (charged with the decoded values).
+Result<AccessorData> readAccessor(const tinygltf::Model& model, int index, const AccessorRequest& request,
+                                  DecodeBudget& budget);
 
 }  // namespace odeskin::gltf

@@ -49,7 +49,7 @@ void normalize(std::vector<double>& q) {
 
 }  // namespace
 
-Result<Clip> loadClip(const tinygltf::Model& model, int index) {
+Result<Clip> loadClip(const tinygltf::Model& model, int index, DecodeBudget& budget) {
   const tinygltf::Animation& animation = model.animations[static_cast<std::size_t>(index)];
   Clip clip;
   clip.name = animation.name;
@@ -101,7 +101,7 @@ Result<Clip> loadClip(const tinygltf::Model& model, int index) {
       return parseError(where + ": unknown interpolation '" + sampler.interpolation + "'");
     }
     ODESKIN_ASSIGN_OR_RETURN(AccessorData input,
-                             readAccessor(model, sampler.input, {where + " input", TINYGLTF_TYPE_SCALAR, kTimeFormats}));
+                             readAccessor(model, sampler.input, {where + " input", TINYGLTF_TYPE_SCALAR, kTimeFormats}, budget));
     for (std::size_t k = 1; k < input.count; ++k) {
       if (!(input.values[k] > input.values[k - 1])) {
         return parseError(where + ": keyframe times are not strictly increasing at keyframe " + std::to_string(k));
@@ -115,7 +115,7 @@ Result<Clip> loadClip(const tinygltf::Model& model, int index) {
       output.type = TINYGLTF_TYPE_VEC3;
       output.formats = kVectorFormats;
     }
-    ODESKIN_ASSIGN_OR_RETURN(AccessorData values, readAccessor(model, sampler.output, output));
+    ODESKIN_ASSIGN_OR_RETURN(AccessorData values, readAccessor(model, sampler.output, output, budget));
     if (ch.path == ChannelPath::kRotation) {
       const std::size_t stride = ch.interpolation == Interpolation::kCubicSpline ? 3 : 1;
       const std::size_t first = stride == 3 ? 1 : 0;

@@ -13,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "../core/result.hpp"
+#include "gltf_accessor.hpp"
 #include "gltf_nodes.hpp"
 
 namespace odeskin::gltf {
@@ -39,10 +40,11 @@ struct Clip {
 // Animation `index` with every sampler decoded and checked. kParseError naming the animation and
 // channel: a sampler or node index out of range, an unknown interpolation, input times not strictly
 // increasing, an output count that does not match the input count, a node that has a matrix but
-// is animated (spec: only TRS nodes may be), a weights channel on a node without morph targets.
+// is animated (spec: only TRS nodes may be), a weights channel on a node without morph targets,
+// samplers decoding to more values than `budget` has left (each channel decodes its sampler again).
 // Channels with no target node or with a path other than the four core ones are skipped (they
 // belong to extensions).
-Result<Clip> loadClip(const tinygltf::Model& model, int index);
+Result<Clip> loadClip(const tinygltf::Model& model, int index, DecodeBudget& budget);
 
 // The channel's value at `time_s` (width numbers).
 std::vector<double> sample(const Channel& channel, double time_s);

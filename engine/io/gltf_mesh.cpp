@@ -25,16 +25,18 @@ bool has(const std::map<std::string, int>& attributes, const std::string& name) 
 
 // Appends one primitive's triangles, offset by `first` render vertices.
 Status readTriangles(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
-                     std::size_t vertex_count, std::uint32_t first, std::vector<std::uint32_t>& triangles) {
+                     std::size_t vertex_count, std::uint32_t first, std::vector<std::uint32_t>& triangles,
+                     DecodeBudget& budget) {
   if (prim.indices < 0) {
     if (vertex_count % 3 != 0) {
       return parseError(where + ": " + std::to_string(vertex_count) + " unindexed vertices are not whole triangles");
     }
+    ODESKIN_TRY(budget.charge(vertex_count, where + " unindexed triangles"));
     for (std::size_t i = 0; i < vertex_count; ++i) triangles.push_back(first + static_cast<std::uint32_t>(i));
     return okStatus();
   }
   ODESKIN_ASSIGN_OR_RETURN(AccessorData indices,
-                           readAccessor(model, prim.indices, {where + " indices", TINYGLTF_TYPE_SCALAR, kIndexFormats}));
+                           readAccessor(model, prim.indices, {where + " indices", TINYGLTF_TYPE_SCALAR, kIndexFormats}, budget));
   if (indices.count % 3 != 0) {
     return parseError(where + ": " + std::to_string(indices.count) + " indices are not whole triangles");
   }
@@ -63,16 +65,16 @@ std::size_t influenceSets(const tinygltf::Primitive& prim, const std::string& wh
 
 // Appends JOINTS_s / WEIGHTS_s, s < sets, of one primitive's `n` vertices.
 Status readInfluences(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
-                      std::size_t n, std::size_t sets, MeshData& out) {
+                      std::size_t n, std::size_t sets, MeshData& out, DecodeBudget& budget) {
   std::vector<AccessorData> joints(sets);
   std::vector<AccessorData> weights(sets);
   for (std::size_t s = 0; s < sets; ++s) {
     const std::string j = "JOINTS_" + std::to_string(s);
     const std::string w = "WEIGHTS_" + std::to_string(s);
     ODESKIN_ASSIGN_OR_RETURN(joints[s], readAccessor(model, prim.attributes.at(j),
-                                                     {where + " " + j, TINYGLTF_TYPE_VEC4, kJointFormats, n}));
+                                                     {where + " " + j, TINYGLTF_TYPE_VEC4, kJointFormats, n}, budget));
     ODESKIN_ASSIGN_OR_RETURN(weights[s], readAccessor(model, prim.attributes.at(w),
-                                                      {where + " " + w, TINYGLTF_TYPE_VEC4, kWeightFormats, n}));
+                                                      {where + " " + w, TINYGLTF_TYPE_VEC4, kWeightFormats, n}, budget));
   }
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t s = 0; s < sets; ++s) {
@@ -87,19 +89,21 @@ Status readInfluences(const tinygltf::Model& model, const tinygltf::Primitive& p
 
 // Appends every morph target's POSITION deltas of one primitive's `n` vertices.
 Status readTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
-                   std::size_t n, bool quantized, MeshData& out) {
+                   std::size_t n, bool quantized, MeshData& out, DecodeBudget& budget) {
   const std::span<const AccessorFormat> delta_formats =
       quantized ? std::span<const AccessorFormat>(kQuantizedDeltas) : std::span<const AccessorFormat>(kFloatOnly);
   for (std::size_t t = 0; t < out.target_deltas.size(); ++t) {
     std::vector<Vec3>& deltas = out.target_deltas[t];
     const auto position = prim.targets[t].find("POSITION");
     if (position == prim.targets[t].end()) {
+      ODESKIN_TRY(budget.charge(3 * n, where + " target " + std::to_string(t) + " (zeros: no POSITION)"));
       deltas.resize(deltas.size() + n, Vec3(0.0));
       continue;
     }
     ODESKIN_ASSIGN_OR_RETURN(AccessorData d, readAccessor(model, position->second,
                                                           {where + " target " + std::to_string(t) + " POSITION",
-                                                           TINYGLTF_TYPE_VEC3, delta_formats, n}));
+                                                           TINYGLTF_TYPE_VEC3, delta_formats, n},
+                                                          budget));
     for (std::size_t i = 0; i < n; ++i) deltas.emplace_back(d.at(i, 0), d.at(i, 1), d.at(i, 2));
   }
   return okStatus();
@@ -107,7 +111,7 @@ Status readTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim
 
 }  // namespace
 
-Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool quantized) {
+Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool quantized, DecodeBudget& budget) {
   const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(mesh_index)];
   const std::string mesh_name = "mesh " + std::to_string(mesh_index);
   if (mesh.primitives.empty()) return parseError(mesh_name + " has no primitives");
@@ -125,14 +129,15 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
     const std::span<const AccessorFormat> position_formats =
         quantized ? std::span<const AccessorFormat>(kQuantizedPositions) : std::span<const AccessorFormat>(kFloatOnly);
     ODESKIN_ASSIGN_OR_RETURN(AccessorData positions, readAccessor(model, position->second,
-                                                                  {where + " POSITION", TINYGLTF_TYPE_VEC3, position_formats}));
+                                                                  {where + " POSITION", TINYGLTF_TYPE_VEC3, position_formats},
+                                                                  budget));
     const std::size_t n = positions.count;
     if (out.positions.size() + n > std::numeric_limits<std::uint32_t>::max()) {
       return parseError(mesh_name + " has more than 2^32 - 1 vertices");
     }
     const auto first = static_cast<std::uint32_t>(out.positions.size());
     for (std::size_t i = 0; i < n; ++i) out.positions.emplace_back(positions.at(i, 0), positions.at(i, 1), positions.at(i, 2));
-    ODESKIN_TRY(readTriangles(model, prim, where, n, first, out.triangles));
+    ODESKIN_TRY(readTriangles(model, prim, where, n, first, out.triangles, budget));
 
     Status status;
     const std::size_t sets = influenceSets(prim, where, status);
@@ -142,12 +147,12 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
       return parseError(where + " has " + std::to_string(sets) + " JOINTS_n/WEIGHTS_n sets, primitive 0 has " +
                         std::to_string(out.influence_sets));
     }
-    ODESKIN_TRY(readInfluences(model, prim, where, n, sets, out));
+    ODESKIN_TRY(readInfluences(model, prim, where, n, sets, out, budget));
     if (prim.targets.size() != target_count) {
       return parseError(where + " has " + std::to_string(prim.targets.size()) + " morph targets, primitive 0 has " +
                         std::to_string(target_count));
     }
-    ODESKIN_TRY(readTargets(model, prim, where, n, quantized, out));
+    ODESKIN_TRY(readTargets(model, prim, where, n, quantized, out, budget));
   }
   return out;
 }

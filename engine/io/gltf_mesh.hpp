@@ -11,6 +11,7 @@
 
 #include "../core/result.hpp"
 #include "../core/types.hpp"
+#include "gltf_accessor.hpp"
 
 namespace odeskin::gltf {
 
@@ -28,7 +29,7 @@ struct MeshData {
 // primitives, a mode other than TRIANGLES (4), no POSITION, an index count not a multiple of 3 or
 // an index >= the primitive's vertex count, JOINTS_n without WEIGHTS_n (or the reverse) or sets
 // that differ between primitives, primitives with different morph-target counts, any readAccessor
-// error.
-Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool quantized);
+// error, or more decoded values (accessors, unindexed triangles, zero deltas) than `budget` has left.
+Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool quantized, DecodeBudget& budget);
 
 }  // namespace odeskin::gltf

@@ -160,12 +160,12 @@ Status animatedPose(const tinygltf::Model& model, const Skinned& s, const Clip& 
 
 // The skin of node `mesh_node` and the rig it gives (skeleton and influences; key poses come later).
 Result<Skinned> readSkinned(const tinygltf::Model& model, int mesh_node, const MeshData& mesh, const Welded& welded,
-                            Rig& rig) {
+                            Rig& rig, DecodeBudget& budget) {
   const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(mesh_node)];
   Skinned s;
   ODESKIN_ASSIGN_OR_RETURN(s.parents, nodeParents(model));
   ODESKIN_ASSIGN_OR_RETURN(s.rest, restTransforms(model));
-  ODESKIN_ASSIGN_OR_RETURN(s.skin, readSkin(model, node.skin, s.parents));
+  ODESKIN_ASSIGN_OR_RETURN(s.skin, readSkin(model, node.skin, s.parents, budget));
   if (mesh.influence_sets == 0) {
     return parseError(nodeLabel(model, mesh_node) + " has a skin but mesh " + std::to_string(node.mesh) +
                       " has no JOINTS_0/WEIGHTS_0");
@@ -180,9 +180,9 @@ Result<Skinned> readSkinned(const tinygltf::Model& model, int mesh_node, const M
 Status appendAnimatedPoses(const tinygltf::Model& model, const GltfPoseRequest& request, const std::string& file,
                            const Skinned& skinned, int mesh_node, const std::vector<Vec3>& base,
                            const std::vector<std::vector<Vec3>>& deltas, const std::vector<double>& default_weights,
-                           ExampleSet& out) {
+                           ExampleSet& out, DecodeBudget& budget) {
   ODESKIN_ASSIGN_OR_RETURN(const int animation, chooseAnimation(model, request.animation));
-  ODESKIN_ASSIGN_OR_RETURN(const Clip clip, loadClip(model, animation));
+  ODESKIN_ASSIGN_OR_RETURN(const Clip clip, loadClip(model, animation, budget));
   const std::string name = clip.name.empty() ? "animation " + std::to_string(animation) : clip.name;
   for (double t : request.times) {
     const std::string label = file + " " + name + " at " + formatTime(t) + " s";
@@ -211,7 +211,8 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
     return invalidArgument(nodeLabel(model, mesh_node) + " has no skin, so it has no poses at times");
   }
 
-  ODESKIN_ASSIGN_OR_RETURN(MeshData mesh, readMesh(model, node.mesh, usesMeshQuantization(model)));
+  DecodeBudget budget(model);
+  ODESKIN_ASSIGN_OR_RETURN(MeshData mesh, readMesh(model, node.mesh, usesMeshQuantization(model), budget));
   const std::size_t targets = mesh.target_deltas.size();
   for (int k : request.morph_targets) {
     if (k < 0 || static_cast<std::size_t>(k) >= targets) {
@@ -232,7 +233,7 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
   std::optional<Skinned> skinned;
   if (node.skin >= 0) {
     out.rig.emplace();
-    ODESKIN_ASSIGN_OR_RETURN(skinned, readSkinned(model, mesh_node, mesh, welded, *out.rig));
+    ODESKIN_ASSIGN_OR_RETURN(skinned, readSkinned(model, mesh_node, mesh, welded, *out.rig, budget));
   }
   const std::vector<RigidTransform> identity(skinned ? skinned->skin.joint_nodes.size() : 0);
 
@@ -243,7 +244,7 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
   }
   if (!request.times.empty()) {
     ODESKIN_TRY(appendAnimatedPoses(model, request, file, *skinned, mesh_node, welded.positions, deltas,
-                                    default_weights, out));
+                                    default_weights, out, budget));
   }
   for (int k : request.morph_targets) {
     std::vector<double> w = default_weights;

@@ -68,7 +68,8 @@ double rowDifference(const Row& a, const Row& b) {
 
 }  // namespace
 
-Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::span<const int> parents) {
+Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::span<const int> parents,
+                          DecodeBudget& budget) {
   const tinygltf::Skin& skin = model.skins[static_cast<std::size_t>(skin_index)];
   const std::string where = "skin " + std::to_string(skin_index);
   const std::size_t bones = skin.joints.size();
@@ -90,7 +91,8 @@ Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::spa
   out.inverse_bind.assign(bones, glm::dmat4(1.0));
   if (skin.inverseBindMatrices >= 0) {
     ODESKIN_ASSIGN_OR_RETURN(AccessorData ibm, readAccessor(model, skin.inverseBindMatrices,
-                                                            {where + " inverseBindMatrices", TINYGLTF_TYPE_MAT4, kMatrixFormats}));
+                                                            {where + " inverseBindMatrices", TINYGLTF_TYPE_MAT4, kMatrixFormats},
+                                                            budget));
     if (ibm.count < bones) {
       return parseError(where + ": " + std::to_string(ibm.count) + " inverse bind matrices for " +
                         std::to_string(bones) + " joints");

@@ -11,6 +11,7 @@
 #include "../core/result.hpp"
 #include "../kernels/influences.hpp"
 #include "../rig/rig.hpp"
+#include "gltf_accessor.hpp"
 #include "gltf_mesh.hpp"
 #include "gltf_weld.hpp"
 
@@ -27,8 +28,9 @@ struct SkinData {
 
 // kParseError naming the skin: no joints, a joint node out of range or repeated, an
 // inverseBindMatrices accessor that is not float MAT4 or has fewer elements than joints, an IBM
-// whose last row is not (0, 0, 0, 1) or which is singular.
-Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::span<const int> parents);
+// whose last row is not (0, 0, 0, 1) or which is singular, or more values than `budget` has left.
+Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::span<const int> parents,
+                          DecodeBudget& budget);
 
 // Influences of the topology vertices: each takes its first render vertex's JOINTS_n/WEIGHTS_n,
 // duplicate joints summed, weights divided by their sum, zero weights dropped, rows sorted by bone.

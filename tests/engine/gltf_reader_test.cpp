@@ -806,6 +806,57 @@ TEST(GltfReaderErrors, UnbackedAccessorCountIsBoundedByTheBuffers) {
               {"unbacked.gltf: ", "count 44739240 without a bufferView is beyond the limit of 65536"});
 }
 
+// Primitives, morph targets and animation channels may each repeat what a few bytes declare, and
+// every repetition is decoded again: what one read decodes is bounded by 32 values per byte of the
+// file's buffers, and 2^24 in any case. Each primitive below decodes 65,535 x 3 zeros and as many
+// triangle corners (262,140 values), so primitive 64 is the first past 2^24.
+TEST(GltfReaderErrors, RepeatedPrimitivesAreBoundedByTheBuffers) {
+  std::string primitives;
+  for (int p = 0; p < 70; ++p) primitives += std::string(p > 0 ? "," : "") + R"({"attributes":{"POSITION":0}})";
+  const std::string json = R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],"meshes":[{"primitives":[)" +
+                           primitives + R"(]}],"accessors":[{"componentType":5126,"count":65535,"type":"VEC3",)" +
+                           R"("min":[0,0,0],"max":[0,0,0]}]})";
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  expectError(parseGltfExamples(json, "repeated.gltf", request), StatusCode::kParseError,
+              {"repeated.gltf: accessor 0 (mesh 0 primitive 64 POSITION): its 196605 values",
+               "past 16777216 values (32 per byte of its buffers, at least 16777216)", "repeat too often"});
+}
+
+// A target without POSITION costs nothing in the file but 3 zeros per vertex in memory.
+TEST(GltfReaderErrors, EmptyMorphTargetsAreBoundedByTheBuffers) {
+  std::string targets;
+  for (int t = 0; t < 90; ++t) targets += std::string(t > 0 ? "," : "") + "{}";
+  const std::string json = std::string(R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],"meshes":[{"primitives":[)") +
+                           R"({"attributes":{"POSITION":0},"targets":[)" + targets +
+                           R"(]}]}],"accessors":[{"componentType":5126,"count":65535,"type":"VEC3",)" +
+                           R"("min":[0,0,0],"max":[0,0,0]}]})";
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  expectError(parseGltfExamples(json, "targets.gltf", request), StatusCode::kParseError,
+              {"targets.gltf: mesh 0 primitive 0 target 84 (zeros: no POSITION): its 196605 values", "repeat too often"});
+}
+
+// 200 channels of one sampler of 65,536 keys (1 MiB of the buffer): each channel decodes the
+// sampler again, 262,144 values, and the budget (32 per byte, 33,588,224 values) runs out at
+// channel 128; the same animation with one channel reads.
+TEST(GltfReaderErrors, RepeatedAnimationChannelsAreBoundedByTheBuffers) {
+  Tube tube = makeTube();
+  Builder b;
+  b.model = std::move(tube.model);
+  std::vector<double> times(65536);
+  std::vector<double> shifts(3 * times.size(), 0.0);
+  for (std::size_t k = 0; k < times.size(); ++k) times[k] = 0.001 * static_cast<double>(k);
+  tinygltf::Animation slide;
+  slide.name = "slide";
+  addChannel(b, slide, 1, "translation", "LINEAR", times, shifts, TINYGLTF_TYPE_VEC3);
+  b.model.animations.push_back(slide);
+  EXPECT_TRUE(read(write(b.model, "few.glb", true), {1.0}, {}, "slide").ok());
+  for (int c = 0; c < 199; ++c) b.model.animations.back().channels.push_back(b.model.animations.back().channels[0]);
+  expectError(read(write(b.model, "many.glb", true), {1.0}, {}, "slide"), StatusCode::kParseError,
+              {"many.glb: accessor 17 (animation 3 channel 128 input): its 65536 values", "repeat too often"});
+}
+
 TEST(GltfReaderErrors, MissingFile) {
   const fs::path path = tempDir() / "absent.glb";
   expectError(read(path, {1.0}), StatusCode::kIoError, {path.string()});
