@@ -16,7 +16,6 @@ namespace odeskin {
 namespace {
 
 std::string at(const std::string& source, std::size_t line) { return source + ":" + std::to_string(line) + ": "; }
-std::string at(const std::filesystem::path& path, std::size_t line) { return at(path.string(), line); }
 
 Vec3 toGlm(const Eigen::Vector3d& v) { return Vec3(v.x(), v.y(), v.z()); }
 
@@ -186,7 +185,11 @@ Result<Influences> readWeightsDmat(const std::filesystem::path& path, std::size_
 
 Result<std::vector<RigidTransform>> readTmat(const std::filesystem::path& path, std::size_t bone_count) {
   ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
-  if (bone_count == 0) return invalidArgument(path.string() + ": asked for 0 bones");
+  return parseTmat(text, path.string(), bone_count);
+}
+
+Result<std::vector<RigidTransform>> parseTmat(const std::string& text, const std::string& source, std::size_t bone_count) {
+  if (bone_count == 0) return invalidArgument(source + ": asked for 0 bones");
   std::vector<Eigen::Vector3d> rows;  // one per numeric line
   std::vector<std::size_t> row_lines;
   LineReader reader(text);
@@ -198,15 +201,15 @@ Result<std::vector<RigidTransform>> readTmat(const std::filesystem::path& path, 
     Eigen::Vector3d row;
     for (int k = 0; k < 3; ++k, token = nextToken(rest)) {
       if (!parseDouble(token, row[k])) {
-        return parseError(at(path, reader.number()) + "expected 3 finite numbers, found '" + std::string(line) + "'");
+        return parseError(at(source, reader.number()) + "expected 3 finite numbers, found '" + std::string(line) + "'");
       }
     }
-    if (!token.empty()) return parseError(at(path, reader.number()) + "more than 3 numbers on a line");
+    if (!token.empty()) return parseError(at(source, reader.number()) + "more than 3 numbers on a line");
     rows.push_back(row);
     row_lines.push_back(reader.number());
   }
   if (rows.size() != 4 * bone_count) {
-    return invalidArgument(path.string() + ": " + std::to_string(rows.size()) + " lines of 3 numbers, expected 4 x " +
+    return invalidArgument(source + ": " + std::to_string(rows.size()) + " lines of 3 numbers, expected 4 x " +
                            std::to_string(bone_count) + " bones = " + std::to_string(4 * bone_count));
   }
   std::vector<RigidTransform> transforms(bone_count);
@@ -218,7 +221,7 @@ Result<std::vector<RigidTransform>> readTmat(const std::filesystem::path& path, 
     const Eigen::JacobiSVD<Eigen::Matrix3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
     const Eigen::Matrix3d nearest = svd.matrixU() * svd.matrixV().transpose();
     const double off = (r - nearest).cwiseAbs().maxCoeff();
-    const std::string where = at(path, row_lines[4 * b]) + "bone " + std::to_string(b);
+    const std::string where = at(source, row_lines[4 * b]) + "bone " + std::to_string(b);
     if (nearest.determinant() < 0.0)
       return invalidArgument(where + " has determinant < 0: a reflection, not a rotation");
     if (!(off <= 1e-4)) {
@@ -234,6 +237,10 @@ Result<std::vector<RigidTransform>> readTmat(const std::filesystem::path& path, 
 
 Result<std::vector<glm::dquat>> readPoseJson(const std::filesystem::path& path, std::size_t bone_count) {
   ODESKIN_ASSIGN_OR_RETURN(const std::string text, readTextFile(path));
+  return parsePoseJson(text, path.string(), bone_count);
+}
+
+Result<std::vector<glm::dquat>> parsePoseJson(const std::string& text, const std::string& source, std::size_t bone_count) {
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
@@ -241,21 +248,27 @@ Result<std::vector<glm::dquat>> readPoseJson(const std::filesystem::path& path, 
     const std::size_t byte = std::min<std::size_t>(e.byte, text.size());
     const std::size_t line =
         1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(byte), '\n'));
-    return parseError(at(path, line) + "invalid JSON (" + e.what() + ")");
+    return parseError(at(source, line) + "invalid JSON (" + e.what() + ")");
   } catch (const nlohmann::json::exception& e) {
-    return parseError(path.string() + ": invalid JSON (" + e.what() + ")");
+    return parseError(source + ": invalid JSON (" + e.what() + ")");
   }
-  if (!doc.is_object()) return parseError(path.string() + ": the top level is not a JSON object");
+  if (!doc.is_object()) return parseError(source + ": the top level is not a JSON object");
   std::vector<glm::dquat> rotations(bone_count, glm::dquat(1.0, 0.0, 0.0, 0.0));
+  // "dQ-1" and "dQ-01" name the same bone; JSON allows both keys, and one would silently win.
+  std::vector<std::string> key_of_bone(bone_count);
   for (const auto& [key, value] : doc.items()) {
     if (key.rfind("dQ-", 0) != 0) continue;  // Camera, threshold: viewer state
-    const std::string where = path.string() + ": \"" + key + "\"";
+    const std::string where = source + ": \"" + key + "\"";
     std::size_t b = 0;
     if (!parseInt(std::string_view(key).substr(3), b)) return parseError(where + " does not name a bone number");
     if (b >= bone_count) {
       return parseError(where + " names bone " + std::to_string(b) + " but the skeleton has " +
                         std::to_string(bone_count) + " bones");
     }
+    if (!key_of_bone[b].empty()) {
+      return parseError(where + " names bone " + std::to_string(b) + ", as \"" + key_of_bone[b] + "\" does");
+    }
+    key_of_bone[b] = key;
     if (!value.is_array() || value.size() != 4) return parseError(where + " must be an array [x, y, z, w]");
     double q[4];
     for (std::size_t k = 0; k < 4; ++k) {

@@ -51,11 +51,16 @@ Result<Influences> readWeightsDmat(const std::filesystem::path& path, std::size_
 // kInvalidArgument naming path and line: a line count other than 4B, a block farther than 1e-4
 // (max entry) from a rotation, or a reflection (det -1). kParseError for a line that is not 3 numbers.
 Result<std::vector<RigidTransform>> readTmat(const std::filesystem::path& path, std::size_t bone_count);
+// readTmat on text already in memory; `source` stands for the path in the messages.
+Result<std::vector<RigidTransform>> parseTmat(const std::string& text, const std::string& source, std::size_t bone_count);
 
 // "dQ-<b>": [x, y, z, w] relative rotations; a missing bone is the identity; other keys are ignored.
 // Quaternions are normalised. kParseError naming the path (and line for bad JSON): not an object,
-// a key dQ-<b> with b not a number or >= bone_count, not 4 finite numbers, or length off 1 by > 1e-4.
+// a key dQ-<b> with b not a number or >= bone_count, two keys naming one bone ("dQ-1", "dQ-01"),
+// not 4 finite numbers, or length off 1 by > 1e-4.
 Result<std::vector<glm::dquat>> readPoseJson(const std::filesystem::path& path, std::size_t bone_count);
+// readPoseJson on text already in memory; `source` stands for the path in the messages.
+Result<std::vector<glm::dquat>> parsePoseJson(const std::string& text, const std::string& source, std::size_t bone_count);
 
 // libigl forward_kinematics with zero extra translation: root R_b = q_b, t_b = c - R_b c;
 // child R_b = R_p q_b, t_b = t_p + R_p c - R_b c (c = the bone's head). Parents may come in any order.

@@ -142,6 +142,41 @@ TEST(ParseTgf, TextInMemoryReadsAsTheFileAndErrorsNameTheSource) {
   EXPECT_EQ(bad.status().message(), "memory.tgf:3: bone starts and ends at joint 1");
 }
 
+// --- .Tmat and pose .json in memory ---
+
+TEST(ParseTmat, TextInMemoryReadsAsTheFileAndErrorsNameTheSource) {
+  const fs::path path = kData / "cylinder/poses-1/cylinder-1.Tmat";
+  const Result<std::vector<RigidTransform>> from_file = readTmat(path, 4);
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Result<std::vector<RigidTransform>> from_text = parseTmat(text, "tmat in memory", 4);
+  ASSERT_TRUE(from_file.ok() && from_text.ok());
+  for (std::size_t b = 0; b < 4; ++b) {
+    EXPECT_EQ((*from_text)[b].rotation, (*from_file)[b].rotation);
+    EXPECT_EQ((*from_text)[b].translation, (*from_file)[b].translation);
+  }
+  const Result<std::vector<RigidTransform>> bad = parseTmat("1 0 0\n0 1 0\n0 0 x\n", "memory.Tmat", 1);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message().rfind("memory.Tmat:3: expected 3 finite numbers", 0), 0u) << bad.status().message();
+}
+
+TEST(ParsePoseJson, TextInMemoryErrorsNameTheSource) {
+  const Result<std::vector<glm::dquat>> q = parsePoseJson(R"({"dQ-1": [0, 0, 0.6, 0.8]})", "pose in memory", 2);
+  ASSERT_TRUE(q.ok()) << q.status().toString();
+  EXPECT_NEAR((*q)[1].z, 0.6, 1e-15);
+  const Result<std::vector<glm::dquat>> bad = parsePoseJson("{\"dQ-0\": [0, 0, 1]}", "memory.json", 2);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message(), "memory.json: \"dQ-0\" must be an array [x, y, z, w]");
+}
+
+TEST(ParsePoseJson, TwoKeysNamingOneBoneAreRefused) {
+  const Result<std::vector<glm::dquat>> q =
+      parsePoseJson(R"({"dQ-01": [0, 0, 0.6, 0.8], "dQ-1": [0, 0, 0, 1]})", "twice.json", 2);
+  ASSERT_FALSE(q.ok());
+  EXPECT_EQ(q.status().code(), StatusCode::kParseError);
+  EXPECT_EQ(q.status().message(), "twice.json: \"dQ-1\" names bone 1, as \"dQ-01\" does") << q.status().message();
+}
+
 // --- .dmat ---
 
 TEST(ParseDmat, TextInMemoryErrorsNameTheSource) {
