@@ -3,7 +3,7 @@
 # and runs each target for a bounded time (docs/reliability.md, "Fuzzing").
 #   scripts/fuzz.sh [--seconds-per-target S] [--jobs J] [--targets "obj gltf ..."] [--unoptimised]
 # S: seconds of fuzzing per target (default 20; CI uses 15, a long run e.g. 3600). J: parallel
-# fuzzing processes per target (libFuzzer -fork; default 1). Targets: obj tgf dmat odsk gltf network rig.
+# fuzzing processes per target (libFuzzer -fork; default 1). Targets: obj tgf dmat tmat pose odsk gltf network rig.
 # --unoptimised: build at -O0 into build-fuzz-O0/ (CI: the instrumented engine compiles in less than
 # half the CPU time of -O1, at a lower fuzzing rate, which short runs can afford).
 # Exits non-zero when a target crashes, leaks, runs out of memory (2 GiB) or spends over 10 s on one
@@ -16,7 +16,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds=20
 opt=1
 jobs=1
-targets="obj tgf dmat odsk gltf network rig"
+targets="obj tgf dmat tmat pose odsk gltf network rig"
 while (($#)); do
   case "$1" in
     --seconds-per-target) seconds="$2"; shift 2 ;;
@@ -56,7 +56,7 @@ echo "fuzz.sh: built in $(($(date +%s) - start)) s"
 # edge cases, and what the engine's own writers produce (odeskin_fuzz_seeds) -------------------------
 seeds="$build/seeds"
 rm -rf "$seeds"
-mkdir -p "$seeds"/{obj,tgf,dmat,odsk,gltf,network,rig}
+mkdir -p "$seeds"/{obj,tgf,dmat,tmat,pose,odsk,gltf,network,rig}
 "$build/tests/fuzz/odeskin_fuzz_seeds" "$seeds"
 copy_if_there() {  # copy_if_there DEST FILE...: data files are optional (a checkout without ../shared)
   local dest="$1"; shift
@@ -71,6 +71,16 @@ printf 'v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nv 0 0 1e-1\r\nf 1 2 3\r\nf 1/1 -1/2 -2/
 printf 'v 0 0 0 # x y z\nvt 0 0\nvn 0 0 1\ng part\nv 1 0 0\nv 1 1 0\nf 1 2 3' > "$seeds/obj/triangle-no-newline.obj"
 printf '1 0 0 0\n2 0 1 0\n3 0 2 0\n#\n1 2\n2 3\n#\n' > "$seeds/tgf/chain.tgf"
 printf '2 3\n0.5 0.25 1\n0.5 0.75 0\n' > "$seeds/dmat/small.dmat"
+# .Tmat and pose .json seeds start with the byte their target reads as the bone count (1 + byte % 32).
+with_bones() {  # with_bones BONES SRC DEST: DEST is the byte BONES - 1, then SRC (skipped if SRC is missing)
+  [[ -f "$2" ]] || return 0
+  { printf "\\$(printf '%03o' "$(($1 - 1))")"; cat "$2"; } > "$3"
+}
+with_bones 4 "$data/cylinder/poses-1/cylinder-1.Tmat" "$seeds/tmat/cylinder-1.Tmat"
+with_bones 11 "$data/cheburashka/poses-1/cheburashka-1.Tmat" "$seeds/tmat/cheburashka-1.Tmat"
+with_bones 4 "$data/cylinder/poses-2/cylinder-1.json" "$seeds/pose/cylinder-1.json"
+with_bones 11 "$data/cheburashka/poses-1/cheburashka-1.json" "$seeds/pose/cheburashka-1.json"
+printf '\001{"dQ-1": [0, 0, 0.6, 0.8], "threshold": 1, "Camera": {}}' > "$seeds/pose/two-bones.json"
 # The rig's seeds: the OBJ seeds, and an open tube of quads (the edge loops' path).
 cp "$seeds/obj"/* "$seeds/rig/"
 awk 'BEGIN { pi = atan2(0, -1); s = 8; r = 10
@@ -94,7 +104,7 @@ logs="$build/fuzz-logs"
 mkdir -p "$logs"
 for t in $targets; do
   bin="$build/tests/fuzz/fuzz_$t"
-  [[ -x "$bin" ]] || { echo "fuzz.sh: no target '$t' (obj tgf dmat odsk gltf network rig)" >&2; exit 2; }
+  [[ -x "$bin" ]] || { echo "fuzz.sh: no target '$t' (obj tgf dmat tmat pose odsk gltf network rig)" >&2; exit 2; }
   corpus="$build/corpus/$t"
   findings="$build/findings/$t"
   mkdir -p "$corpus" "$findings"
