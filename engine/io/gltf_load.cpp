@@ -50,6 +50,36 @@ bool noWrite(std::string* err, const std::string&, const std::vector<unsigned ch
 
 bool isGlb(std::string_view first_bytes) { return first_bytes.substr(0, 4) == "glTF"; }
 
+std::uint32_t littleEndian32(std::string_view bytes, std::size_t at) {
+  std::uint32_t v = 0;
+  for (std::size_t k = 0; k < 4; ++k) v |= std::uint32_t{static_cast<unsigned char>(bytes[at + k])} << (8 * k);
+  return v;
+}
+
+// The GLB container (glTF 2.0, "Binary glTF Layout"). tinygltf 2.7 checks a BIN chunk's length
+// against the file's total length without the chunk's own 8-byte header, so a chunk declared up to
+// 8 bytes longer than what follows it passes, and tinygltf then copies those bytes from past the
+// end of its input into the buffer: a heap over-read, and bytes from outside the file in the
+// geometry. Everything else about the layout tinygltf checks and reports itself. `read(offset, n)`
+// returns the file's n bytes from offset (fewer at its end).
+Status checkGlbChunks(const std::function<std::string(std::uint64_t, std::size_t)>& read, std::uint64_t size,
+                      const std::string& source) {
+  const std::string header = read(0, 20);
+  if (header.size() < 20) return okStatus();
+  const std::uint64_t length = std::min<std::uint64_t>(littleEndian32(header, 8), size);
+  const std::uint64_t bin_header = 20 + std::uint64_t{littleEndian32(header, 12)};  // past the JSON chunk
+  if (bin_header + 8 > length) return okStatus();
+  const std::string chunk = read(bin_header, 8);
+  if (chunk.size() < 8) return okStatus();
+  const std::uint64_t bin_length = littleEndian32(chunk, 0);
+  if (bin_header + 8 + bin_length > length) {
+    return parseError(source + ": the GLB's second chunk declares " + std::to_string(bin_length) +
+                      " bytes from byte " + std::to_string(bin_header + 8) + ", past the end of its " +
+                      std::to_string(length) + " bytes (truncated or corrupted)");
+  }
+  return okStatus();
+}
+
 // tinygltf's load (it reports a bad file by returning false, but a few paths throw).
 Result<tinygltf::Model> runLoader(const std::string& source,
                                   const std::function<bool(tinygltf::Model&, std::string&, std::string&)>& load) {
@@ -81,13 +111,19 @@ Result<tinygltf::Model> loadModel(const std::filesystem::path& path) {
   if (size > static_cast<std::uintmax_t>(std::numeric_limits<std::int32_t>::max())) {
     return ioError(path.string() + ": " + std::to_string(size) + " bytes, over the 2 GiB tinygltf 2.7 can read");
   }
-  std::array<char, 4> magic{};
-  {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) return ioError(path.string() + ": cannot open for reading");
-    file.read(magic.data(), magic.size());
-  }
-  const bool binary = isGlb(std::string_view(magic.data(), magic.size()));
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return ioError(path.string() + ": cannot open for reading");
+  const auto read = [&](std::uint64_t offset, std::size_t n) {
+    std::string bytes(n, '\0');
+    file.clear();
+    file.seekg(static_cast<std::streamoff>(offset));
+    file.read(bytes.data(), static_cast<std::streamsize>(n));
+    bytes.resize(static_cast<std::size_t>(std::max<std::streamsize>(file.gcount(), 0)));
+    return bytes;
+  };
+  const bool binary = isGlb(read(0, 4));
+  if (binary) ODESKIN_TRY(checkGlbChunks(read, size, path.string()));
+  file.close();
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
@@ -104,6 +140,12 @@ Result<tinygltf::Model> loadModelFromMemory(const std::string& bytes, const std:
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
   loader.SetFsCallbacks(tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
+  if (isGlb(bytes)) {
+    const auto read = [&](std::uint64_t offset, std::size_t n) {
+      return offset >= bytes.size() ? std::string() : bytes.substr(static_cast<std::size_t>(offset), n);
+    };
+    ODESKIN_TRY(checkGlbChunks(read, bytes.size(), source));
+  }
   const auto length = static_cast<unsigned int>(bytes.size());
   return runLoader(source, [&](tinygltf::Model& model, std::string& err, std::string& warn) {
     return isGlb(bytes) ? loader.LoadBinaryFromMemory(&model, &err, &warn,

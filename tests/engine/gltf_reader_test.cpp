@@ -877,6 +877,34 @@ TEST(GltfReaderErrors, TruncatedGlb) {
   expectError(read(path, {1.0}), StatusCode::kParseError, {path.string(), "tinygltf"});
 }
 
+// Found reading tinygltf's GLB checks while instrumenting it for the fuzz build, and confirmed by
+// ASan there (tests/fuzz/regressions/gltf/bin-chunk-past-end.glb): tinygltf 2.7 compares a BIN chunk's length with the file's without the chunk's 8-byte header,
+// so a file cut by 8 bytes (and its total length fixed up) read 8 bytes from past its end into
+// the buffer, and the picture or fit went ahead. Both readers now refuse it.
+TEST(GltfReaderErrors, BinChunkPastTheEndIsRefused) {
+  const fs::path whole = write(makeTube().model, "whole.glb", true);
+  std::string bytes;
+  {
+    std::ifstream in(whole, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  bytes.resize(bytes.size() - 8);
+  const auto length = static_cast<std::uint32_t>(bytes.size());
+  std::memcpy(bytes.data() + 8, &length, 4);  // the header's total length, little-endian like the file
+  const fs::path cut = tempDir() / "cut.glb";
+  {
+    std::ofstream out(cut, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  expectError(read(cut, {1.0}), StatusCode::kParseError,
+              {cut.string() + ": the GLB's second chunk declares", "past the end of its " + std::to_string(length) + " bytes"});
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  expectError(parseGltfExamples(bytes, "cut.glb", request), StatusCode::kParseError,
+              {"cut.glb: the GLB's second chunk declares"});
+  EXPECT_TRUE(read(whole, {1.0}).ok());
+}
+
 TEST(GltfReaderErrors, MalformedJson) {
   const fs::path path = tempDir() / "broken.gltf";
   std::ofstream(path) << "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [";
