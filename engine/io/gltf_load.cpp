@@ -12,6 +12,8 @@
 #include <system_error>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace odeskin::gltf {
 namespace {
 
@@ -56,18 +58,40 @@ std::uint32_t littleEndian32(std::string_view bytes, std::size_t at) {
   return v;
 }
 
+// tinygltf 2.7 copies a GLB's BIN chunk into every buffer without a uri, so a few bytes of JSON
+// naming many such buffers multiply the file in memory. The spec lets only the first buffer be the
+// BIN chunk; two without a uri are refused before tinygltf sees them.
+Status checkGlbBuffers(const std::string& json_chunk, const std::string& source) {
+  const nlohmann::json doc = nlohmann::json::parse(json_chunk, nullptr, /*allow_exceptions=*/false);
+  const auto buffers = doc.is_object() ? doc.find("buffers") : doc.end();
+  if (!doc.is_object() || buffers == doc.end() || !buffers->is_array()) return okStatus();  // tinygltf's to report
+  std::size_t first = buffers->size();
+  for (std::size_t b = 0; b < buffers->size(); ++b) {
+    const nlohmann::json& buffer = (*buffers)[b];
+    if (!buffer.is_object() || buffer.contains("uri")) continue;
+    if (first < b) {
+      return parseError(source + ": buffers " + std::to_string(first) + " and " + std::to_string(b) +
+                        " both have no uri; in a GLB only the first buffer may stand for the BIN chunk");
+    }
+    first = b;
+  }
+  return okStatus();
+}
+
 // The GLB container (glTF 2.0, "Binary glTF Layout"). tinygltf 2.7 checks a BIN chunk's length
 // against the file's total length without the chunk's own 8-byte header, so a chunk declared up to
 // 8 bytes longer than what follows it passes, and tinygltf then copies those bytes from past the
 // end of its input into the buffer: a heap over-read, and bytes from outside the file in the
-// geometry. Everything else about the layout tinygltf checks and reports itself. `read(offset, n)`
-// returns the file's n bytes from offset (fewer at its end).
+// geometry. Then the buffers (checkGlbBuffers). Everything else about the layout tinygltf checks
+// and reports itself. `read(offset, n)` returns the file's n bytes from offset (fewer at its end).
 Status checkGlbChunks(const std::function<std::string(std::uint64_t, std::size_t)>& read, std::uint64_t size,
                       const std::string& source) {
   const std::string header = read(0, 20);
   if (header.size() < 20) return okStatus();
   const std::uint64_t length = std::min<std::uint64_t>(littleEndian32(header, 8), size);
-  const std::uint64_t bin_header = 20 + std::uint64_t{littleEndian32(header, 12)};  // past the JSON chunk
+  const std::uint64_t json_length = littleEndian32(header, 12);
+  const std::uint64_t bin_header = 20 + json_length;  // past the JSON chunk
+  if (bin_header <= length) ODESKIN_TRY(checkGlbBuffers(read(20, static_cast<std::size_t>(json_length)), source));
   if (bin_header + 8 > length) return okStatus();
   const std::string chunk = read(bin_header, 8);
   if (chunk.size() < 8) return okStatus();

@@ -18,6 +18,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/offline/deform_player.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include <tiny_gltf.h>
@@ -903,6 +905,40 @@ TEST(GltfReaderErrors, BinChunkPastTheEndIsRefused) {
   expectError(parseGltfExamples(bytes, "cut.glb", request), StatusCode::kParseError,
               {"cut.glb: the GLB's second chunk declares"});
   EXPECT_TRUE(read(whole, {1.0}).ok());
+}
+
+// tinygltf 2.7 fills every buffer without a uri with a copy of the BIN chunk: 2,000 of them in
+// a 2 MB GLB asked for 4 GB. Only the first buffer may stand for the chunk; a second is refused.
+TEST(GltfReaderErrors, SecondBufferWithoutUriIsRefused) {
+  const fs::path whole = write(makeTube().model, "whole.glb", true);
+  std::string glb;
+  {
+    std::ifstream in(whole, std::ios::binary);
+    glb.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  std::uint32_t json_length = 0;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  nlohmann::json doc = nlohmann::json::parse(glb.substr(20, json_length));
+  ASSERT_TRUE(doc["buffers"].is_array() && !doc["buffers"][0].contains("uri"));
+  doc["buffers"].push_back({{"byteLength", 4}});
+  std::string json = doc.dump();
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  std::string bytes = glb.substr(0, 12);
+  const auto new_json_length = static_cast<std::uint32_t>(json.size());
+  bytes.append(reinterpret_cast<const char*>(&new_json_length), 4);
+  bytes += "JSON" + json + glb.substr(20 + json_length);
+  const auto total = static_cast<std::uint32_t>(bytes.size());
+  std::memcpy(bytes.data() + 8, &total, 4);
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  expectError(parseGltfExamples(bytes, "two-bins.glb", request), StatusCode::kParseError,
+              {"two-bins.glb: buffers 0 and 1 both have no uri"});
+  const fs::path path = tempDir() / "two-bins.glb";
+  {
+    std::ofstream out(path, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  expectError(read(path, {1.0}), StatusCode::kParseError, {path.string() + ": buffers 0 and 1 both have no uri"});
 }
 
 TEST(GltfReaderErrors, MalformedJson) {
