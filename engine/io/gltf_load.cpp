@@ -8,6 +8,7 @@
 #include <functional>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <system_error>
 #include <vector>
@@ -58,22 +59,56 @@ std::uint32_t littleEndian32(std::string_view bytes, std::size_t at) {
   return v;
 }
 
-// tinygltf 2.7 copies a GLB's BIN chunk into every buffer without a uri, so a few bytes of JSON
-// naming many such buffers multiply the file in memory. The spec lets only the first buffer be the
-// BIN chunk; two without a uri are refused before tinygltf sees them.
-Status checkGlbBuffers(const std::string& json_chunk, const std::string& source) {
-  const nlohmann::json doc = nlohmann::json::parse(json_chunk, nullptr, /*allow_exceptions=*/false);
-  const auto buffers = doc.is_object() ? doc.find("buffers") : doc.end();
-  if (!doc.is_object() || buffers == doc.end() || !buffers->is_array()) return okStatus();  // tinygltf's to report
-  std::size_t first = buffers->size();
-  for (std::size_t b = 0; b < buffers->size(); ++b) {
-    const nlohmann::json& buffer = (*buffers)[b];
-    if (!buffer.is_object() || buffer.contains("uri")) continue;
-    if (first < b) {
-      return parseError(source + ": buffers " + std::to_string(first) + " and " + std::to_string(b) +
-                        " both have no uri; in a GLB only the first buffer may stand for the BIN chunk");
+// An unsigned integer member of a JSON object, or nothing (tinygltf reports what is malformed).
+std::optional<std::uint64_t> unsignedMember(const nlohmann::json& object, const char* name) {
+  const auto it = object.find(name);
+  if (it == object.end() || !it->is_number_unsigned()) return std::nullopt;
+  return it->get<std::uint64_t>();
+}
+
+// What tinygltf 2.7 does not check in the glTF JSON (a .gltf file, or a GLB's JSON chunk), where it
+// costs memory or reaches outside the input. It copies a GLB's BIN chunk into every buffer without
+// a uri, so a few bytes of JSON naming many such buffers multiply the file in memory (the spec lets
+// only one buffer stand for the chunk). And it takes the address of an image's first byte in its
+// buffer without checking that the bufferView lies inside it. Anything malformed is left for
+// tinygltf to report in its own words.
+Status checkJson(std::string_view json, bool glb, const std::string& source) {
+  const nlohmann::json doc = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
+  if (!doc.is_object()) return okStatus();
+  const auto array = [&](const char* name) {
+    const auto it = doc.find(name);
+    return it != doc.end() && it->is_array() ? &*it : nullptr;
+  };
+  const nlohmann::json* buffers = array("buffers");
+  if (glb && buffers) {
+    std::optional<std::size_t> first;
+    for (std::size_t b = 0; b < buffers->size(); ++b) {
+      if (!(*buffers)[b].is_object() || (*buffers)[b].contains("uri")) continue;
+      if (first) {
+        return parseError(source + ": buffers " + std::to_string(*first) + " and " + std::to_string(b) +
+                          " both have no uri; in a GLB only the first buffer may stand for the BIN chunk");
+      }
+      first = b;
     }
-    first = b;
+  }
+  const nlohmann::json* views = array("bufferViews");
+  const nlohmann::json* images = array("images");
+  if (!buffers || !views || !images) return okStatus();
+  for (std::size_t i = 0; i < images->size(); ++i) {
+    if (!(*images)[i].is_object()) continue;
+    const std::optional<std::uint64_t> v = unsignedMember((*images)[i], "bufferView");
+    if (!v || *v >= views->size() || !(*views)[*v].is_object()) continue;
+    const nlohmann::json& view = (*views)[*v];
+    const std::optional<std::uint64_t> b = unsignedMember(view, "buffer");
+    if (!b || *b >= buffers->size() || !(*buffers)[*b].is_object()) continue;
+    const std::optional<std::uint64_t> size = unsignedMember((*buffers)[*b], "byteLength");
+    const std::uint64_t offset = unsignedMember(view, "byteOffset").value_or(0);
+    const std::uint64_t length = unsignedMember(view, "byteLength").value_or(0);
+    if (size && (offset >= *size || length > *size - offset)) {
+      return parseError(source + ": image " + std::to_string(i) + "'s bufferView " + std::to_string(*v) +
+                        " (byteOffset " + std::to_string(offset) + ", byteLength " + std::to_string(length) +
+                        ") lies outside buffer " + std::to_string(*b) + " (" + std::to_string(*size) + " bytes)");
+    }
   }
   return okStatus();
 }
@@ -82,20 +117,17 @@ Status checkGlbBuffers(const std::string& json_chunk, const std::string& source)
 // against the file's total length without the chunk's own 8-byte header, so a chunk declared up to
 // 8 bytes longer than what follows it passes, and tinygltf then copies those bytes from past the
 // end of its input into the buffer: a heap over-read, and bytes from outside the file in the
-// geometry. Then the buffers (checkGlbBuffers). Everything else about the layout tinygltf checks
-// and reports itself. `read(offset, n)` returns the file's n bytes from offset (fewer at its end).
-Status checkGlbChunks(const std::function<std::string(std::uint64_t, std::size_t)>& read, std::uint64_t size,
-                      const std::string& source) {
-  const std::string header = read(0, 20);
-  if (header.size() < 20) return okStatus();
-  const std::uint64_t length = std::min<std::uint64_t>(littleEndian32(header, 8), size);
-  const std::uint64_t json_length = littleEndian32(header, 12);
+// geometry. Then the JSON chunk (checkJson). Everything else about the layout tinygltf checks and
+// reports itself.
+Status checkGlb(std::string_view bytes, const std::string& source) {
+  if (bytes.size() < 20) return okStatus();
+  const std::uint64_t length = std::min<std::uint64_t>(littleEndian32(bytes, 8), bytes.size());
+  const std::uint64_t json_length = littleEndian32(bytes, 12);
   const std::uint64_t bin_header = 20 + json_length;  // past the JSON chunk
-  if (bin_header <= length) ODESKIN_TRY(checkGlbBuffers(read(20, static_cast<std::size_t>(json_length)), source));
+  if (bin_header > length) return okStatus();
+  ODESKIN_TRY(checkJson(bytes.substr(20, static_cast<std::size_t>(json_length)), true, source));
   if (bin_header + 8 > length) return okStatus();
-  const std::string chunk = read(bin_header, 8);
-  if (chunk.size() < 8) return okStatus();
-  const std::uint64_t bin_length = littleEndian32(chunk, 0);
+  const std::uint64_t bin_length = littleEndian32(bytes, static_cast<std::size_t>(bin_header));
   if (bin_header + 8 + bin_length > length) {
     return parseError(source + ": the GLB's second chunk declares " + std::to_string(bin_length) +
                       " bytes from byte " + std::to_string(bin_header + 8) + ", past the end of its " +
@@ -124,6 +156,26 @@ Result<tinygltf::Model> runLoader(const std::string& source,
   return model;
 }
 
+// A .gltf or .glb held in memory. `base_dir`: the folder external files are found in, or null for
+// bytes with no folder (every external URI refused, nothing written).
+Result<tinygltf::Model> loadBytes(const std::string& bytes, const std::string& source, const std::string* base_dir) {
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+    return ioError(source + ": " + std::to_string(bytes.size()) + " bytes, over the 2 GiB tinygltf 2.7 can read");
+  }
+  const bool glb = isGlb(bytes);
+  ODESKIN_TRY(glb ? checkGlb(bytes, source) : checkJson(bytes, false, source));
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skipImage, nullptr);
+  if (!base_dir) loader.SetFsCallbacks(tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
+  const std::string folder = base_dir ? *base_dir : std::string();
+  const auto length = static_cast<unsigned int>(bytes.size());
+  return runLoader(source, [&](tinygltf::Model& model, std::string& err, std::string& warn) {
+    return glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                             length, folder)
+               : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), length, folder);
+  });
+}
+
 }  // namespace
 
 Result<tinygltf::Model> loadModel(const std::filesystem::path& path) {
@@ -135,47 +187,19 @@ Result<tinygltf::Model> loadModel(const std::filesystem::path& path) {
   if (size > static_cast<std::uintmax_t>(std::numeric_limits<std::int32_t>::max())) {
     return ioError(path.string() + ": " + std::to_string(size) + " bytes, over the 2 GiB tinygltf 2.7 can read");
   }
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return ioError(path.string() + ": cannot open for reading");
-  const auto read = [&](std::uint64_t offset, std::size_t n) {
-    std::string bytes(n, '\0');
-    file.clear();
-    file.seekg(static_cast<std::streamoff>(offset));
-    file.read(bytes.data(), static_cast<std::streamsize>(n));
-    bytes.resize(static_cast<std::size_t>(std::max<std::streamsize>(file.gcount(), 0)));
-    return bytes;
-  };
-  const bool binary = isGlb(read(0, 4));
-  if (binary) ODESKIN_TRY(checkGlbChunks(read, size, path.string()));
-  file.close();
-
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skipImage, nullptr);
-  return runLoader(path.string(), [&](tinygltf::Model& model, std::string& err, std::string& warn) {
-    return binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                  : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
-  });
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) return ioError(path.string() + ": cannot open for reading");
+    file.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (file.gcount() != static_cast<std::streamsize>(bytes.size())) return ioError(path.string() + ": read failed");
+  }
+  const std::string folder = path.parent_path().string();  // where tinygltf finds external buffers
+  return loadBytes(bytes, path.string(), &folder);
 }
 
 Result<tinygltf::Model> loadModelFromMemory(const std::string& bytes, const std::string& source) {
-  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
-    return ioError(source + ": " + std::to_string(bytes.size()) + " bytes, over the 2 GiB tinygltf 2.7 can read");
-  }
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skipImage, nullptr);
-  loader.SetFsCallbacks(tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
-  if (isGlb(bytes)) {
-    const auto read = [&](std::uint64_t offset, std::size_t n) {
-      return offset >= bytes.size() ? std::string() : bytes.substr(static_cast<std::size_t>(offset), n);
-    };
-    ODESKIN_TRY(checkGlbChunks(read, bytes.size(), source));
-  }
-  const auto length = static_cast<unsigned int>(bytes.size());
-  return runLoader(source, [&](tinygltf::Model& model, std::string& err, std::string& warn) {
-    return isGlb(bytes) ? loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                                      reinterpret_cast<const unsigned char*>(bytes.data()), length, "")
-                        : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), length, "");
-  });
+  return loadBytes(bytes, source, nullptr);
 }
 
 Status checkRequiredExtensions(const tinygltf::Model& model) {

@@ -16,8 +16,9 @@ namespace odeskin::gltf {
 // are not decoded (odeskin reads geometry only; this also keeps KTX2/WebP images from failing the
 // load). kIoError naming the path: missing, unreadable, or over 2 GiB (tinygltf 2.7 has no size
 // guard). kParseError naming the path with tinygltf's message when it refuses the file, or for a
-// GLB whose second (BIN) chunk runs past the file's end, which tinygltf 2.7 would read past, or
-// with two buffers without a uri, each of which tinygltf 2.7 would fill with a copy of that chunk.
+// GLB whose second (BIN) chunk runs past the file's end, which tinygltf 2.7 would read past, a GLB
+// with two buffers without a uri, each of which tinygltf 2.7 would fill with a copy of that chunk,
+// or an image whose bufferView lies outside its buffer, which tinygltf 2.7 would point past.
 Result<tinygltf::Model> loadModel(const std::filesystem::path& path);
 
 // loadModel on bytes already in memory; `source` stands for the path in the messages. It has no

@@ -941,6 +941,28 @@ TEST(GltfReaderErrors, SecondBufferWithoutUriIsRefused) {
   expectError(read(path, {1.0}), StatusCode::kParseError, {path.string() + ": buffers 0 and 1 both have no uri"});
 }
 
+// tinygltf 2.7 takes the address of an image's first byte in its buffer without checking that
+// the bufferView lies inside it (odeskin skips images, but the address itself is out of bounds).
+TEST_P(GltfFormats, ImageViewOutsideItsBufferIsRefused) {
+  Tube tube = makeTube();
+  tinygltf::Model& m = tube.model;
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = m.buffers[0].data.size() + 100;
+  view.byteLength = 4;
+  m.bufferViews.push_back(view);
+  tinygltf::Image image;
+  image.bufferView = static_cast<int>(m.bufferViews.size()) - 1;
+  image.mimeType = "image/png";
+  m.images.push_back(image);
+  const fs::path path = write(m, GetParam() ? "image.glb" : "image.gltf", GetParam());
+  expectError(read(path, {1.0}), StatusCode::kParseError,
+              {path.string() + ": image 0's bufferView " + std::to_string(image.bufferView) + " (byteOffset " +
+               std::to_string(view.byteOffset) + ", byteLength 4) lies outside buffer 0"});
+  m.bufferViews.back().byteOffset = 0;  // inside: the image is skipped and the tube reads
+  EXPECT_TRUE(read(write(m, GetParam() ? "inside.glb" : "inside.gltf", GetParam()), {1.0}).ok());
+}
+
 TEST(GltfReaderErrors, MalformedJson) {
   const fs::path path = tempDir() / "broken.gltf";
   std::ofstream(path) << "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [";
