@@ -66,14 +66,28 @@ std::optional<std::uint64_t> unsignedMember(const nlohmann::json& object, const 
   return it->get<std::uint64_t>();
 }
 
+// glTF's own structure nests about ten deep; "extras" and "extensions" hold anything, and
+// tinygltf 2.7 copies them into its Value type recursively, one stack frame per level.
+constexpr int kMaxJsonDepth = 256;
+
 // What tinygltf 2.7 does not check in the glTF JSON (a .gltf file, or a GLB's JSON chunk), where it
-// costs memory or reaches outside the input. It copies a GLB's BIN chunk into every buffer without
-// a uri, so a few bytes of JSON naming many such buffers multiply the file in memory (the spec lets
-// only one buffer stand for the chunk). And it takes the address of an image's first byte in its
-// buffer without checking that the bufferView lies inside it. Anything malformed is left for
-// tinygltf to report in its own words.
+// crashes, costs memory or reaches outside the input. JSON nested too deep overflows its stack (a
+// 400 KB .gltf of nested arrays in "extras" crashed odeskin). It copies a GLB's BIN chunk into
+// every buffer without a uri, so a few bytes of JSON naming many such buffers multiply the file in
+// memory (the spec lets only one buffer stand for the chunk). And it takes the address of an
+// image's first byte in its buffer without checking that the bufferView lies inside it. Anything
+// malformed is left for tinygltf to report in its own words.
 Status checkJson(std::string_view json, bool glb, const std::string& source) {
-  const nlohmann::json doc = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
+  int deepest = 0;
+  const auto track = [&deepest](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    deepest = std::max(deepest, depth);
+    return true;
+  };
+  const nlohmann::json doc = nlohmann::json::parse(json, track, /*allow_exceptions=*/false);
+  if (deepest > kMaxJsonDepth) {
+    return parseError(source + ": its JSON nests " + std::to_string(deepest) + " levels deep, beyond the " +
+                      std::to_string(kMaxJsonDepth) + " odeskin reads");
+  }
   if (!doc.is_object()) return okStatus();
   const auto array = [&](const char* name) {
     const auto it = doc.find(name);

@@ -963,6 +963,32 @@ TEST_P(GltfFormats, ImageViewOutsideItsBufferIsRefused) {
   EXPECT_TRUE(read(write(m, GetParam() ? "inside.glb" : "inside.gltf", GetParam()), {1.0}).ok());
 }
 
+// tinygltf 2.7 copies "extras" into its own Value type one stack frame per level: 200,000 nested
+// arrays (a 400 KB file) crashed odeskin render with a stack overflow. JSON may nest 256 deep.
+TEST(GltfReaderErrors, DeeplyNestedJsonIsRefused) {
+  std::string json;
+  {
+    std::ifstream in(write(makeTube().model, "tube.gltf", false), std::ios::binary);
+    json.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto nested = [&json](int levels) {  // "extras" of the asset, `levels` arrays deep in all
+    nlohmann::json doc = nlohmann::json::parse(json);
+    nlohmann::json extras = 1;
+    for (int k = 0; k < levels - 2; ++k) extras = nlohmann::json::array({extras});
+    doc["asset"]["extras"] = extras;
+    return doc.dump();
+  };
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  EXPECT_TRUE(parseGltfExamples(nested(256), "256.gltf", request).ok());
+  expectError(parseGltfExamples(nested(257), "257.gltf", request), StatusCode::kParseError,
+              {"257.gltf: its JSON nests 257 levels deep, beyond the 256 odeskin reads"});
+  const std::string deep = R"({"asset":{"version":"2.0","extras":)" + std::string(200000, '[') + "1" +
+                           std::string(200000, ']') + "}}";
+  expectError(parseGltfExamples(deep, "deep.gltf", request), StatusCode::kParseError,
+              {"deep.gltf: its JSON nests 200002 levels deep"});
+}
+
 TEST(GltfReaderErrors, MalformedJson) {
   const fs::path path = tempDir() / "broken.gltf";
   std::ofstream(path) << "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [";
