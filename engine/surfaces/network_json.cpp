@@ -100,6 +100,15 @@ Result<const json*> required(const json& object, const std::string& path, const 
   return &*it;
 }
 
+// A value as an error message shows it: itself when it is a scalar, else its kind. Never dump() a
+// container from the file: dump recurses one stack frame per level, and a few hundred kilobytes of
+// nested arrays overflow the stack (odeskin surface crashed on such a "columns").
+std::string shown(const json& value) {
+  if (value.is_array()) return "an array of " + std::to_string(value.size()) + (value.size() == 1 ? " element" : " elements");
+  if (value.is_object()) return "an object";
+  return value.dump();
+}
+
 Result<double> number(const json& value, const std::string& path) {
   if (!value.is_number()) return fail(path, std::string("expected a number, got ") + value.type_name());
   const double x = value.get<double>();
@@ -109,7 +118,7 @@ Result<double> number(const json& value, const std::string& path) {
 
 Result<std::uint32_t> count(const json& value, const std::string& path, std::uint32_t minimum) {
   if (!value.is_number_integer() || value.get<std::int64_t>() < minimum || value.get<std::int64_t>() > 1 << 24) {
-    return fail(path, "expected an integer in [" + std::to_string(minimum) + ", 16777216], got " + value.dump());
+    return fail(path, "expected an integer in [" + std::to_string(minimum) + ", 16777216], got " + shown(value));
   }
   return static_cast<std::uint32_t>(value.get<std::int64_t>());
 }
@@ -128,7 +137,7 @@ Result<bool> flag(const json& object, const std::string& path, const char* key, 
 
 Result<std::vector<double>> numbers(const json& value, const std::string& path, std::size_t size) {
   if (!value.is_array() || value.size() != size) {
-    return fail(path, "expected an array of " + std::to_string(size) + " numbers, got " + value.dump());
+    return fail(path, "expected an array of " + std::to_string(size) + " numbers, got " + shown(value));
   }
   std::vector<double> out;
   for (std::size_t i = 0; i < size; ++i) {
@@ -321,7 +330,7 @@ Result<NetworkDescription> parseNetworkDescription(std::string_view text_view) {
   ODESKIN_TRY(checkKeys(root, "", {"version", "description", "columns", "closed_u", "continuity", "curves",
                                    "boundaries", "shape", "row_shapes", "patch_shapes"}));
   ODESKIN_ASSIGN_OR_RETURN(const json* version, required(root, "", "version"));
-  if (*version != kNetworkJsonVersion) return fail("version", "expected 1, got " + version->dump());
+  if (*version != kNetworkJsonVersion) return fail("version", "expected 1, got " + shown(*version));
   NetworkDescription d;
   ODESKIN_ASSIGN_OR_RETURN(const json* columns, required(root, "", "columns"));
   ODESKIN_ASSIGN_OR_RETURN(d.columns, count(*columns, "columns", 1));

@@ -127,6 +127,23 @@ TEST(NetworkJson, TooManyPatchesAreRefusedBeforeAllocating) {
   EXPECT_EQ(d.status().message(), "columns: 1 rows x 16777216 columns = 16777216 patches, more than the 4194304 a network may have");
 }
 
+// Error messages showed the offending value with dump(), which recurses one stack frame per level:
+// 300,000 nested arrays as "columns" or "version" (600 KB) crashed odeskin surface. A container is
+// now shown by its kind and size.
+TEST(NetworkJson, DeeplyNestedValuesAreShownByTheirKind) {
+  const std::string deep = std::string(300000, '[') + std::string(300000, ']');
+  Result<NetworkDescription> d = parseNetworkDescription(replaced(kSmall, "\"columns\": 2", "\"columns\": " + deep));
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.status().message(), "columns: expected an integer in [1, 16777216], got an array of 1 element");
+  d = parseNetworkDescription(replaced(kSmall, "\"version\": 1", "\"version\": " + deep));
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.status().message(), "version: expected 1, got an array of 1 element");
+  d = parseNetworkDescription(replaced(kSmall, "[1,1,0.5]", "{\"x\": 1}"));
+  ASSERT_FALSE(d.ok());
+  EXPECT_NE(d.status().message().find("curves.b.points[1]: expected an array of 3 numbers, got an object"), std::string::npos)
+      << d.status().message();
+}
+
 TEST(NetworkJson, FileErrorsStartWithThePath) {
   const std::filesystem::path missing = std::filesystem::temp_directory_path() / "odeskin_no_such_network.json";
   Result<NetworkDescription> d = readNetworkDescription(missing);
