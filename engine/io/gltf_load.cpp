@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <functional>
 #include <fstream>
@@ -66,6 +67,36 @@ std::optional<std::uint64_t> unsignedMember(const nlohmann::json& object, const 
   return it->get<std::uint64_t>();
 }
 
+// Whether the quote at `at` is escaped: an odd run of backslashes before it. The run stops at the
+// string's opening quote at the latest.
+bool escaped(std::string_view json, std::size_t at) {
+  std::size_t slashes = 0;
+  while (json[at - 1 - slashes] == '\\') ++slashes;
+  return slashes % 2 == 1;
+}
+
+// How deep the JSON text's arrays and objects nest, counted without parsing it: strings are
+// skipped whole with memchr, so a .gltf whose buffers are megabytes of base64 costs little.
+int jsonNesting(std::string_view json) {
+  int depth = 0;
+  int deepest = 0;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '"') {
+      do {  // to the next quote that an even run of backslashes (or none) precedes
+        const void* quote = std::memchr(json.data() + i + 1, '"', json.size() - i - 1);
+        if (!quote) return deepest;
+        i = static_cast<std::size_t>(static_cast<const char*>(quote) - json.data());
+      } while (escaped(json, i));
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
 // glTF's own structure nests about ten deep; "extras" and "extensions" hold anything, and
 // tinygltf 2.7 copies them into its Value type recursively, one stack frame per level.
 constexpr int kMaxJsonDepth = 256;
@@ -78,16 +109,19 @@ constexpr int kMaxJsonDepth = 256;
 // image's first byte in its buffer without checking that the bufferView lies inside it. Anything
 // malformed is left for tinygltf to report in its own words.
 Status checkJson(std::string_view json, bool glb, const std::string& source) {
-  int deepest = 0;
-  const auto track = [&deepest](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-    deepest = std::max(deepest, depth);
-    return true;
-  };
-  const nlohmann::json doc = nlohmann::json::parse(json, track, /*allow_exceptions=*/false);
+  const int deepest = jsonNesting(json);
   if (deepest > kMaxJsonDepth) {
     return parseError(source + ": its JSON nests " + std::to_string(deepest) + " levels deep, beyond the " +
                       std::to_string(kMaxJsonDepth) + " odeskin reads");
   }
+  // The rest needs the document; a .gltf without images has nothing left to check, and parsing
+  // megabytes of base64 twice would cost a fifth of the whole read. (A key may be spelt with
+  // \u escapes, so text with any is parsed. The search starts at a quote, which base64 lacks:
+  // searching for a letter would stop at every sixty-fourth character.)
+  if (!glb && json.find("\"images\"") == std::string_view::npos && json.find("\\u") == std::string_view::npos) {
+    return okStatus();
+  }
+  const nlohmann::json doc = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object()) return okStatus();
   const auto array = [&](const char* name) {
     const auto it = doc.find(name);
