@@ -63,9 +63,8 @@ class DecodeBudget {
   static constexpr std::size_t kMinValues = std::size_t{1} << 24;  // 128 MiB as doubles
 
   explicit DecodeBudget(const tinygltf::Model& model);
-  // Counts `values` more; kParseError naming `what` if the total would pass limit().
+  // Counts `values` more; kParseError naming `what` if the total would pass the limit.
   Status charge(std::size_t values, const std::string& what);
-  std::size_t limit() const { return limit_; }
 
  private:
   std::size_t limit_ = 0;
