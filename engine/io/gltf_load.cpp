@@ -52,6 +52,33 @@ bool noWrite(std::string* err, const std::string&, const std::vector<unsigned ch
   return false;
 }
 
+// File callbacks for a glTF read from disk. tinygltf 2.7's own open any path it is given and read
+// it whole before comparing its size with the buffer's byteLength: a URI naming a FIFO blocked the
+// read forever, and one naming a file of many gigabytes read all of it. Only regular files up to
+// 2 GiB (what tinygltf 2.7 can index) are read here.
+bool existingFile(const std::string& path, void*) {  // of any kind: readRegularFile says why not
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  const auto fail = [&](const std::string& why) {
+    if (err) *err += why;
+    return false;
+  };
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return fail("not a regular file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return fail("cannot read its size: " + ec.message());
+  if (size > static_cast<std::uintmax_t>(std::numeric_limits<std::int32_t>::max())) {
+    return fail(std::to_string(size) + " bytes, over the 2 GiB tinygltf 2.7 can read");
+  }
+  std::ifstream file(path, std::ios::binary);
+  out->resize(static_cast<std::size_t>(size));
+  file.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size));
+  if (!file || file.gcount() != static_cast<std::streamsize>(size)) return fail("read failed");
+  return true;
+}
+
 bool isGlb(std::string_view first_bytes) { return first_bytes.substr(0, 4) == "glTF"; }
 
 std::uint32_t littleEndian32(std::string_view bytes, std::size_t at) {
@@ -214,7 +241,8 @@ Result<tinygltf::Model> loadBytes(const std::string& bytes, const std::string& s
   ODESKIN_TRY(glb ? checkGlb(bytes, source) : checkJson(bytes, false, source));
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
-  if (!base_dir) loader.SetFsCallbacks(tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
+  loader.SetFsCallbacks(base_dir ? tinygltf::FsCallbacks{existingFile, samePath, readRegularFile, noWrite, nullptr}
+                                 : tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
   const std::string folder = base_dir ? *base_dir : std::string();
   const auto length = static_cast<unsigned int>(bytes.size());
   return runLoader(source, [&](tinygltf::Model& model, std::string& err, std::string& warn) {

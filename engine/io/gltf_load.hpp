@@ -18,7 +18,8 @@ namespace odeskin::gltf {
 // guard). kParseError naming the path with tinygltf's message when it refuses the file, or for a
 // GLB whose second (BIN) chunk runs past the file's end, which tinygltf 2.7 would read past, a GLB
 // with two buffers without a uri, each of which tinygltf 2.7 would fill with a copy of that chunk,
-// or an image whose bufferView lies outside its buffer, which tinygltf 2.7 would point past.
+// or an image whose bufferView lies outside its buffer, which tinygltf 2.7 would point past; an
+// external file that is not a regular file, or is over 2 GiB, is not read (tinygltf's message).
 Result<tinygltf::Model> loadModel(const std::filesystem::path& path);
 
 // loadModel on bytes already in memory; `source` stands for the path in the messages. It has no

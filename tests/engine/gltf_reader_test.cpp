@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <nlohmann/json.hpp>
 
@@ -1001,6 +1002,47 @@ TEST(GltfReaderErrors, DeeplyNestedJsonIsRefused) {
                            std::string(200000, ']') + "}}";
   expectError(parseGltfExamples(deep, "deep.gltf", request), StatusCode::kParseError,
               {"deep.gltf: its JSON nests 200002 levels deep"});
+}
+
+// tinygltf 2.7's own file callbacks opened any path a URI named and read it whole before comparing
+// sizes: a buffer naming a FIFO blocked the read forever, and one naming a file of many gigabytes
+// read all of it. External files must be regular and at most 2 GiB.
+TEST(GltfReaderErrors, ExternalBuffersMustBeRegularFilesUpTo2GiB) {
+  tinygltf::Model model = makeTube().model;
+  const fs::path dir = tempDir();
+  const fs::path path = dir / "tube.gltf";
+  tinygltf::TinyGLTF writer;
+  ASSERT_TRUE(writer.WriteGltfSceneToFile(&model, path.string(), true, false, true, false));  // buffer in its own .bin
+  std::string json;
+  {
+    std::ifstream in(path, std::ios::binary);
+    json.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  nlohmann::json doc = nlohmann::json::parse(json);
+  ASSERT_TRUE(doc["buffers"][0].contains("uri"));
+  ASSERT_TRUE(read(path, {1.0}).ok());
+  const auto pointAt = [&](const std::string& uri, std::uint64_t bytes) {
+    doc["buffers"][0]["uri"] = uri;
+    doc["buffers"][0]["byteLength"] = bytes;
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << doc.dump();
+  };
+
+  const fs::path fifo = dir / "pipe.bin";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  pointAt("pipe.bin", doc["buffers"][0]["byteLength"].get<std::uint64_t>());
+  expectError(read(path, {1.0}), StatusCode::kParseError,
+              {path.string() + ": tinygltf cannot read it", "pipe.bin", "not a regular file"});
+  fs::remove(fifo);
+
+  const fs::path huge = dir / "huge.bin";
+  std::ofstream(huge, std::ios::binary).close();
+  fs::resize_file(huge, (std::uintmax_t{1} << 31) + 8);  // sparse: no disk space is used
+  pointAt("huge.bin", (std::uint64_t{1} << 31) + 8);
+  expectError(read(path, {1.0}), StatusCode::kParseError,
+              {"huge.bin", "2147483656 bytes, over the 2 GiB tinygltf 2.7 can read"});
+  fs::remove(huge);
 }
 
 TEST(GltfReaderErrors, MalformedJson) {
