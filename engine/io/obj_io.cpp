@@ -7,12 +7,51 @@
 #include <random>
 #include <system_error>
 
+#include "../core/result.hpp"
+
 namespace odeskin {
 
+namespace {
+
+Status writeInPlace(const std::filesystem::path& path, const std::string& content) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) return ioError(path.string() + ": cannot open for writing");
+  out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  out.close();
+  if (!out) return ioError(path.string() + ": write failed");
+  return okStatus();
+}
+
+// The path a chain of symbolic links names (which may not exist yet), at most 40 links deep as
+// the kernel allows. Renaming onto a link would replace the link itself; the user meant its file.
+Result<std::filesystem::path> followLinks(const std::filesystem::path& path) {
+  std::filesystem::path p = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    std::error_code ec;
+    if (!std::filesystem::is_symlink(p, ec)) return p;
+    const std::filesystem::path next = std::filesystem::read_symlink(p, ec);
+    if (ec) return ioError(path.string() + ": cannot follow the symbolic link: " + ec.message());
+    p = next.is_absolute() ? next : p.parent_path() / next;
+  }
+  return ioError(path.string() + ": too many levels of symbolic links");
+}
+
+}  // namespace
+
 Status writeFileAtomically(const std::filesystem::path& path, const std::string& content) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);  // through every link
+  if (std::filesystem::is_directory(status)) return ioError(path.string() + ": is a directory");
+  // Renaming over a device or FIFO would replace the node itself: as root, `-o /dev/null` made
+  // /dev/null a regular file holding the output. A stream has no half-written state to avoid.
+  // (The kernel opens /dev/stdout's /proc link to a pipe, which no path names.)
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    return writeInPlace(path, content);
+  }
+  ODESKIN_ASSIGN_OR_RETURN(const std::filesystem::path target, followLinks(path));
   // The temporary lives beside the target so the rename stays on one file system (atomic).
   std::random_device seed;
-  std::filesystem::path temp = path;
+  std::filesystem::path temp = target;
   temp += ".tmp" + std::to_string(seed() % 1000000);
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
@@ -25,8 +64,7 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
       return ioError(path.string() + ": write failed (disk full?)");
     }
   }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
+  std::filesystem::rename(temp, target, ec);
   if (ec) {
     std::error_code ignored;
     std::filesystem::remove(temp, ignored);

@@ -19,7 +19,10 @@ namespace odeskin {
 Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces,
                 const std::string& comment = {});
 
-// Writes `content` to `path` through a temporary file and rename (kIoError naming the path).
+// Writes `content` to `path` through a temporary file and rename (kIoError naming the path). A
+// symbolic link is followed: the link stays and its target is replaced. An existing target that
+// is not a regular file (/dev/null, a FIFO, /dev/stdout) is written in place, and a directory is
+// refused.
 Status writeFileAtomically(const std::filesystem::path& path, const std::string& content);
 
 }  // namespace odeskin
