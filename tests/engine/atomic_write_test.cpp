@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 
 fs::path freshDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / "odeskin_atomic_write_test" / info->name();
+  fs::path dir = fs::temp_directory_path() / "odeskin_atomic_write_test" / info->name();
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
