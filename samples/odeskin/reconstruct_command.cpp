@@ -217,7 +217,10 @@ Status writeOutputs(const ReconstructCommandOptions& o, const MeshNetworkOptions
   std::vector<fs::path> written;
   const auto undo = [&](Status status) {
     std::error_code ec;
-    for (const fs::path& p : written) fs::remove(p, ec);
+    // Only files: an output that was a device or FIFO (written in place) must not be deleted.
+    for (const fs::path& p : written) {
+      if (fs::is_regular_file(fs::status(p, ec))) fs::remove(p, ec);
+    }
     return status;
   };
   for (const fs::path& p : {o.output, o.network, o.json}) {

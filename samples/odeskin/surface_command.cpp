@@ -202,7 +202,10 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   }
   const std::vector<Vec3> normals = vertexNormals(*mesh);
   if (Status s = writeSurfaceGlb(o.output, *mesh, normals); !s.ok()) {
-    if (!obj.empty()) std::filesystem::remove(obj, ec);  // all or nothing
+    // All or nothing; but an OBJ output that is a device or FIFO (written in place) stays.
+    if (!obj.empty() && std::filesystem::is_regular_file(std::filesystem::status(obj, ec))) {
+      std::filesystem::remove(obj, ec);
+    }
     // A mesh the glTF cannot hold (float32's range) is this network's; write errors name the file.
     const bool about_input = s.code() == StatusCode::kInvalidArgument;
     return reportError(console, "surface: " + (about_input ? o.network.string() + ": " : std::string()) + s.message(),
