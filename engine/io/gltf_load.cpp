@@ -52,6 +52,26 @@ bool noWrite(std::string* err, const std::string&, const std::vector<unsigned ch
   return false;
 }
 
+// The whole of `path` into `out`, or why not (the message leaves the path out): the glTF file
+// itself and every external file it names are read by this one rule.
+template <typename Bytes>
+Status readWholeRegularFile(const std::filesystem::path& path, Bytes& out) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return ioError("no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) return ioError("not a regular file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return ioError("cannot read its size: " + ec.message());
+  if (size > static_cast<std::uintmax_t>(std::numeric_limits<std::int32_t>::max())) {
+    return ioError(std::to_string(size) + " bytes, over the 2 GiB tinygltf 2.7 can read");
+  }
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return ioError("cannot open for reading");
+  out.resize(static_cast<std::size_t>(size));
+  file.read(reinterpret_cast<char*>(out.data()), static_cast<std::streamsize>(size));
+  if (file.gcount() != static_cast<std::streamsize>(size)) return ioError("read failed");
+  return okStatus();
+}
+
 // File callbacks for a glTF read from disk. tinygltf 2.7's own open any path it is given and read
 // it whole before comparing its size with the buffer's byteLength: a URI naming a FIFO blocked the
 // read forever, and one naming a file of many gigabytes read all of it. Only regular files up to
@@ -61,22 +81,9 @@ bool existingFile(const std::string& path, void*) {  // of any kind: readRegular
   return std::filesystem::exists(path, ec);
 }
 bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
-  const auto fail = [&](const std::string& why) {
-    if (err) *err += why;
-    return false;
-  };
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return fail("not a regular file");
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) return fail("cannot read its size: " + ec.message());
-  if (size > static_cast<std::uintmax_t>(std::numeric_limits<std::int32_t>::max())) {
-    return fail(std::to_string(size) + " bytes, over the 2 GiB tinygltf 2.7 can read");
-  }
-  std::ifstream file(path, std::ios::binary);
-  out->resize(static_cast<std::size_t>(size));
-  file.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size));
-  if (!file || file.gcount() != static_cast<std::streamsize>(size)) return fail("read failed");
-  return true;
+  const Status read = readWholeRegularFile(path, *out);
+  if (!read.ok() && err) *err += read.message();
+  return read.ok();
 }
 
 bool isGlb(std::string_view first_bytes) { return first_bytes.substr(0, 4) == "glTF"; }
@@ -255,21 +262,8 @@ Result<tinygltf::Model> loadBytes(const std::string& bytes, const std::string& s
 }  // namespace
 
 Result<tinygltf::Model> loadModel(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return ioError(path.string() + ": no such file");
-  if (!std::filesystem::is_regular_file(path, ec)) return ioError(path.string() + ": not a regular file");
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) return ioError(path.string() + ": cannot read its size: " + ec.message());
-  if (size > static_cast<std::uintmax_t>(std::numeric_limits<std::int32_t>::max())) {
-    return ioError(path.string() + ": " + std::to_string(size) + " bytes, over the 2 GiB tinygltf 2.7 can read");
-  }
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) return ioError(path.string() + ": cannot open for reading");
-    file.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (file.gcount() != static_cast<std::streamsize>(bytes.size())) return ioError(path.string() + ": read failed");
-  }
+  std::string bytes;
+  if (Status read = readWholeRegularFile(path, bytes); !read.ok()) return ioError(path.string() + ": " + read.message());
   const std::string folder = path.parent_path().string();  // where tinygltf finds external buffers
   return loadBytes(bytes, path.string(), &folder);
 }
