@@ -2,30 +2,21 @@
 #include "gltf_buffer_builder.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <limits>
 
-#include <glm/common.hpp>
-
 #include "../core/float32_range.hpp"
+#include "../offline/residual_fit.hpp"
 
 namespace odeskin::gltf {
 
 Status checkFloat32Positions(std::span<const Vec3> positions, const std::string& who) {
   constexpr double kSmallestSpan = 1e-30;
-  if (positions.empty()) return okStatus();
   if (const std::size_t i = firstBeyondFloat32(positions); i < positions.size()) {
     return invalidArgument(who + ": vertex " + std::to_string(i) +
                            " is outside glTF's float32 range (|coordinate| up to 1e+38); scale the mesh down");
   }
-  Vec3 lo = positions.front(), hi = positions.front();
-  for (const Vec3& p : positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  const Vec3 extent = hi - lo;
-  const double side = std::max({extent.x, extent.y, extent.z});
+  const double side = longestBoxSide(positions);
   if (side > 0.0 && side < kSmallestSpan) {
     char span[32];
     std::snprintf(span, sizeof span, "%g", side);
