@@ -23,7 +23,6 @@
 
 
 #include "../mesh/adjacency.hpp"
-#include "../offline/residual_fit.hpp"
 #include "weight_rows.hpp"
 #include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
@@ -76,10 +75,11 @@ Result<Influences> distanceWeights(std::span<const Vec3> rest, const FaceList& f
     return invalidArgument("distance weights: smoothing_iterations must not be negative, got " +
                            std::to_string(options.smoothing_iterations));
   }
-  ODESKIN_TRY(checkedPositionBox(rest, "distance weights").status());
+  ODESKIN_ASSIGN_OR_RETURN(const PositionBox bounds, checkedPositionBox(rest, "distance weights"));
   ODESKIN_TRY(checkFaces(faces, rest.size(), "distance weights"));
 
-  const double box = rest.empty() ? 1.0 : std::max(longestBoxSide(rest), std::numeric_limits<double>::min());
+  const Vec3 size = bounds.hi - bounds.lo;
+  const double box = rest.empty() ? 1.0 : std::max({size.x, size.y, size.z, std::numeric_limits<double>::min()});
   const double floor = kDistanceFloor * box;
   const std::vector<std::vector<std::uint32_t>> joined = joinedBones(skeleton, kJointTolerance * box);
   const std::size_t bones = skeleton.boneCount();
