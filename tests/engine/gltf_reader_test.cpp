@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/io/text_tokens.hpp"
 #include "engine/offline/deform_player.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include <tiny_gltf.h>
@@ -124,6 +125,13 @@ fs::path tempDir() {
   fs::path dir = fs::temp_directory_path() / "odeskin_gltf_reader_test" / (std::string(info->test_suite_name()) + "." + info->name());
   fs::create_directories(dir);
   return dir;
+}
+
+// A file's bytes, as the readers see them.
+std::string fileBytes(const fs::path& path) {
+  Result<std::string> bytes = readTextFile(path);
+  EXPECT_TRUE(bytes.ok()) << bytes.status().toString();
+  return bytes.ok() ? std::move(bytes).value() : std::string();
 }
 
 fs::path write(const tinygltf::Model& model, const std::string& name, bool binary) {
@@ -768,8 +776,7 @@ TEST(GltfReader, InterleavedPositionsHonourByteStride) {
 TEST_P(GltfFormats, BytesInMemoryReadAsTheFile) {
   const bool binary = GetParam();
   const fs::path path = write(makeTube().model, binary ? "tube.glb" : "tube.gltf", binary);
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = fileBytes(path);
   GltfPoseRequest request;
   request.times = {0.5, 1.0};
   request.morph_targets = {0};
@@ -787,8 +794,7 @@ TEST(GltfReaderErrors, BytesInMemoryCannotReferToFiles) {
   const fs::path path = tempDir() / "external.gltf";
   tinygltf::TinyGLTF writer;
   ASSERT_TRUE(writer.WriteGltfSceneToFile(&model, path.string(), true, false, true, false));  // buffer in external.bin
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = fileBytes(path);
   GltfPoseRequest request;
   request.min_poses = 1;
   expectError(parseGltfExamples(bytes, "memory.gltf", request), StatusCode::kParseError,
@@ -867,11 +873,7 @@ TEST(GltfReaderErrors, MissingFile) {
 
 TEST(GltfReaderErrors, TruncatedGlb) {
   const fs::path path = write(makeTube().model, "truncated.glb", true);
-  std::string bytes;
-  {
-    std::ifstream in(path, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string bytes = fileBytes(path);
   ASSERT_GT(bytes.size(), 100u);
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
@@ -886,11 +888,7 @@ TEST(GltfReaderErrors, TruncatedGlb) {
 // the buffer, and the picture or fit went ahead. Both readers now refuse it.
 TEST(GltfReaderErrors, BinChunkPastTheEndIsRefused) {
   const fs::path whole = write(makeTube().model, "whole.glb", true);
-  std::string bytes;
-  {
-    std::ifstream in(whole, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  std::string bytes = fileBytes(whole);
   bytes.resize(bytes.size() - 8);
   const auto length = static_cast<std::uint32_t>(bytes.size());
   std::memcpy(bytes.data() + 8, &length, 4);  // the header's total length, little-endian like the file
@@ -912,11 +910,7 @@ TEST(GltfReaderErrors, BinChunkPastTheEndIsRefused) {
 // a 2 MB GLB asked for 4 GB. Only the first buffer may stand for the chunk; a second is refused.
 TEST(GltfReaderErrors, SecondBufferWithoutUriIsRefused) {
   const fs::path whole = write(makeTube().model, "whole.glb", true);
-  std::string glb;
-  {
-    std::ifstream in(whole, std::ios::binary);
-    glb.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string glb = fileBytes(whole);
   std::uint32_t json_length = 0;
   std::memcpy(&json_length, glb.data() + 12, 4);
   nlohmann::json doc = nlohmann::json::parse(glb.substr(20, json_length));
@@ -961,11 +955,7 @@ TEST_P(GltfFormats, ImageViewOutsideItsBufferIsRefused) {
               {path.string() + ": image 0's bufferView " + std::to_string(image.bufferView) + " (byteOffset " +
                std::to_string(view.byteOffset) + ", byteLength 4) lies outside buffer 0"});
   if (!GetParam()) {  // the key spelt with an escape is the same key
-    std::string json;
-    {
-      std::ifstream in(path, std::ios::binary);
-      json.assign(std::istreambuf_iterator<char>(in), {});
-    }
+    std::string json = fileBytes(path);
     const std::size_t key = json.find("\"images\"");
     ASSERT_NE(key, std::string::npos);
     json.replace(key, 8, "\"\\u0069mages\"");
@@ -981,11 +971,7 @@ TEST_P(GltfFormats, ImageViewOutsideItsBufferIsRefused) {
 // tinygltf 2.7 copies "extras" into its own Value type one stack frame per level: 200,000 nested
 // arrays (a 400 KB file) crashed odeskin render with a stack overflow. JSON may nest 256 deep.
 TEST(GltfReaderErrors, DeeplyNestedJsonIsRefused) {
-  std::string json;
-  {
-    std::ifstream in(write(makeTube().model, "tube.gltf", false), std::ios::binary);
-    json.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string json = fileBytes(write(makeTube().model, "tube.gltf", false));
   const auto nested = [&json](int levels) {  // "extras" of the asset, `levels` arrays deep in all
     nlohmann::json doc = nlohmann::json::parse(json);
     nlohmann::json extras = 1;
@@ -1013,11 +999,7 @@ TEST(GltfReaderErrors, ExternalBuffersMustBeRegularFilesUpTo2GiB) {
   const fs::path path = dir / "tube.gltf";
   tinygltf::TinyGLTF writer;
   ASSERT_TRUE(writer.WriteGltfSceneToFile(&model, path.string(), true, false, true, false));  // buffer in its own .bin
-  std::string json;
-  {
-    std::ifstream in(path, std::ios::binary);
-    json.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string json = fileBytes(path);
   nlohmann::json doc = nlohmann::json::parse(json);
   ASSERT_TRUE(doc["buffers"][0].contains("uri"));
   ASSERT_TRUE(read(path, {1.0}).ok());
