@@ -3,13 +3,13 @@
 // files: a symbolic link, a FIFO (standing in for /dev/null and /dev/stdout, which a test must not
 // risk replacing), a directory.
 #include "engine/io/obj_io.hpp"
+#include "engine/io/text_tokens.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <string>
 
@@ -28,9 +28,9 @@ fs::path freshDir() {
   return dir;
 }
 
-std::string contents(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
+std::string contents(const fs::path& path) {  // "" for a file that is not there
+  Result<std::string> text = readTextFile(path);
+  return text.ok() ? std::move(text).value() : std::string();
 }
 
 TEST(WriteFileAtomically, ReplacesARegularFile) {
