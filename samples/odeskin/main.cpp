@@ -6,6 +6,7 @@
 #include <exception>
 #include <iostream>
 #include <new>
+#include <sstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -42,15 +43,18 @@ int fail(const odeskin::Status& status) {
   return 1;
 }
 
-int runDemoCommand(const odeskin::DemoOptions& options) {
-  odeskin::Result<odeskin::DemoResult> result = odeskin::runDemo(options, std::cout);
+int runDemoCommand(const odeskin::DemoOptions& options, bool quiet) {
+  std::ostringstream discarded;  // --quiet: the summary goes nowhere, the check still decides the exit
+  odeskin::Result<odeskin::DemoResult> result = odeskin::runDemo(options, quiet ? discarded : std::cout);
   if (!result.ok()) return fail(odeskin::Status(result.status().code(), "demo: " + result.status().message()));
   const odeskin::DemoResult& r = *result;
-  std::printf("frames: %zu written to %s\n", r.frames.size(), options.output_dir.string().c_str());
-  std::printf("per-frame time: %.3f ms wall", 1e3 * r.mean_frame_seconds);
-  if (r.mean_gpu_seconds > 0.0) std::printf(", %.3f ms GPU (timestamp queries)", 1e3 * r.mean_gpu_seconds);
-  std::printf("\ncheck: frame 0 vs start.obj %.2e, last frame vs end.obj %.2e (of the box, limit %.0e)\n",
-              r.first_frame_error, r.last_frame_error, kDemoEndTolerance);
+  if (!quiet) {
+    std::printf("frames: %zu written to %s\n", r.frames.size(), options.output_dir.string().c_str());
+    std::printf("per-frame time: %.3f ms wall", 1e3 * r.mean_frame_seconds);
+    if (r.mean_gpu_seconds > 0.0) std::printf(", %.3f ms GPU (timestamp queries)", 1e3 * r.mean_gpu_seconds);
+    std::printf("\ncheck: frame 0 vs start.obj %.2e, last frame vs end.obj %.2e (of the box, limit %.0e)\n",
+                r.first_frame_error, r.last_frame_error, kDemoEndTolerance);
+  }
   if (r.first_frame_error > kDemoEndTolerance || r.last_frame_error > kDemoEndTolerance) {
     return fail(odeskin::internalError("the played frames do not reproduce the example poses"));
   }
@@ -435,7 +439,7 @@ int run(int argc, char** argv, std::string& verb) {
     demo.backend = backendNamed(demo_backend);
     demo.device = device;
     demo.residual_space = residual == "posed" ? odeskin::ResidualSpace::kPosed : odeskin::ResidualSpace::kBind;
-    return runDemoCommand(demo);
+    return runDemoCommand(demo, quiet);
   }
   if (play_cmd->parsed()) {
     if (t_opt->count() > 0) play.t = play_t;

@@ -619,6 +619,7 @@ TEST_F(BadInputCli, GoodInputsSucceed) {
       EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     } else if (std::find(args.begin(), args.end(), "-q") != args.end()) {
       EXPECT_EQ(r.err, "") << commandLine(args);
+      EXPECT_EQ(r.out, "") << commandLine(args);  // --quiet: no summary either
     }
   }
   // No temporary files beside the outputs.
