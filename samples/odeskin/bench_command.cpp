@@ -81,7 +81,7 @@ void printRecords(const BenchReport& report, std::ostream& out) {
 
 void printFits(const BenchReport& report, std::ostream& out) {
   if (report.fit_stages.empty()) return;
-  out << "\nfitting stages (thesis Table 6.3 columns, ms; N = 9):\n"
+  out << "\nfitting stages (thesis Table 6.3 columns, ms; N = 9 unless the name gives it):\n"
          "dataset                                         vertices poses rig      rig  curves  transf  fourier  solve  "
          "w/o rig\n";
   for (const bench::FitStageRecord& f : report.fit_stages) {
@@ -182,7 +182,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchCommandOptions& o) {
   cmd->add_option("--backends", o.backends, "auto, or a list of cpu_ref,cpu_fast,vulkan");
   cmd->add_option("--threads", o.threads, "cpu_fast's all-threads count (default: the hardware's)");
   cmd->add_option("--min-time", o.min_time, "Seconds of timed frames per case (default 0.1 quick, 0.3 full)");
-  cmd->add_flag("--no-fit", [&o](std::int64_t) { o.fit = false; }, "Skip the fitting-stage table");
+  cmd->add_flag("--no-fit", [&o](std::int64_t) { o.fit = false; },
+                "Skip timing the fitting stages per dataset (the tiled mesh's own fit is still listed)");
   cmd->add_flag("--validation", o.validation, "Enable the Khronos validation layer on the Vulkan cases");
   return cmd;
 }
