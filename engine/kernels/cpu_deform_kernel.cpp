@@ -15,6 +15,7 @@
 
 #include "simd_deform_layout.hpp"
 #include "../core/parallel.hpp"
+#include "../core/thread_count.hpp"
 
 namespace odeskin {
 
@@ -315,6 +316,7 @@ simd_deform::BlockFunctions blockFunctions(CpuKernelArch arch) {
 
 // Runs fn over every block on `threads` workers (see the header for 0 and 1).
 void runBlocks(simd_deform::BlockRangeFn fn, const simd_deform::Frame& frame, std::size_t blocks, unsigned threads) {
+  if (threads > 1) threads = usableThreads(threads);
   if (threads == 1 || blocks <= kGrainBlocks) {
     fn(frame, 0, blocks);
     return;

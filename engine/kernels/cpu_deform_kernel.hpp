@@ -21,7 +21,8 @@
 // the frame's bones on the stack up to kMaxStackBones bones and on the heap above that, unless the
 // caller passes the dual quaternions itself (the overload of deform and skin that takes them).
 // threads: 1 runs on the calling thread; 0 runs on the caller's current TBB arena (all hardware
-// threads by default); n > 1 creates a TBB arena of n threads for the call.
+// threads by default); n > 1 creates a TBB arena of n threads for the call, at most usableThreads
+// (engine/core/thread_count.hpp): the machine's, or what a tbb::global_control allows.
 #pragma once
 
 #include <cstdint>

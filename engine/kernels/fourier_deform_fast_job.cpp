@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "fourier_deform_fast_job.hpp"
 #include "../core/parallel.hpp"
+#include "../core/thread_count.hpp"
 
 #include <cmath>
 #include <string>
@@ -175,6 +176,7 @@ std::vector<gpu::DualQuat> frameDualQuats(const PackedDeformData& d, std::span<c
 // inline, so the 1-thread benchmark measures the kernel, not the scheduler.
 template <typename Body>
 void parallelRange(std::size_t count, unsigned threads, const Body& body) {
+  if (threads > 1) threads = usableThreads(threads);
   if (threads == 1 || count <= kGrain) {
     body(std::size_t{0}, count);
     return;

@@ -22,7 +22,7 @@ struct FourierDeformFastJob {
   std::span<const gpu::BoneMatrix> bones;   // data->bone_count, required: M_b(tau)
   std::span<const gpu::ModeBasis> basis;    // data->material_count * (N+1), required
   std::span<gpu::Float4> out_positions;     // data->vertex_count, required
-  unsigned threads = 0;                     // worker threads; 0 = all hardware threads
+  unsigned threads = 0;                     // worker threads; 0 = all, more than usableThreads are capped
 
   // kInvalidArgument naming the field whose size is wrong, or an unknown data->skinning (sizes
   // only: indices inside `data` are checked once by packDeformAsset, not per frame).

@@ -31,7 +31,8 @@ struct RuntimeOptions {
   std::uint32_t capacity = 1;          // most instances per frame; every buffer is sized for it once
   std::uint32_t frames_in_flight = 2;  // frames whose outputs stay readable (>= 1); Vulkan runs that many at once
   bool normals = true;                 // recompute vertex normals every frame
-  unsigned threads = 0;                // host threads for preparing inputs (and the CPU backend's deformation); 0 = all
+  unsigned threads = 0;                // host threads for preparing inputs (and the CPU backend's deformation); 0 = all;
+                                       // capped at the machine's (WorkerArena)
 };
 
 // Local time of one segment: segment s < segmentCount() from key s to s + 1, tau in [0, 1].

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "worker_arena.hpp"
 #include "../core/parallel.hpp"
+#include "../core/thread_count.hpp"
 
 #include <algorithm>
 
@@ -11,7 +12,7 @@ namespace odeskin {
 
 struct WorkerArena::Impl {
   explicit Impl(unsigned threads)
-      : arena(threads == 0 ? tbb::task_arena::automatic : static_cast<int>(threads)) {}
+      : arena(threads == 0 ? tbb::task_arena::automatic : static_cast<int>(usableThreads(threads))) {}
   tbb::task_arena arena;
 };
 

@@ -10,7 +10,9 @@ namespace odeskin {
 
 class WorkerArena {
  public:
-  // `threads` workers including the caller; 0 = every hardware thread.
+  // `threads` workers including the caller; 0 = every hardware thread. A count above usableThreads
+  // (engine/core/thread_count.hpp: the machine's, or what a tbb::global_control allows) is capped, and
+  // threads() gives the capped count.
   explicit WorkerArena(unsigned threads = 0);
   WorkerArena(WorkerArena&&) noexcept;
   WorkerArena& operator=(WorkerArena&&) noexcept;

@@ -14,6 +14,7 @@
 #include "bench/harness/deform_cases.hpp"
 #include "bench/harness/device_bandwidth.hpp"
 #include "bench/harness/fit_sources.hpp"
+#include "engine/core/thread_count.hpp"
 #include "host/device.hpp"
 
 namespace odeskin {
@@ -180,7 +181,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchCommandOptions& o) {
   cmd->add_option("--sizes", o.sizes, "Vertex counts (default 1e3,1e4,32185,1e5,1e6,4e6)")->delimiter(',');
   cmd->add_option("--terms", o.terms, "Fourier terms N (default 3,5,9,17)")->delimiter(',');
   cmd->add_option("--backends", o.backends, "auto, or a list of cpu_ref,cpu_fast,vulkan");
-  cmd->add_option("--threads", o.threads, "cpu_fast's all-threads count (default: the hardware's)");
+  cmd->add_option("--threads", o.threads, "cpu_fast's all-threads count (default and most: the machine's)");
   cmd->add_option("--min-time", o.min_time, "Seconds of timed frames per case (default 0.1 quick, 0.3 full)");
   cmd->add_flag("--no-fit", [&o](std::int64_t) { o.fit = false; },
                 "Skip timing the fitting stages per dataset (the tiled mesh's own fit is still listed)");
@@ -262,7 +263,12 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
   cases.cpu_ref = backends->cpu_ref;
   cases.cpu_fast = backends->cpu_fast;
   cases.vulkan = use_vulkan;
-  cases.all_threads = o.threads != 0 ? o.threads : report.hardware_threads;
+  // TBB runs no more threads than the machine has: record what runs, not what was asked.
+  cases.all_threads = usableThreads(o.threads);
+  if (o.threads > cases.all_threads) {
+    progress("bench: --threads " + std::to_string(o.threads) + ": this machine runs at most " +
+             std::to_string(cases.all_threads) + ", so the all-threads cases use " + std::to_string(cases.all_threads));
+  }
   cases.min_seconds = o.min_time > 0.0 ? o.min_time : (o.quick ? 0.1 : 0.3);
   cases.device = gpu ? &gpu->device : nullptr;
   cases.progress = progress;

@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <optional>
 #include <ostream>
-#include <thread>
 
 #include "engine/io/asset_file.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/kernels/fourier_deform_fast_job.hpp"
 #include "engine/offline/deform_player.hpp"
 #include "engine/offline/procedural_arm.hpp"
+#include "engine/core/thread_count.hpp"
 #include "host/gpu_deformer.hpp"
 
 namespace odeskin {
@@ -112,7 +112,7 @@ Result<DemoResult> runDemo(const DemoOptions& options, std::ostream& log) {
       fallBack(created.status());
     }
   }
-  const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = usableThreads(options.threads);  // what the fast job runs
   const std::string cpu_device = "cpu: fast path, " + std::to_string(threads) + " thread" + (threads == 1 ? "" : "s");
   if (!deformer) result.device = cpu_device;
   log << "device: " << result.device << "\n";

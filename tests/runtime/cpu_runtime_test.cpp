@@ -10,7 +10,10 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
 
+#include "engine/core/thread_count.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/runtime/cpu_runtime.hpp"
 #include "runtime_fixtures.hpp"
@@ -319,6 +322,8 @@ TEST(CpuRuntime, ThreadCountDoesNotChangeTheResult) {
 // normals and bounds in chunks of 4,096 vertices (the cat has two). One thread takes the
 // instance-per-thread path throughout. Every output must be the same to the bit.
 TEST(CpuRuntime, InstancesSpreadOverThreadsGiveTheSameOutputs) {
+  // Four threads even on a 2-core machine: the runtime caps its threads at what TBB allows.
+  const tbb::global_control four(tbb::global_control::max_allowed_parallelism, 4);
   const RuntimeAsset asset = makeAsset(testing::catAsset());
   CpuRuntime one = makeRuntime(asset, 6, 1);
   CpuRuntime spread = makeRuntime(asset, 6, 4);
@@ -339,6 +344,31 @@ TEST(CpuRuntime, InstancesSpreadOverThreadsGiveTheSameOutputs) {
       EXPECT_EQ(lhs[k].max, rhs[k].max) << count << " instances, instance " << k;
     }
   }
+}
+
+// A thread count above what TBB will run is capped, so reports and the runtime's split of the work
+// use the threads that run, and no arena of thousands of empty slots is made.
+TEST(WorkerArena, ThreadCountsAreCappedAtWhatTbbRuns) {
+  const unsigned machine = static_cast<unsigned>(tbb::info::default_concurrency());
+  EXPECT_EQ(allowedThreads(), machine);
+  EXPECT_EQ(usableThreads(0), machine);
+  EXPECT_EQ(usableThreads(1), 1u);
+  EXPECT_EQ(usableThreads(100000), machine);
+  EXPECT_EQ(WorkerArena(100000).threads(), machine);
+  EXPECT_EQ(WorkerArena(1).threads(), 1u);
+  {
+    const tbb::global_control six(tbb::global_control::max_allowed_parallelism, 6);
+    EXPECT_EQ(usableThreads(0), 6u);
+    EXPECT_EQ(usableThreads(5), 5u);
+    EXPECT_EQ(usableThreads(100000), 6u);
+    EXPECT_EQ(WorkerArena(8).threads(), 6u);
+  }
+  {
+    const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    EXPECT_EQ(usableThreads(4), 1u);
+    EXPECT_EQ(WorkerArena(4).threads(), 1u);
+  }
+  EXPECT_EQ(allowedThreads(), machine);  // the controls are gone with their scopes
 }
 
 TEST(RuntimeAsset, PresetsByNameAndTheirErrors) {

@@ -16,6 +16,7 @@
 #include <cstdio>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "engine/runtime/cpu_runtime.hpp"
 #include "runtime/allocation_counter.hpp"
@@ -155,6 +156,7 @@ TEST(Soak, CpuRuntimeOneCatSpreadOverFourThreads) {
   config.frames = 2000;
   config.check_every = 250;
   config.checked_instances = 1;
+  const tbb::global_control four(tbb::global_control::max_allowed_parallelism, 4);  // even on 2 cores
   soakCpuRuntime(config, 4);
 }
 

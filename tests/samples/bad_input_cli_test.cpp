@@ -602,6 +602,8 @@ TEST_F(BadInputCli, GoodInputsSucceed) {
       {{"fit", in("unbound1.obj"), in("unbound.obj"), "-q", "-o", (out / "unbound.odsk").string()}, out / "unbound.odsk"},
       {{"surface", in("patch.json"), "-q", "-o", (out / "patch.glb").string()}, out / "patch.glb"},
       {{"blend", "--example", "3.17", "-q", "-o", (out / "blend.obj").string()}, out / "blend.obj"},
+      // More threads than the machine runs: capped, without TBB's own warning on stderr.
+      {{"demo", "--backend", "cpu", "--threads", "100000", "--frames", "2", "-q", "-o", (out / "demo").string()}, {}},
       // Weights that sum to one within the reader's tolerance, and a material with negative
       // damping: accepted; the latter with one warning (MATH.md 5.4).
       {{"fit", in("good1.obj"), in("good2.obj"), "--material", "1,-1,3,0", "-o", (out / "neg.odsk").string()},
