@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -15,6 +16,13 @@ namespace odeskin::visual {
 namespace {
 
 double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+
+// Settings in messages as %g: std::to_string wrote 1e308 degrees out in 309 digits.
+std::string shown(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
 
 // The azimuth-zero direction: the axis after up's dominant one (y -> z, z -> x, x -> y), made
 // normal to up. With up = +y this is +z, the direction OBJ and glTF models usually face.
@@ -39,13 +47,13 @@ Status validateViewSpec(const ViewSpec& v) {
   if (!finite) return invalidArgument("view: a camera setting is not a finite number");
   if (std::abs(glm::length(v.up) - 1.0) > 1e-6) return invalidArgument("view: the up axis must have unit length");
   if (std::abs(v.elevation_deg) >= 89.0) {
-    return invalidArgument("view: elevation " + std::to_string(v.elevation_deg) + " must lie in (-89, 89) degrees");
+    return invalidArgument("view: elevation " + shown(v.elevation_deg) + " must lie in (-89, 89) degrees");
   }
   if (!(v.fov_y_deg > 1.0 && v.fov_y_deg < 170.0)) {
-    return invalidArgument("view: field of view " + std::to_string(v.fov_y_deg) + " must lie in (1, 170) degrees");
+    return invalidArgument("view: field of view " + shown(v.fov_y_deg) + " must lie in (1, 170) degrees");
   }
   if (!(v.margin >= 0.0 && v.margin <= 0.45)) {
-    return invalidArgument("view: margin " + std::to_string(v.margin) + " must lie in [0, 0.45]");
+    return invalidArgument("view: margin " + shown(v.margin) + " must lie in [0, 0.45]");
   }
   return okStatus();
 }
@@ -69,7 +77,9 @@ Vec3 Camera::position() const {
 Vec3 viewDirection(const ViewSpec& view) {
   const Vec3 ref = referenceDirection(view.up);
   const Vec3 side = glm::cross(view.up, ref);
-  const double az = radians(view.azimuth_deg);
+  // Turns are whole first (fmod is exact): 1e308 degrees in radians overflowed to inf, and the
+  // camera's cos/sin to NaN.
+  const double az = radians(std::fmod(view.azimuth_deg, 360.0));
   const double el = radians(view.elevation_deg);
   const Vec3 horizontal = std::cos(az) * ref + std::sin(az) * side;
   return glm::normalize(std::cos(el) * horizontal + std::sin(el) * view.up);
@@ -173,7 +183,7 @@ Result<std::vector<Camera>> turntableCameras(std::span<const Vec3> points, doubl
   double distance = 0.0;
   for (double azimuth : azimuths_deg) {
     ViewSpec turned = view;
-    turned.azimuth_deg += azimuth;
+    turned.azimuth_deg = std::fmod(view.azimuth_deg, 360.0) + azimuth;
     const ViewBasis basis = viewBasis(turned);
     for (const Vec3& p : framed) {
       const Vec3 q = p - centre;
@@ -185,7 +195,7 @@ Result<std::vector<Camera>> turntableCameras(std::span<const Vec3> points, doubl
   std::vector<Camera> cameras;
   for (double azimuth : azimuths_deg) {
     ViewSpec turned = view;
-    turned.azimuth_deg += azimuth;
+    turned.azimuth_deg = std::fmod(view.azimuth_deg, 360.0) + azimuth;
     const ViewBasis basis = viewBasis(turned);
     cameras.push_back(cameraAt(centre + distance * basis.dir, basis, framed, aspect, turned));
   }

@@ -57,6 +57,40 @@ TEST(Camera, ViewDirectionFollowsAzimuthAndElevation) {
   EXPECT_NEAR(glm::length(viewDirection(view) - Vec3(1, 0, 0)), 0.0, 1e-12);
 }
 
+// Azimuths are angles, so any finite one is a view: 1e308 degrees once overflowed to inf radians
+// and left the camera NaN ("the camera's far plane must be positive and finite").
+TEST(Camera, HugeAzimuthsAreWholeTurnsPlusTheRest) {
+  ViewSpec view;
+  view.elevation_deg = 10.0;
+  const double huge = 1e308;
+  view.azimuth_deg = std::fmod(huge, 360.0);
+  const Vec3 reduced = viewDirection(view);
+  for (const double azimuth : {huge, -huge, 720.0 + 45.0}) {
+    view.azimuth_deg = azimuth;
+    const Vec3 d = viewDirection(view);
+    ASSERT_TRUE(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z)) << azimuth;
+    ASSERT_TRUE(validateViewSpec(view).ok()) << azimuth;
+    const std::vector<Vec3> points = randomCloud(3, Vec3(1.0, 2.0, 0.5), Vec3(0.0));
+    EXPECT_TRUE(framePoints(points, 1.0, view).ok()) << azimuth;
+    EXPECT_TRUE(turntableCameras(points, 1.0, view, std::vector<double>{0.0, 180.0}).ok()) << azimuth;
+  }
+  view.azimuth_deg = huge;
+  EXPECT_NEAR(glm::length(viewDirection(view) - reduced), 0.0, 1e-12);
+  view.azimuth_deg = 720.0 + 45.0;
+  const Vec3 d = viewDirection(view);
+  view.azimuth_deg = 45.0;
+  EXPECT_NEAR(glm::length(viewDirection(view) - d), 0.0, 1e-12);
+}
+
+TEST(Camera, OutOfRangeSettingsAreNamedInShortNumbers) {
+  ViewSpec view;
+  view.elevation_deg = 1e308;
+  EXPECT_EQ(validateViewSpec(view).message(), "view: elevation 1e+308 must lie in (-89, 89) degrees");
+  view.elevation_deg = 0.0;
+  view.fov_y_deg = -1e308;
+  EXPECT_EQ(validateViewSpec(view).message(), "view: field of view -1e+308 must lie in (1, 170) degrees");
+}
+
 TEST(Camera, ProjectionIsVulkans) {
   Camera camera;
   camera.near = 0.5;
