@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <memory>
@@ -300,7 +301,17 @@ int parseAndRun(int argc, char** argv) {
   app.add_option("asset", o.asset, "A .odsk asset (default: fit the cat from --data/cat-poses)");
   app.add_option("--backend", o.backend, "cpu or vulkan")->check(CLI::IsMember({"cpu", "vulkan"}));
   app.add_option("--instances", o.instances, "Instances animated every frame")->check(CLI::Range(1u, 1u << 20));
-  app.add_option("--seconds", o.seconds, "Simulated seconds at 60 Hz")->check(CLI::Range(1.0 / 60.0, 3600.0));
+  // CLI::Range lets NaN through (every comparison with it is false), and a NaN --seconds then
+  // played frames forever.
+  const CLI::Validator finite(
+      [](const std::string& text) {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        return end != text.c_str() && *end == '\0' && std::isfinite(x) ? std::string()
+                                                                        : "Value " + text + " is not a finite number";
+      },
+      "FINITE");
+  app.add_option("--seconds", o.seconds, "Simulated seconds at 60 Hz")->check(finite)->check(CLI::Range(1.0 / 60.0, 3600.0));
   app.add_option("--data", o.data, "The shared data folder (holds cat-poses/)");
   app.add_option("--device", o.device, "Vulkan device: auto, an index, or a name substring");
   app.add_flag("--validation", o.validation, "Khronos validation layer; any message fails the run");
