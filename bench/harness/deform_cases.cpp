@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "bench_subject.hpp"
+#include "engine/core/number_text.hpp"
 #include "engine/kernels/cpu_deform_kernel.hpp"
 #include "engine/kernels/lbs_job.hpp"
 #include "engine/offline/deform_player.hpp"
@@ -100,7 +101,7 @@ class CaseRunner {
     if (!(r.max_error <= kVerifyTolerance)) {
       return internalError("bench: " + r.kernel + " on " + r.backend + " (" + std::to_string(r.threads) +
                            " threads, " + std::to_string(r.vertices) + " vertices) differs from cpu_ref by " +
-                           std::to_string(r.max_error) + " of the box (limit 1e-4)");
+                           messageNumber(r.max_error) + " of the box (limit 1e-4)");
     }
     return okStatus();
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "../core/number_text.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -41,7 +43,7 @@ Status validateCurveSet(const CurveSet& set, std::size_t vertex_count) {
     if (b.curve_a >= curves || b.curve_b >= curves || !inUnit(b.w) || !inUnit(b.v)) {
       return invalidArgument("curves: vertex " + std::to_string(i) + " is unbound or bound outside the curves (" +
                              std::to_string(b.curve_a) + ", " + std::to_string(b.curve_b) + ", w " +
-                             std::to_string(b.w) + ", v " + std::to_string(b.v) + ")");
+                             messageNumber(b.w) + ", v " + messageNumber(b.v) + ")");
     }
   }
   return okStatus();

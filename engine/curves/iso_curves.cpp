@@ -9,6 +9,8 @@
 #include <string>
 
 
+#include "../core/number_text.hpp"
+#include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
 #include "../mesh/adjacency.hpp"
 #include "../mesh/face_fans.hpp"
@@ -19,7 +21,6 @@
 #include "part_segmentation.hpp"
 #include "plane_cuts.hpp"
 #include "vertex_binding.hpp"
-#include "../core/parallel.hpp"
 
 namespace odeskin {
 namespace {
@@ -124,7 +125,7 @@ Result<CurveSet> buildIsoCurves(std::span<const Vec3> rest, const FaceList& face
   compactCurves(layout);
   if (layout.curves.empty()) {
     return degenerate(std::string("iso-curves: no ") + (loops ? "edge loop" : "plane cut") + " gives a curve of " +
-                      std::to_string(min_points) + " points or more (spacing " + std::to_string(spacing) + ")");
+                      std::to_string(min_points) + " points or more (spacing " + messageNumber(spacing) + ")");
   }
 
   CurveSet set;

@@ -7,6 +7,7 @@
 
 #include <tiny_gltf.h>
 
+#include "../core/number_text.hpp"
 #include "../io/gltf_baked_writer.hpp"
 #include "../io/gltf_buffer_builder.hpp"
 
@@ -56,7 +57,7 @@ Result<int> timeAccessor(ModelBuilder& b, const std::vector<double>& t, double s
     seconds.push_back(static_cast<float>(x * segment_seconds));
     if (seconds.size() > 1 && !(seconds.back() > seconds[seconds.size() - 2])) {
       return invalidArgument(std::string("export: two ") + what + " keys fall on one float32 time near " +
-                             std::to_string(seconds.back()) + " s");
+                             messageNumber(seconds.back()) + " s");
     }
   }
   return b.floats(seconds, TINYGLTF_TYPE_SCALAR, 1, 0, true);

@@ -6,6 +6,7 @@
 #include <limits>
 #include <system_error>
 
+#include "../core/number_text.hpp"
 #include "../io/gltf_buffer_builder.hpp"
 #include "../offline/deform_player.hpp"
 #include "../offline/residual_fit.hpp"
@@ -56,10 +57,10 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
                                     const GltfExportOptions& o) {
   // Below 1e-8 of the box float32 positions round more than the keys err, and keys only multiply.
   if (!(o.tolerance >= 1e-8 && o.tolerance <= 0.01)) {
-    return invalidArgument("export: tolerance " + std::to_string(o.tolerance) + " outside [1e-8, 0.01]");
+    return invalidArgument("export: tolerance " + messageNumber(o.tolerance) + " outside [1e-8, 0.01]");
   }
   if (!(o.bake_fps > 0.0 && o.bake_fps <= 1000.0)) {
-    return invalidArgument("export: bake fps " + std::to_string(o.bake_fps) + " outside (0, 1000]");
+    return invalidArgument("export: bake fps " + messageNumber(o.bake_fps) + " outside (0, 1000]");
   }
   ODESKIN_ASSIGN_OR_RETURN(const DeformPlayer player, DeformPlayer::create(asset));
   auto progress = [&](std::string_view stage, double fraction) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "../core/number_text.hpp"
 #include "../kernels/lbs_job.hpp"
 #include "gltf_animation.hpp"
 #include "gltf_load.hpp"
@@ -144,7 +145,7 @@ Status animatedPose(const tinygltf::Model& model, const Skinned& s, const Clip& 
     const std::optional<RigidTransform> rigid = rigidPart(m, deviation);
     if (!rigid || deviation > kRigidTolerance) {
       return invalidArgument("joint " + std::to_string(j) + " '" + s.skin.skeleton.names[j] + "' in pose '" + label +
-                             "' " + (rigid ? "scales or shears by " + std::to_string(deviation) : std::string("reflects")) +
+                             "' " + (rigid ? "scales or shears by " + messageNumber(deviation) : std::string("reflects")) +
                              "; key poses must be rigid" +
                              (usesMeshQuantization(model) ? " (a KHR_mesh_quantization scale in the inverse bind "
                                                             "matrices is not supported)"

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "../core/number_text.hpp"
 #include "gltf_accessor.hpp"
 
 namespace odeskin::gltf {
@@ -33,7 +34,7 @@ Result<Row> renderRow(const MeshData& mesh, std::size_t r, std::uint32_t bone_co
     }
     if (w < 0.0) {
       return parseError("render vertex " + std::to_string(r) + ": WEIGHTS_" + std::to_string(k / 4) +
-                        " has a negative weight " + std::to_string(w));
+                        " has a negative weight " + messageNumber(w));
     }
     if (w == 0.0) continue;
     sum += w;
@@ -148,7 +149,7 @@ Result<Influences> topologyInfluences(const MeshData& mesh, const Welded& welded
     if (d > kWeldedWeightTolerance) {
       return parseError("topology vertex " + std::to_string(t) + ": render vertices " +
                         std::to_string(welded.first_render[t]) + " and " + std::to_string(r) +
-                        " share its position but their skin weights differ by " + std::to_string(d));
+                        " share its position but their skin weights differ by " + messageNumber(d));
     }
   }
   Influences out;

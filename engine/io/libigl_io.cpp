@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
+#include "../core/number_text.hpp"
 #include "text_tokens.hpp"
 
 namespace odeskin {
@@ -171,13 +172,13 @@ Result<Influences> readWeightsDmat(const std::filesystem::path& path, std::size_
     for (std::size_t b = 0; b < w.cols; ++b) {
       if (w.at(v, b) < 0.0) {
         return invalidArgument(path.string() + ": vertex " + std::to_string(v) + " has weight " +
-                               std::to_string(w.at(v, b)) + " < 0 for bone " + std::to_string(b));
+                               messageNumber(w.at(v, b)) + " < 0 for bone " + std::to_string(b));
       }
       sum += w.at(v, b);
     }
     if (std::abs(sum - 1.0) > 1e-6) {
       return invalidArgument(path.string() + ": weights of vertex " + std::to_string(v) + " sum to " +
-                             std::to_string(sum) + ", not 1");
+                             messageNumber(sum) + ", not 1");
     }
   }
   return influencesFromDense(w.values, vertex_count, static_cast<std::uint32_t>(bone_count));
@@ -225,7 +226,7 @@ Result<std::vector<RigidTransform>> parseTmat(const std::string& text, const std
     if (nearest.determinant() < 0.0)
       return invalidArgument(where + " has determinant < 0: a reflection, not a rotation");
     if (!(off <= 1e-4)) {
-      return invalidArgument(where + " is not a rotation within 1e-4 (an entry is off by " + std::to_string(off) + ")");
+      return invalidArgument(where + " is not a rotation within 1e-4 (an entry is off by " + messageNumber(off) + ")");
     }
     glm::dmat3 rotation;
     for (int c = 0; c < 3; ++c) rotation[c] = toGlm(nearest.col(c));
@@ -280,7 +281,7 @@ Result<std::vector<glm::dquat>> parsePoseJson(const std::string& text, const std
     const glm::dquat rotation(q[3], q[0], q[1], q[2]);  // file order x y z w; glm's constructor takes w first
     const double norm = glm::length(rotation);
     if (std::abs(norm - 1.0) > 1e-4) {
-      return parseError(where + " has length " + std::to_string(norm) + ", not a unit quaternion");
+      return parseError(where + " has length " + messageNumber(norm) + ", not a unit quaternion");
     }
     rotations[b] = rotation / norm;
   }

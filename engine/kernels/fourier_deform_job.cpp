@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../core/number_text.hpp"
 #include "dual_quaternion.hpp"
 #include "lbs_job.hpp"
 
@@ -98,7 +99,7 @@ Status FourierDeformJob::validate() const {
     }
     if (!(b.w >= 0.0 && b.w <= 1.0) || !std::isfinite(b.v)) {
       return invalidArgument("fourier deform: vertex " + std::to_string(i) + " has blend weight " +
-                             std::to_string(b.w) + " or parameter " + std::to_string(b.v) + " out of range");
+                             messageNumber(b.w) + " or parameter " + messageNumber(b.v) + " out of range");
     }
     if (!remainder_indices.empty() && remainder_indices[i] != kNoRemainder &&
         remainder_indices[i] >= remainders.size()) {

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <string>
 
+#include "../core/number_text.hpp"
 #include "lbs_job.hpp"
 
 namespace odeskin {
@@ -48,13 +49,13 @@ Status validateInfluences(const InfluencesView& influences, std::size_t vertex_c
       }
       const double w = influences.weights[k];
       if (!std::isfinite(w) || w < 0.0) {
-        return invalidArgument("influences: vertex " + std::to_string(i) + " has weight " + std::to_string(w));
+        return invalidArgument("influences: vertex " + std::to_string(i) + " has weight " + messageNumber(w));
       }
       sum += w;
     }
     if (std::abs(sum - 1.0) > sum_tolerance) {
       return invalidArgument("influences: weights of vertex " + std::to_string(i) + " sum to " +
-                             std::to_string(sum) + ", not 1");
+                             messageNumber(sum) + ", not 1");
     }
   }
   return okStatus();

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "../core/float32_range.hpp"
+#include "../core/number_text.hpp"
 #include "../kernels/fourier_deform_job.hpp"
 
 namespace odeskin {
@@ -91,7 +92,7 @@ Status validateDeformAsset(const DeformAsset& a) {
     }
   }
   if (!(a.segment_seconds > 0.0) || !std::isfinite(a.segment_seconds)) {
-    return invalidArgument("deform asset: segment length " + std::to_string(a.segment_seconds) + " s is not positive");
+    return invalidArgument("deform asset: segment length " + messageNumber(a.segment_seconds) + " s is not positive");
   }
   if (a.skinning != SkinningMode::kLinear && a.skinning != SkinningMode::kDualQuaternion) {
     return invalidArgument("deform asset: unknown skinning mode");

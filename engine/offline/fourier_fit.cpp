@@ -12,6 +12,8 @@
 #include <Eigen/Dense>
 #include <glm/geometric.hpp>
 
+#include "../core/number_text.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -31,8 +33,8 @@ Status checkRank(const Eigen::ColPivHouseholderQR<Eigen::MatrixXd>& qr, const st
   const double max_r = diag.maxCoeff();
   const double min_r = diag.minCoeff();
   if (!(min_r > kRankTolerance * max_r)) {
-    return illPosed(what + ": rank deficient (min|R_ii| = " + std::to_string(min_r) +
-                    ", max|R_ii| = " + std::to_string(max_r) + ")");
+    return illPosed(what + ": rank deficient (min|R_ii| = " + messageNumber(min_r) +
+                    ", max|R_ii| = " + messageNumber(max_r) + ")");
   }
   return okStatus();
 }
@@ -68,7 +70,7 @@ Status validateFitInput(std::span<const double> v, std::span<const glm::dvec3> v
   // arcLengthParameters returns exactly these values.
   if (!closed && (v.front() != 0.0 || v.back() != 1.0)) {
     return invalidArgument("open curve parameters must start at 0 and end at 1 (got " +
-                           std::to_string(v.front()) + " and " + std::to_string(v.back()) + ")");
+                           messageNumber(v.front()) + " and " + messageNumber(v.back()) + ")");
   }
   return okStatus();
 }
@@ -96,7 +98,7 @@ Result<FourierFitter> FourierFitter::create(std::span<const double> v, int modes
   }
   if (!closed && (v.front() != 0.0 || v.back() != 1.0)) {
     return invalidArgument("open curve parameters must start at 0 and end at 1 (got " +
-                           std::to_string(v.front()) + " and " + std::to_string(v.back()) + ")");
+                           messageNumber(v.front()) + " and " + messageNumber(v.back()) + ")");
   }
   const Eigen::Index rows = closed ? static_cast<Eigen::Index>(v.size()) : static_cast<Eigen::Index>(v.size()) - 2;
   const Eigen::Index cols = closed ? 2 * modes + 1 : 2 * modes;

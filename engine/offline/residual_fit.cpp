@@ -12,14 +12,15 @@
 #include <Eigen/SVD>
 #include <tbb/blocked_range.h>
 
+#include "../core/number_text.hpp"
+#include "../core/parallel.hpp"
+#include "../core/position_box.hpp"
 #include "../kernels/dual_quaternion.hpp"
 #include "../kernels/fourier_deform_job.hpp"
 #include "../kernels/lbs_job.hpp"
 #include "deform_player.hpp"
 #include "fourier_fit.hpp"
 #include "time_basis.hpp"
-#include "../core/parallel.hpp"
-#include "../core/position_box.hpp"
 
 namespace odeskin {
 namespace {
@@ -140,7 +141,7 @@ Status checkInput(const FitInput& in, const FitOptions& opt) {
     for (const CurvePoint& p : curve.points) {
       if (p.a >= v_count || p.b >= v_count || !(p.t >= 0.0 && p.t <= 1.0)) {
         return invalidArgument("fit: curve " + std::to_string(c) + " has a point on edge (" + std::to_string(p.a) +
-                               ", " + std::to_string(p.b) + ") at " + std::to_string(p.t) + ", off the mesh of " +
+                               ", " + std::to_string(p.b) + ") at " + messageNumber(p.t) + ", off the mesh of " +
                                std::to_string(v_count) + " vertices");
       }
     }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "../core/number_text.hpp"
 #include "kabsch.hpp"
 
 namespace odeskin {
@@ -31,7 +32,7 @@ Result<CurveRig> buildCurveRig(std::span<const Vec3> rest, const FaceList& faces
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (out.rig.skeleton.boneCount() == 0) {
     return degenerate("curve rig: the skeleton has no bone (the mesh is too small for two rings at level spacing " +
-                      std::to_string(options.curves.level_spacing) + ")");
+                      messageNumber(options.curves.level_spacing) + ")");
   }
   if (options.compute_weights) {
     const auto weights_start = std::chrono::steady_clock::now();

@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "../core/number_text.hpp"
 #include "../core/position_box.hpp"
 #include "../curves/edge_loops.hpp"
 #include "curve_skeleton_levels.hpp"
@@ -327,7 +328,7 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
   const LevelTree first_tree = levelTree(first, first.vertex_region[extremity[0]], prune);
   const std::int32_t centre = centreContour(first, first_tree);
   if (centre < 0) {
-    return degenerate("curve skeleton: no closed ring at level spacing " + std::to_string(kFirstPassSpacing * spacing) +
+    return degenerate("curve skeleton: no closed ring at level spacing " + messageNumber(kFirstPassSpacing * spacing) +
                       " (the mesh is too small or too flat for levels)");
   }
   // Pass 2, from a band across the body at the centre, so that rings run across the body on both

@@ -22,10 +22,11 @@
 #include <string>
 
 
-#include "../mesh/adjacency.hpp"
-#include "weight_rows.hpp"
+#include "../core/number_text.hpp"
 #include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
+#include "../mesh/adjacency.hpp"
+#include "weight_rows.hpp"
 
 namespace odeskin {
 namespace {
@@ -69,7 +70,7 @@ Result<Influences> distanceWeights(std::span<const Vec3> rest, const FaceList& f
   }
   if (!std::isfinite(options.falloff_power) || !(options.falloff_power > 0.0)) {
     return invalidArgument("distance weights: falloff_power must be positive and finite, got " +
-                           std::to_string(options.falloff_power));
+                           messageNumber(options.falloff_power));
   }
   if (options.smoothing_iterations < 0) {
     return invalidArgument("distance weights: smoothing_iterations must not be negative, got " +

@@ -12,9 +12,10 @@
 
 #include <Eigen/Dense>
 
-#include "bone_fit.hpp"
+#include "../core/number_text.hpp"
 #include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
+#include "bone_fit.hpp"
 
 namespace odeskin {
 namespace {
@@ -37,7 +38,7 @@ Result<RigidTransform> weightedKabsch(std::span<const Vec3> from, std::span<cons
   for (std::size_t i = 0; i < from.size(); ++i) {
     const double w = weights[i];
     if (!std::isfinite(w) || w < 0.0) {
-      return invalidArgument("kabsch: weight " + std::to_string(i) + " is " + std::to_string(w));
+      return invalidArgument("kabsch: weight " + std::to_string(i) + " is " + messageNumber(w));
     }
     if (w == 0.0) continue;
     if (!finite(from[i]) || !finite(to[i])) {
@@ -71,7 +72,7 @@ Result<RigidTransform> kabschFromCovariance(const Eigen::Matrix3d& h, const Vec3
   // Rank < 2: the points (or their images) lie on a line, and any turn about it fits as well.
   if (!std::isfinite(s(0)) || !(s(0) > 0.0) || s(1) <= kCollinearRatio * s(0)) {
     return degenerate("kabsch: the weighted points are collinear or coincide (singular values " +
-                      std::to_string(s(0)) + ", " + std::to_string(s(1)) + ", " + std::to_string(s(2)) + ")");
+                      messageNumber(s(0)) + ", " + messageNumber(s(1)) + ", " + messageNumber(s(2)) + ")");
   }
   const Eigen::Matrix3d& u = svd.matrixU();
   const Eigen::Matrix3d& v = svd.matrixV();

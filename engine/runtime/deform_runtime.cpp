@@ -7,6 +7,8 @@
 #include <string>
 #include <tuple>
 
+#include "../core/number_text.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -17,11 +19,7 @@ std::string instanceName(std::uint32_t index) { return "runtime: instance " + st
 
 std::string number(double value) {
   if (std::isnan(value)) return "NaN";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  std::string text = std::to_string(value);
-  while (text.size() > 1 && text.back() == '0') text.pop_back();
-  if (!text.empty() && text.back() == '.') text.pop_back();
-  return text;
+  return messageNumber(value);
 }
 
 bool finiteBone(const gpu::BoneMatrix& m) {

@@ -7,9 +7,10 @@
 
 #include <Eigen/Dense>
 
-#include "mesh_network_deviation.hpp"
+#include "../core/number_text.hpp"
 #include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
+#include "mesh_network_deviation.hpp"
 
 namespace odeskin {
 namespace {
@@ -31,7 +32,7 @@ Status checkOptions(const MeshNetworkOptions& o) {
   ODESKIN_TRY(range("derivative degree", o.derivative_degree, 2, 8));
   ODESKIN_TRY(range("derivative points", o.derivative_points, o.derivative_degree, 1000));
   if (!(o.derivative_window > 0.0 && o.derivative_window <= 1.0)) {
-    return invalidArgument("derivative window = " + std::to_string(o.derivative_window) + " is outside (0, 1] row heights");
+    return invalidArgument("derivative window = " + messageNumber(o.derivative_window) + " is outside (0, 1] row heights");
   }
   if (meshNetworkSampleCount(o) > kMaxMeshNetworkSamples) {
     return outOfRange(std::to_string(o.rows) + " x " + std::to_string(o.columns) + " patches with " +

@@ -8,6 +8,8 @@
 
 #include <Eigen/Dense>
 
+#include "../core/number_text.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -244,8 +246,8 @@ Result<Ode6Cardinal> Ode6Cardinal::create(const Ode6Shape& shape) {
   const double omega4 = std::max(b * b, std::abs(c));  // omega^4
   const double omega = std::max(std::sqrt(std::abs(b)), std::sqrt(std::sqrt(std::abs(c))));
   if (!(omega <= kOde6MaxFrequency)) {
-    return outOfRange("ode6: frequency scale max(sqrt|eta/rho|, |lambda/rho|^(1/4)) = " + std::to_string(omega) +
-                      " exceeds " + std::to_string(kOde6MaxFrequency) + ", " + shapeText(shape));
+    return outOfRange("ode6: frequency scale max(sqrt|eta/rho|, |lambda/rho|^(1/4)) = " + messageNumber(omega) +
+                      " exceeds " + messageNumber(kOde6MaxFrequency) + ", " + shapeText(shape));
   }
   g.regime_ = classifyOde6(b, c);
   basis.w = std::max(1.0, omega);

@@ -276,9 +276,15 @@ TEST_F(TempDir, MalformedDmatNamesPath) {
   // Weights: a negative entry, a row that does not sum to 1 (column-major: rows 0..2 of column 0, then column 1).
   p = write("negative.dmat", "2 3\n1.5\n0\n0.5\n-0.5\n1\n0.5\n");
   expectError(readWeightsDmat(p, 3, 2), StatusCode::kInvalidArgument, p,
-              "vertex 0 has weight -0.500000 < 0 for bone 1");
+              "vertex 0 has weight -0.5 < 0 for bone 1");
+  // A tiny negative weight is named as it is ("%f" read "-0.000000 < 0"), and a sum as far from 1 as
+  // it is (6 decimals read 1.0000015 as "1.000002" and 1 + 1e-12 as "1.000000").
+  p = write("tiny.dmat", "2 3\n1\n-1e-9\n0.5\n0\n1.000000001\n0.5\n");
+  expectError(readWeightsDmat(p, 3, 2), StatusCode::kInvalidArgument, p, "vertex 1 has weight -1e-09 < 0 for bone 0");
   p = write("sum.dmat", "2 3\n1\n0\n0.5\n0\n1\n0.4\n");
-  expectError(readWeightsDmat(p, 3, 2), StatusCode::kInvalidArgument, p, "weights of vertex 2 sum to 0.900000");
+  expectError(readWeightsDmat(p, 3, 2), StatusCode::kInvalidArgument, p, "weights of vertex 2 sum to 0.9, not 1");
+  p = write("near.dmat", "2 3\n1\n0\n0.5\n0\n1\n0.5000015\n");
+  expectError(readWeightsDmat(p, 3, 2), StatusCode::kInvalidArgument, p, "weights of vertex 2 sum to 1.0000015, not 1");
   // A valid small file: W = [1 0; 0 1; 0.25 0.75].
   p = write("ok.dmat", "2 3\n1\n0\n0.25\n0\n1\n0.75");
   const Result<Influences> ok = readWeightsDmat(p, 3, 2);
