@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <vector>
 
 #include "engine/offline/fourier_fit.hpp"
-#include "material_options.hpp"
 #include "file_extension.hpp"
+#include "material_options.hpp"
+#include "output_paths.hpp"
 
 namespace odeskin {
 std::string fitMaterialText(const FitCommandOptions& o) { return o.material.empty() ? "skin" : o.material; }
@@ -62,6 +64,11 @@ std::string fitUsageProblem(const FitCommandOptions& o) {
   }
   if (!o.materials_json.empty() && !o.material.empty()) return "fit: give --material or --materials, not both";
   if (Result<Material> m = parseMaterial(fitMaterialText(o)); !m.ok()) return "fit: --material: " + m.status().message();
+  std::vector<std::filesystem::path> inputs = o.inputs;
+  inputs.insert(inputs.end(), o.transforms.begin(), o.transforms.end());
+  for (const std::filesystem::path& p : {o.bind, o.weights, o.materials_json}) inputs.push_back(p);
+  if (lowerExtension(o.rig) == ".tgf") inputs.emplace_back(o.rig);
+  if (overwritesInput(o.output, inputs)) return "fit: " + o.output.string() + " is an input; it would be overwritten";
   std::string problem;
   fitInputKind(o, &problem);
   return problem;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -16,8 +17,9 @@
 #include "engine/surfaces/mesh_network_deviation.hpp"
 #include "engine/surfaces/mesh_network_pose.hpp"
 #include "engine/surfaces/network_json.hpp"
-#include "number_text.hpp"
 #include "file_extension.hpp"
+#include "number_text.hpp"
+#include "output_paths.hpp"
 
 namespace odeskin {
 namespace {
@@ -93,8 +95,8 @@ std::string usageProblem(const ReconstructCommandOptions& o, MeshNetworkOptions&
   if (!(o.tear_ratio > 1.0) || !std::isfinite(o.tear_ratio)) {
     return "reconstruct: --tear-ratio " + numberText(o.tear_ratio) + " must be a finite number > 1";
   }
-  std::set<fs::path> inputs{o.mesh.lexically_normal()};
-  for (const fs::path& p : o.poses) inputs.insert(p.lexically_normal());
+  std::vector<fs::path> input_files{o.mesh};
+  input_files.insert(input_files.end(), o.poses.begin(), o.poses.end());
   std::set<fs::path> outputs;
   std::vector<fs::path> wanted{o.network, o.json};
   if (!o.output.empty()) {
@@ -106,7 +108,7 @@ std::string usageProblem(const ReconstructCommandOptions& o, MeshNetworkOptions&
   }
   for (const fs::path& p : wanted) {
     if (p.empty()) continue;
-    if (inputs.count(p.lexically_normal()) != 0) return "reconstruct: " + p.string() + " is an input; it would be overwritten";
+    if (overwritesInput(p, input_files)) return "reconstruct: " + p.string() + " is an input; it would be overwritten";
     if (!outputs.insert(p.lexically_normal()).second) {
       return "reconstruct: two outputs would be " + p.string() + " (poses with the same file name?)";
     }

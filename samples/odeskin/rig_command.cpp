@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <ostream>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -17,9 +18,10 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_rig.hpp"
 #include "engine/rig/skeleton_compare.hpp"
+#include "file_extension.hpp"
+#include "output_paths.hpp"
 #include "render_session.hpp"
 #include "rig_picture.hpp"
-#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {
@@ -60,6 +62,11 @@ std::string usageProblem(const RigCommandOptions& o) {
   if (!o.png.empty() && lowerExtension(o.png) != ".png") return "rig: --png " + o.png.string() + ": must be a .png file";
   if (!o.compare.empty() && lowerExtension(o.compare) != ".tgf") {
     return "rig: --compare " + o.compare.string() + ": give the ground-truth skeleton as a .tgf file";
+  }
+  std::vector<std::filesystem::path> inputs = o.meshes;
+  inputs.push_back(o.compare);
+  for (const std::filesystem::path& out : {o.output, o.weights, o.gltf, o.png}) {
+    if (overwritesInput(out, inputs)) return "rig: " + out.string() + " is an input; it would be overwritten";
   }
   if (!parseTemplateKind(o.template_kind)) {
     return "rig: --template " + o.template_kind + ": use auto, humanoid, quadruped or none";

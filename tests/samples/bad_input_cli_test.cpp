@@ -516,6 +516,38 @@ TEST_F(BadInputCli, UsageErrorsExitTwoWithOneLine) {
   runTable(cases, dir() / "usage");
 }
 
+// An output that names an input, directly, spelt another way, or through a symbolic link, is
+// refused before anything is read: `fit a.obj b.obj -o a.obj` once wrote the asset over a.obj.
+TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
+  const fs::path c = dir() / "replace";
+  fs::create_directories(c);
+  fs::copy_file(in("good1.obj"), c / "pose1.obj", fs::copy_options::overwrite_existing);
+  fs::copy_file(in("good2.obj"), c / "pose2.obj", fs::copy_options::overwrite_existing);
+  fs::copy_file(kCylinder / "cylinder.tgf", c / "truth.tgf", fs::copy_options::overwrite_existing);
+  fs::remove(c / "alias.obj");
+  fs::create_symlink("pose1.obj", c / "alias.obj");
+  const std::string pose1 = (c / "pose1.obj").string();
+  const std::string pose2 = (c / "pose2.obj").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"fit", pose1, pose2, "-o", pose1}, "pose1.obj is an input; it would be overwritten"},
+      {{"fit", pose1, (c / "." / "pose2.obj").string(), "-o", pose2}, "pose2.obj is an input"},
+      {{"fit", pose1, pose2, "-o", (c / "alias.obj").string()}, "alias.obj is an input"},
+      {{"rig", pose1, "-o", (c / "truth.tgf").string(), "--compare", (c / "truth.tgf").string()}, "truth.tgf is an input"},
+      {{"reconstruct", pose1, "-o", (c / "alias.obj").string()}, "alias.obj is an input"},
+  };
+  const std::string pose1_before = readText(c / "pose1.obj");
+  const std::string pose2_before = readText(c / "pose2.obj");
+  const std::string truth_before = readText(c / "truth.tgf");
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Outcome r = runOdeskin(cases[i].first, dir() / "io" / ("replace" + std::to_string(i)));
+    expectOneErrorLine(r, 2, {cases[i].second}, commandLine(cases[i].first));
+  }
+  EXPECT_EQ(readText(c / "pose1.obj"), pose1_before);
+  EXPECT_EQ(readText(c / "pose2.obj"), pose2_before);
+  EXPECT_EQ(readText(c / "truth.tgf"), truth_before);
+  EXPECT_TRUE(fs::is_symlink(c / "alias.obj"));
+}
+
 TEST_F(BadInputCli, UnwritableOutputsFailWithoutPartialFiles) {
   // A regular file where a folder should be: even root cannot create under it.
   const fs::path blocker = dir() / "unwritable" / "blocker";
