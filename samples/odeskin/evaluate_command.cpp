@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 #include <system_error>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +13,7 @@
 #include "engine/io/obj_io.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/offline/fourier_fit.hpp"
+#include "output_paths.hpp"
 #include "render_command.hpp"
 
 namespace odeskin {
@@ -133,6 +135,13 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   if (libigl_rig && o.bind.empty()) return reportUsage(console, "evaluate: --rig SKELETON.tgf needs --bind REST.obj");
   if (!libigl_rig && (!o.bind.empty() || !o.weights.empty())) {
     return reportUsage(console, "evaluate: --bind and --weights apply to --rig SKELETON.tgf");
+  }
+  std::vector<std::filesystem::path> inputs = o.frames;
+  inputs.push_back(o.bind);
+  inputs.push_back(o.weights);
+  if (libigl_rig) inputs.emplace_back(o.rig);
+  if (overwritesInput(o.json, inputs)) {
+    return reportUsage(console, "evaluate: " + o.json.string() + " is an input; it would be overwritten");
   }
   std::vector<std::uint32_t> keys;
   for (const int k : o.keys) {

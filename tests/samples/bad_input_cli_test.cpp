@@ -534,6 +534,7 @@ TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
       {{"fit", pose1, pose2, "-o", (c / "alias.obj").string()}, "alias.obj is an input"},
       {{"rig", pose1, "-o", (c / "truth.tgf").string(), "--compare", (c / "truth.tgf").string()}, "truth.tgf is an input"},
       {{"reconstruct", pose1, "-o", (c / "alias.obj").string()}, "alias.obj is an input"},
+      {{"evaluate", pose1, pose2, in("good3.obj"), "--keys", "0,2", "--json", pose2}, "pose2.obj is an input"},
   };
   const std::string pose1_before = readText(c / "pose1.obj");
   const std::string pose2_before = readText(c / "pose2.obj");
