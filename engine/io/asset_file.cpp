@@ -4,11 +4,9 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <fstream>
-#include <iterator>
 #include <map>
-#include <system_error>
 
+#include "../core/input_file.hpp"
 #include "obj_io.hpp"
 
 namespace odeskin {
@@ -490,12 +488,7 @@ Status saveAsset(const std::filesystem::path& path, const DeformAsset& asset) {
 }
 
 Result<DeformAsset> loadAsset(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return ioError(path.string() + ": is a directory, not an asset");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return ioError(path.string() + ": cannot open for reading");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return ioError(path.string() + ": read failed");
+  ODESKIN_ASSIGN_OR_RETURN(const std::string bytes, readInputFile(path));
   return decodeAsset(bytes, path.string());
 }
 

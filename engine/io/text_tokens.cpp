@@ -2,19 +2,12 @@
 #include "text_tokens.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
+
+#include "../core/input_file.hpp"
 
 namespace odeskin {
 
-Result<std::string> readTextFile(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return ioError(path.string() + ": cannot open for reading");
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  if (file.bad()) return ioError(path.string() + ": read failed");
-  return buffer.str();
-}
+Result<std::string> readTextFile(const std::filesystem::path& path) { return readInputFile(path); }
 
 bool LineReader::next(std::string_view& line) {
   if (pos_ >= text_.size()) return false;

@@ -14,7 +14,7 @@
 
 namespace odeskin {
 
-// The file's bytes; kIoError "PATH: cannot open for reading" or "PATH: read failed".
+// The file's bytes: readInputFile (engine/core/input_file.hpp), which refuses directories and devices.
 Result<std::string> readTextFile(const std::filesystem::path& path);
 
 // The text's lines one by one (LF or CRLF, last line with or without a newline), numbered from 1.

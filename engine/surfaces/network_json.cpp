@@ -2,11 +2,11 @@
 #include "network_json.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
+
+#include "../core/input_file.hpp"
 
 namespace odeskin {
 namespace {
@@ -351,12 +351,8 @@ Result<NetworkDescription> parseNetworkDescription(std::string_view text_view) {
 }
 
 Result<NetworkDescription> readNetworkDescription(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return ioError(path.string() + ": cannot open");
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) return ioError(path.string() + ": cannot read");
-  Result<NetworkDescription> d = parseNetworkDescription(content.str());
+  ODESKIN_ASSIGN_OR_RETURN(const std::string content, readInputFile(path));
+  Result<NetworkDescription> d = parseNetworkDescription(content);
   if (!d.ok()) return Status(d.status().code(), path.string() + ": " + d.status().message());
   return d;
 }

@@ -2,11 +2,11 @@
 #include "material_options.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+
+#include "engine/core/input_file.hpp"
 
 namespace odeskin {
 namespace {
@@ -107,9 +107,7 @@ Result<MaterialChoice> parseMaterialsJson(const std::string& text, const std::st
 }
 
 Result<MaterialChoice> readMaterialsJson(const std::filesystem::path& path, const Material& fallback) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return ioError(path.string() + ": cannot open for reading");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ODESKIN_ASSIGN_OR_RETURN(const std::string text, readInputFile(path));
   return parseMaterialsJson(text, path.string(), fallback);
 }
 

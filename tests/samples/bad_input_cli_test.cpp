@@ -549,6 +549,33 @@ TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
   EXPECT_TRUE(fs::is_symlink(c / "alias.obj"));
 }
 
+// A device behind an input's name is refused before any read; /dev/zero was read until memory ran
+// out. The links here name /dev/null, so a regression fails on the message rather than hanging.
+TEST_F(BadInputCli, DevicesBehindInputNamesAreRefused) {
+  const fs::path c = dir() / "devices";
+  fs::create_directories(c);
+  for (const char* name : {"dev.obj", "dev.odsk", "dev.json", "dev.tgf", "dev.dmat"}) {
+    fs::remove(c / name);
+    fs::create_symlink("/dev/null", c / name);
+  }
+  auto at = [&](const char* name) { return (c / name).string(); };
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"render", at("dev.obj"), "-o", at("x.png")}, "dev.obj: is a device, not a file"},
+      {{"fit", at("dev.obj"), in("good2.obj"), "-o", at("x.odsk")}, "dev.obj: is a device, not a file"},
+      {{"info", at("dev.odsk")}, "dev.odsk: is a device, not a file"},
+      {{"play", at("dev.odsk"), "--t", "0", "-o", at("x.obj")}, "dev.odsk: is a device, not a file"},
+      {{"surface", at("dev.json"), "-o", at("x.glb")}, "dev.json: is a device, not a file"},
+      {{"reconstruct", at("dev.obj"), "-o", at("x.obj")}, "dev.obj: is a device, not a file"},
+      {{"rig", at("dev.obj"), "-o", at("x.tgf")}, "dev.obj: is a device, not a file"},
+      {{"fit", in("good1.obj"), in("good2.obj"), "--bind", in("good1.obj"), "--rig", at("dev.tgf"), "--weights",
+        at("dev.dmat"), "-o", at("x.odsk")}, "is a device, not a file"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Outcome r = runOdeskin(cases[i].first, dir() / "io" / ("devices" + std::to_string(i)));
+    expectOneErrorLine(r, 1, {cases[i].second}, commandLine(cases[i].first));
+  }
+}
+
 TEST_F(BadInputCli, UnwritableOutputsFailWithoutPartialFiles) {
   // A regular file where a folder should be: even root cannot create under it.
   const fs::path blocker = dir() / "unwritable" / "blocker";

@@ -148,7 +148,7 @@ TEST(NetworkJson, FileErrorsStartWithThePath) {
   const std::filesystem::path missing = std::filesystem::temp_directory_path() / "odeskin_no_such_network.json";
   Result<NetworkDescription> d = readNetworkDescription(missing);
   EXPECT_EQ(d.status().code(), StatusCode::kIoError);
-  EXPECT_EQ(d.status().message(), missing.string() + ": cannot open");
+  EXPECT_EQ(d.status().message(), missing.string() + ": cannot open for reading");
   const std::filesystem::path bad = std::filesystem::temp_directory_path() / ("odeskin_bad_network_" + std::to_string(::getpid()) + ".json");
   std::ofstream(bad) << replaced(kSmall, "\"eta\": 3", "\"eta\": NaN");
   Result<Network> n = loadNetwork(bad);
