@@ -361,6 +361,11 @@ CpuDeformKernel::~CpuDeformKernel() = default;
 Result<CpuDeformKernel> CpuDeformKernel::create(const PackedDeformData& data) {
   std::vector<CpuKernelArch> archs = supportedCpuKernelArchs();
   if (const char* cap = std::getenv("ODESKIN_CPU_KERNEL_ARCH"); cap != nullptr && *cap != '\0') {
+    // A misspelt cap would otherwise be ignored, and a benchmark would time the wrong kernel.
+    const bool known = std::strcmp(cap, "generic") == 0 || std::strcmp(cap, "avx2") == 0 || std::strcmp(cap, "avx512") == 0;
+    if (!known) {
+      return invalidArgument(std::string("ODESKIN_CPU_KERNEL_ARCH=") + cap + ": expected generic, avx2 or avx512");
+    }
     std::erase_if(archs, [&](CpuKernelArch a) {
       for (CpuKernelArch b : {CpuKernelArch::kGeneric, CpuKernelArch::kAvx2, CpuKernelArch::kAvx512}) {
         if (a == b) return false;

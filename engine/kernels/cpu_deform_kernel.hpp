@@ -50,7 +50,8 @@ enum class CpuKernelArch : std::uint8_t {
 const char* cpuKernelArchName(CpuKernelArch arch);
 // The instruction sets this build and this CPU can both run, fastest first (always ends with
 // kGeneric). The environment variable ODESKIN_CPU_KERNEL_ARCH=generic|avx2|avx512 caps the choice of
-// create(data) (for comparisons); it never selects what the CPU lacks.
+// create(data) (for comparisons); it never selects what the CPU lacks, and another value makes
+// create(data) fail (kInvalidArgument).
 std::vector<CpuKernelArch> supportedCpuKernelArchs();
 
 class CpuDeformKernel {

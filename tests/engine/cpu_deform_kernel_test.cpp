@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -355,6 +356,25 @@ TEST(CpuDeformKernel, TheFastestSupportedSetIsTheDefault) {
   if (std::getenv("ODESKIN_CPU_KERNEL_ARCH") == nullptr) {
     EXPECT_EQ(kernel->arch(), supportedCpuKernelArchs().front());
   }
+}
+
+// A misspelt cap is an error, not ignored (a benchmark would time the wrong kernel). The
+// environment changes while no other thread of the test reads it, hence the NOLINTs.
+TEST(CpuDeformKernel, AnUnknownInstructionSetCapIsAnError) {
+  const PackedDeformData d = testing::randomPackedData(packedOptions());
+  std::optional<std::string> old;
+  if (const char* value = std::getenv("ODESKIN_CPU_KERNEL_ARCH")) old = value;
+  setenv("ODESKIN_CPU_KERNEL_ARCH", "AVX-512", 1);  // NOLINT(concurrency-mt-unsafe)
+  Result<CpuDeformKernel> kernel = CpuDeformKernel::create(d);
+  setenv("ODESKIN_CPU_KERNEL_ARCH", "generic", 1);  // NOLINT(concurrency-mt-unsafe)
+  Result<CpuDeformKernel> generic = CpuDeformKernel::create(d);
+  if (old) setenv("ODESKIN_CPU_KERNEL_ARCH", old->c_str(), 1);  // NOLINT(concurrency-mt-unsafe)
+  else unsetenv("ODESKIN_CPU_KERNEL_ARCH");                       // NOLINT(concurrency-mt-unsafe)
+  ASSERT_FALSE(kernel.ok());
+  EXPECT_EQ(kernel.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(kernel.status().message(), "ODESKIN_CPU_KERNEL_ARCH=AVX-512: expected generic, avx2 or avx512");
+  ASSERT_TRUE(generic.ok());
+  EXPECT_EQ(generic->arch(), CpuKernelArch::kGeneric);
 }
 
 // The arm's rings share their curve pair and its two bones: no padding, one or two bones a block.
