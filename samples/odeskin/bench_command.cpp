@@ -16,6 +16,7 @@
 #include "bench/harness/fit_sources.hpp"
 #include "engine/core/thread_count.hpp"
 #include "host/device.hpp"
+#include "output_paths.hpp"
 
 namespace odeskin {
 namespace {
@@ -208,7 +209,10 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
     const std::string& m = status.message();
     return reportError(console, m.rfind("bench: ", 0) == 0 ? m : "bench: " + m, kExitFailure);
   };
-  // Minutes of timing must not end in an unwritable path: check the folders before any work.
+  // Minutes of timing must not end in an unwritable path: check the paths and folders before any work.
+  for (const std::filesystem::path& path : {o.json, o.csv, o.plot, o.fit_plot}) {
+    if (const std::string why = folderNotFile(path); !why.empty()) return reportUsage(console, "bench: " + path.string() + " " + why);
+  }
   for (const std::filesystem::path& path : {o.json, o.csv, o.plot, o.fit_plot}) {
     const std::filesystem::path parent = path.parent_path();
     if (path.empty() || parent.empty()) continue;

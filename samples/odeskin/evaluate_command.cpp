@@ -143,6 +143,9 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   if (overwritesInput(o.json, inputs)) {
     return reportUsage(console, "evaluate: " + o.json.string() + " is an input; it would be overwritten");
   }
+  if (const std::string why = folderNotFile(o.json); !why.empty()) {
+    return reportUsage(console, "evaluate: --json " + o.json.string() + " " + why);
+  }
   std::vector<std::uint32_t> keys;
   for (const int k : o.keys) {
     if (k < 0) return reportUsage(console, "evaluate: key " + std::to_string(k) + " is negative");

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
-// An output must not replace an input: `odeskin fit a.obj b.obj -o a.obj` wrote the asset over the
-// first pose. Each verb checks its outputs against its inputs before it reads anything.
+// Output paths checked before any work. An output must not replace an input (`odeskin fit a.obj
+// b.obj -o a.obj` wrote the asset over the first pose), and a file output must not name a folder
+// (`fit ... -o out/` fitted, then failed to write and left out/ behind).
 #pragma once
 
 #include <filesystem>
 #include <span>
+#include <string>
 #include <system_error>
 
 namespace odeskin {
@@ -20,6 +22,15 @@ inline bool overwritesInput(const std::filesystem::path& output, std::span<const
     if (std::filesystem::equivalent(output, input, ec) && !ec) return true;
   }
   return false;
+}
+
+// "" when `output` can be a file; else why not, for "OPTION PATH: ..." messages.
+inline std::string folderNotFile(const std::filesystem::path& output) {
+  if (output.empty()) return {};
+  std::error_code ec;
+  if (!output.has_filename()) return "names a folder (it ends in a separator); give a file name";
+  if (std::filesystem::is_directory(output, ec)) return "is a folder; give a file name";
+  return {};
 }
 
 }  // namespace odeskin

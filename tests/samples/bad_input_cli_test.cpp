@@ -549,6 +549,26 @@ TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
   EXPECT_TRUE(fs::is_symlink(c / "alias.obj"));
 }
 
+// A file output that names a folder is refused before any work: `fit ... -o out/` fitted, failed to
+// write and left out/ behind; `bench --json out/` did so after minutes of timing.
+TEST_F(BadInputCli, FileOutputsThatNameAFolderAreRefusedBeforeAnyWork) {
+  const fs::path c = dir() / "folders";
+  fs::create_directories(c / "existing");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"fit", in("good1.obj"), in("good2.obj"), "-o", (c / "new1").string() + "/"}, "new1/ names a folder"},
+      {{"fit", in("good1.obj"), in("good2.obj"), "-o", (c / "existing").string()}, "existing is a folder"},
+      {{"evaluate", in("good1.obj"), in("good2.obj"), in("good3.obj"), "--keys", "0,2", "--json", (c / "new2").string() + "/"},
+       "new2/ names a folder"},
+      {{"bench", "--no-fit", "--sizes", "1000", "--terms", "3", "--backends", "cpu_ref", "--json", (c / "new3").string() + "/"},
+       "new3/ names a folder"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Outcome r = runOdeskin(cases[i].first, dir() / "io" / ("folders" + std::to_string(i)));
+    expectOneErrorLine(r, 2, {cases[i].second}, commandLine(cases[i].first));
+  }
+  for (const char* name : {"new1", "new2", "new3"}) EXPECT_FALSE(fs::exists(c / name)) << name;
+}
+
 // A device behind an input's name is refused before any read; /dev/zero was read until memory ran
 // out. The links here name /dev/null, so a regression fails on the message rather than hanging.
 TEST_F(BadInputCli, DevicesBehindInputNamesAreRefused) {
