@@ -9,12 +9,19 @@ namespace odeskin {
 
 Result<std::string> readTextFile(const std::filesystem::path& path) { return readInputFile(path); }
 
+LineReader::LineReader(const std::string& text) : text_(text) {
+  // A UTF-8 byte order mark (Windows editors write one) made the first line an unknown statement:
+  // an OBJ lost its first vertex and every face then named the wrong vertices.
+  if (text_.starts_with("\xEF\xBB\xBF")) pos_ = 3;
+}
+
 bool LineReader::next(std::string_view& line) {
   if (pos_ >= text_.size()) return false;
-  std::size_t end = text_.find('\n', pos_);
+  // LF, CRLF or a lone CR (classic Mac OS): a file of CR-only lines read as one line ("no faces").
+  std::size_t end = text_.find_first_of("\r\n", pos_);
   if (end == std::string::npos) end = text_.size();
   line = std::string_view(text_.data() + pos_, end - pos_);
-  pos_ = end + 1;
+  pos_ = end + (end + 1 < text_.size() && text_[end] == '\r' && text_[end + 1] == '\n' ? 2 : 1);
   ++number_;
   return true;
 }

@@ -17,10 +17,11 @@ namespace odeskin {
 // The file's bytes: readInputFile (engine/core/input_file.hpp), which refuses directories and devices.
 Result<std::string> readTextFile(const std::filesystem::path& path);
 
-// The text's lines one by one (LF or CRLF, last line with or without a newline), numbered from 1.
+// The text's lines one by one (LF, CRLF or CR; last line with or without one), numbered from 1,
+// after a UTF-8 byte order mark if the text starts with one.
 class LineReader {
  public:
-  explicit LineReader(const std::string& text) : text_(text) {}
+  explicit LineReader(const std::string& text);
   bool next(std::string_view& line);
   std::size_t number() const { return number_; }
 

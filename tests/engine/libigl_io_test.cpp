@@ -102,6 +102,20 @@ TEST(ReadTgf, CheburashkaParentsComeInAnyOrder) {
   }
 }
 
+// A UTF-8 byte order mark and CR-only lines read as plain LF text; errors keep their line numbers.
+TEST_F(TempDir, TgfAndDmatWithAByteOrderMarkAndCrLines) {
+  const Result<Skeleton> plain = readTgf(write("lf.tgf", "1 0 0 0\n2 1 0 0\n3 2 0 0\n#\n1 2\n2 3\n#\n"));
+  const Result<Skeleton> marked = readTgf(write("cr.tgf", "\xEF\xBB\xBF" "1 0 0 0\r2 1 0 0\r3 2 0 0\r#\r1 2\r2 3\r#\r"));
+  ASSERT_TRUE(plain.ok() && marked.ok()) << marked.status().toString();
+  EXPECT_EQ(marked->heads, plain->heads);
+  EXPECT_EQ(marked->tails, plain->tails);
+  EXPECT_EQ(marked->parents, plain->parents);
+  const fs::path bad = write("bad.tgf", "\xEF\xBB\xBF" "1 0 0 0\r2 1 0 0\r3 2 0 0\r#\r1 2\r2 9\r#\r");
+  expectError(readTgf(bad), StatusCode::kParseError, bad, ":6: bone end '9' is not a joint number in 1..3");
+  const Result<Influences> w = readWeightsDmat(write("w.dmat", "\xEF\xBB\xBF" "2 3\r1\r0\r0.25\r0\r1\r0.75\r"), 3, 2);
+  ASSERT_TRUE(w.ok()) << w.status().toString();
+}
+
 TEST_F(TempDir, MalformedTgfNamesPathAndLine) {
   const std::string joints = "1 0 0 0\n2 1 0 0\n3 2 0 0\n#\n";
   fs::path p = write("a.tgf", joints + "1 2\n2 9\n#\n");

@@ -180,6 +180,31 @@ TEST(ParseObj, TextInMemoryReadsAsTheFileAndErrorsNameTheSource) {
   EXPECT_EQ(bad.status().message(), "memory.obj:2: bad face index 'x'");
 }
 
+// Line ends and a byte order mark change nothing: CR-only lines read as one line ("no faces"), and
+// a UTF-8 BOM hid the first vertex, so every face named the wrong vertices. Errors still name the
+// right line.
+TEST(ParseObj, CrOnlyLinesAndAByteOrderMarkReadAsPlainLf) {
+  const fs::path path = kData / "cylinder/cylinder.obj";
+  std::string lf = slurp(path);
+  std::erase(lf, '\r');
+  const Result<ObjMesh> plain = parseObj(lf, "lf.obj");
+  ASSERT_TRUE(plain.ok()) << plain.status().toString();
+  std::string cr = lf;
+  std::replace(cr.begin(), cr.end(), '\n', '\r');
+  std::string crlf;
+  for (const char c : lf) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  for (const auto& [text, name] : {std::pair{cr, "cr.obj"}, std::pair{crlf, "crlf.obj"}, std::pair{"\xEF\xBB\xBF" + lf, "bom.obj"},
+                                   std::pair{"\xEF\xBB\xBF" + cr, "bom-cr.obj"}}) {
+    const Result<ObjMesh> mesh = parseObj(text, name);
+    ASSERT_TRUE(mesh.ok()) << name << ": " << mesh.status().toString();
+    EXPECT_EQ(mesh->positions, plain->positions) << name;
+    EXPECT_EQ(mesh->faces.indices, plain->faces.indices) << name;
+  }
+  const Result<ObjMesh> bad = parseObj("\xEF\xBB\xBFv 0 0 0\rv 1 0 0\r\nv 0 1 0\rf 1 2 x\r", "memory.obj");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message(), "memory.obj:4: bad face index 'x'");
+}
+
 // --- readObjSequence ---
 
 TEST(ReadObjSequence, AllTenCatPosesShareOneTopology) {
