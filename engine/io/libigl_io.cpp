@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
+#include "../core/json_duplicate_keys.hpp"
 #include "../core/number_text.hpp"
 #include "text_tokens.hpp"
 
@@ -254,6 +255,7 @@ Result<std::vector<glm::dquat>> parsePoseJson(const std::string& text, const std
     return parseError(source + ": invalid JSON (" + e.what() + ")");
   }
   if (!doc.is_object()) return parseError(source + ": the top level is not a JSON object");
+  if (const std::string twice = duplicateJsonKey(text); !twice.empty()) return parseError(source + ": " + twice);
   std::vector<glm::dquat> rotations(bone_count, glm::dquat(1.0, 0.0, 0.0, 0.0));
   // "dQ-1" and "dQ-01" name the same bone; JSON allows both keys, and one would silently win.
   std::vector<std::string> key_of_bone(bone_count);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -32,8 +33,11 @@ class PathTracker : public nlohmann::json_sax<json> {
   bool binary(binary_t&) override { return done(); }
   bool start_object(std::size_t) override { return push(false); }
   bool key(string_t& k) override {
+    // JSON allows a repeated key and nlohmann keeps the last copy: refused, as by every odeskin reader.
     levels_.back().key = k;
-    return true;
+    if (levels_.back().keys.insert(k).second) return true;
+    error_ = fail(path(), "appears twice in its object");
+    return false;
   }
   bool end_object() override { return pop(); }
   bool start_array(std::size_t) override { return push(true); }
@@ -58,9 +62,10 @@ class PathTracker : public nlohmann::json_sax<json> {
     bool array = false;
     std::size_t index = 0;
     std::string key;
+    std::set<std::string> keys;  // of an object, so far
   };
   bool push(bool array) {
-    levels_.push_back({array, 0, {}});
+    levels_.push_back({array, 0, {}, {}});
     return true;
   }
   bool pop() {

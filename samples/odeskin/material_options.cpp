@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/input_file.hpp"
+#include "engine/core/json_duplicate_keys.hpp"
 
 namespace odeskin {
 namespace {
@@ -87,6 +88,7 @@ Result<Material> parseMaterial(std::string_view text) {
 Result<MaterialChoice> parseMaterialsJson(const std::string& text, const std::string& source, const Material& fallback) {
   const Json root = Json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (root.is_discarded()) return parseError(source + ": not valid JSON");
+  if (const std::string twice = duplicateJsonKey(text); !twice.empty()) return parseError(source + ": " + twice);
   if (!root.is_object()) return invalidArgument(source + ": expected an object with \"default\" and \"parts\"");
   MaterialChoice choice;
   choice.default_material = fallback;

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/core/json_duplicate_keys.hpp"
 #include "temp_dir_test.hpp"
 
 #include "engine/io/obj_reader.hpp"
@@ -189,6 +190,21 @@ TEST(ParsePoseJson, TwoKeysNamingOneBoneAreRefused) {
   ASSERT_FALSE(q.ok());
   EXPECT_EQ(q.status().code(), StatusCode::kParseError);
   EXPECT_EQ(q.status().message(), "twice.json: \"dQ-1\" names bone 1, as \"dQ-01\" does") << q.status().message();
+  // The same key twice: JSON allows it and nlohmann keeps the last copy, so it was read silently.
+  const Result<std::vector<glm::dquat>> same =
+      parsePoseJson(R"({"dQ-1": [0, 0, 0.6, 0.8], "Camera": {}, "dQ-1": [0, 0, 0, 1]})", "same.json", 2);
+  ASSERT_FALSE(same.ok());
+  EXPECT_EQ(same.status().code(), StatusCode::kParseError);
+  EXPECT_EQ(same.status().message(), "same.json: (top level): \"dQ-1\" appears twice in one object");
+}
+
+// The path names where the repeated key is, through objects and arrays.
+TEST(DuplicateJsonKey, NamesTheKeyAndItsObject) {
+  EXPECT_EQ(duplicateJsonKey(R"({"a": 1, "b": {"c": [1, {"d": 1}], "e": 2}})"), "");
+  EXPECT_EQ(duplicateJsonKey(R"({"a": [{"x": 1}, {"y": 1, "y": 2}]})"), "a[1]: \"y\" appears twice in one object");
+  EXPECT_EQ(duplicateJsonKey(R"({"a": {"b": [[0], [1, {"k": 1, "k": 1}]]}})"), "a.b[1][1]: \"k\" appears twice in one object");
+  EXPECT_EQ(duplicateJsonKey(R"([{"k": 1}, {"k": 1}])"), "");  // two objects, each with k once
+  EXPECT_EQ(duplicateJsonKey("{\"k\": "), "");                    // not JSON: the caller's parse says so
 }
 
 // --- .dmat ---

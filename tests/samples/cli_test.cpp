@@ -411,6 +411,12 @@ TEST(MaterialOptions, PartsJson) {
     EXPECT_EQ(r.status().message().rfind("parts.json: ", 0), 0u) << r.status().message();
     EXPECT_NE(r.status().message().find(message), std::string::npos) << r.status().message();
   }
+  // A repeated key is refused, not the last copy taken (nlohmann keeps the last).
+  const Result<MaterialChoice> twice = parseMaterialsJson(R"({"parts": {"arm": "skin", "arm": "static"}})", "parts.json");
+  EXPECT_EQ(twice.status().code(), StatusCode::kParseError);
+  EXPECT_EQ(twice.status().message(), "parts.json: parts: \"arm\" appears twice in one object");
+  EXPECT_EQ(parseMaterialsJson(R"({"default": "skin", "default": "static"})", "p.json").status().message(),
+            "p.json: (top level): \"default\" appears twice in one object");
   const fs::path dir = scratch("materials");
   EXPECT_EQ(readMaterialsJson(dir / "absent.json").status().code(), StatusCode::kIoError);
   std::ofstream(dir / "parts.json") << R"({"default": "static"})";

@@ -108,6 +108,8 @@ TEST(NetworkJson, ErrorsNameTheField) {
       {{replaced(kSmall, "\"shape\"", "\"row_shapes\": [], \"shape\""), "row_shapes: expected one shape per row (1), got 0"}},
       {{replaced(kSmall, "1}\n}", "1},\n}"), "invalid JSON"}},
       {{"[1, 2]", "(top level): expected an object"}},
+      {{replaced(kSmall, "\"eta\": 3", "\"eta\": 3, \"eta\": 30"), "shape.eta: appears twice in its object"}},
+      {{replaced(kSmall, "\"version\": 1", "\"version\": 1, \"version\": 1"), "version: appears twice in its object"}},
   };
   for (const auto& c : cases) {
     Result<NetworkDescription> d = parseNetworkDescription(c[0].first);
