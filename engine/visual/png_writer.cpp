@@ -8,15 +8,10 @@
 #include "stb_png.hpp"
 
 namespace odeskin::visual {
-namespace {
-
-constexpr std::uint32_t kMaxSide = 1u << 15;
-
-}  // namespace
 
 Result<std::string> encodePng(const Image& image) {
   if (image.empty() || image.width == 0 || image.height == 0) return invalidArgument("png: the image is empty");
-  if (image.width > kMaxSide || image.height > kMaxSide) {
+  if (image.width > kMaxPngSide || image.height > kMaxPngSide) {
     return invalidArgument("png: " + std::to_string(image.width) + " x " + std::to_string(image.height) +
                            " is larger than 32768 pixels a side");
   }

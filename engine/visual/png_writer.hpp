@@ -4,6 +4,7 @@
 // atomically.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -12,8 +13,11 @@
 
 namespace odeskin::visual {
 
-// The PNG bytes of `image`. kInvalidArgument for an empty image or one over 2^15 pixels a side
-// (far beyond what odeskin draws; stb's encoder works in int sizes).
+// Pictures up to this many pixels a side (stb's encoder works in int sizes).
+inline constexpr std::uint32_t kMaxPngSide = 1u << 15;
+
+// The PNG bytes of `image`. kInvalidArgument for an empty image or one over kMaxPngSide a side
+// (far beyond what odeskin draws).
 Result<std::string> encodePng(const Image& image);
 
 // encodePng, then a temporary file beside `path` renamed into place, so a reader never sees a

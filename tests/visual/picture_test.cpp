@@ -168,6 +168,15 @@ TEST(PictureLayout, FillsTheRequestedSize) {
   Result<PictureLayout> small = layoutPicture(spec);
   EXPECT_EQ(small.status().code(), StatusCode::kInvalidArgument);
   EXPECT_NE(small.status().message().find("at least 16 x 16"), std::string::npos) << small.status().message();
+  // A picture wider than a PNG may be is refused here, before any panel is drawn.
+  spec.width = 0;
+  spec.panels = 300;
+  Result<PictureLayout> wide = layoutPicture(spec);
+  EXPECT_EQ(wide.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(wide.status().message(), "picture: 300 panel(s) make it 216000 x 300 pixels, over the 32768 a side a PNG may "
+                                     "have here; give a smaller size or fewer panels");
+  spec.panels = 45;  // 32,400 pixels: fits
+  EXPECT_TRUE(layoutPicture(spec).ok());
 }
 
 class Png : public testing::TempDirTest {
