@@ -3,26 +3,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../core/number_text.hpp"
 #include "../core/position_box.hpp"
 
 namespace odeskin::visual {
 namespace {
 
 double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
-
-// Settings in messages as %g: std::to_string wrote 1e308 degrees out in 309 digits.
-std::string shown(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
 
 // The azimuth-zero direction: the axis after up's dominant one (y -> z, z -> x, x -> y), made
 // normal to up. With up = +y this is +z, the direction OBJ and glTF models usually face.
@@ -47,13 +40,13 @@ Status validateViewSpec(const ViewSpec& v) {
   if (!finite) return invalidArgument("view: a camera setting is not a finite number");
   if (std::abs(glm::length(v.up) - 1.0) > 1e-6) return invalidArgument("view: the up axis must have unit length");
   if (std::abs(v.elevation_deg) >= 89.0) {
-    return invalidArgument("view: elevation " + shown(v.elevation_deg) + " must lie in (-89, 89) degrees");
+    return invalidArgument("view: elevation " + numberText(v.elevation_deg) + " must lie in (-89, 89) degrees");
   }
   if (!(v.fov_y_deg > 1.0 && v.fov_y_deg < 170.0)) {
-    return invalidArgument("view: field of view " + shown(v.fov_y_deg) + " must lie in (1, 170) degrees");
+    return invalidArgument("view: field of view " + numberText(v.fov_y_deg) + " must lie in (1, 170) degrees");
   }
   if (!(v.margin >= 0.0 && v.margin <= 0.45)) {
-    return invalidArgument("view: margin " + shown(v.margin) + " must lie in [0, 0.45]");
+    return invalidArgument("view: margin " + numberText(v.margin) + " must lie in [0, 0.45]");
   }
   return okStatus();
 }

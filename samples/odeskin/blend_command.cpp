@@ -7,12 +7,12 @@
 #include <cmath>
 #include <system_error>
 
+#include "engine/core/number_text.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/surfaces/blend_examples.hpp"
 #include "engine/surfaces/blending_surface.hpp"
 #include "engine/surfaces/cardinal_spline.hpp"
 #include "engine/surfaces/hermite_blend.hpp"
-#include "number_text.hpp"
 #include "file_extension.hpp"
 
 namespace odeskin {

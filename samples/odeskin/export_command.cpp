@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <system_error>
 
+#include "engine/core/number_text.hpp"
 #include "engine/io/asset_file.hpp"
-#include "number_text.hpp"
-#include "progress.hpp"
 #include "file_extension.hpp"
+#include "progress.hpp"
 
 namespace odeskin {
 namespace {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <system_error>
 
+#include "engine/core/number_text.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/io/gltf_reader.hpp"
 #include "engine/io/libigl_io.hpp"
@@ -12,7 +13,6 @@
 #include "engine/offline/time_basis.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "material_options.hpp"
-#include "number_text.hpp"
 #include "progress.hpp"
 
 namespace odeskin {

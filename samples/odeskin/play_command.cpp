@@ -8,15 +8,15 @@
 #include <cstdio>
 #include <system_error>
 
+#include "engine/core/number_text.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/io/gltf_baked_writer.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/visual/compose.hpp"
 #include "engine/visual/png_writer.hpp"
-#include "number_text.hpp"
+#include "file_extension.hpp"
 #include "progress.hpp"
 #include "render_session.hpp"
-#include "file_extension.hpp"
 
 namespace odeskin {
 namespace {

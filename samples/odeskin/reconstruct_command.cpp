@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/core/number_text.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/surfaces/mesh_network.hpp"
@@ -18,7 +19,6 @@
 #include "engine/surfaces/mesh_network_pose.hpp"
 #include "engine/surfaces/network_json.hpp"
 #include "file_extension.hpp"
-#include "number_text.hpp"
 #include "output_paths.hpp"
 
 namespace odeskin {

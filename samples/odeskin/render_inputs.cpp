@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "asset_playback.hpp"
-#include "number_text.hpp"
+#include "engine/core/number_text.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/io/gltf_reader.hpp"
 #include "engine/io/obj_reader.hpp"

@@ -8,12 +8,12 @@
 #include <cstdio>
 #include <set>
 
+#include "engine/core/number_text.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/surfaces/network_json.hpp"
 #include "engine/surfaces/tessellation_glb.hpp"
-#include "host/surface_tessellator.hpp"
-#include "number_text.hpp"
 #include "file_extension.hpp"
+#include "host/surface_tessellator.hpp"
 
 namespace odeskin {
 namespace {
