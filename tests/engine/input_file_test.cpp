@@ -45,7 +45,7 @@ TEST_F(InputFile, ReadsARegularFileWhole) {
   const Result<std::string> r = readInputFile(dir_ / "a.bin");
   ASSERT_TRUE(r.ok()) << r.status().toString();
   EXPECT_EQ(*r, bytes);
-  std::ofstream(dir_ / "empty.obj");
+  { const std::ofstream empty(dir_ / "empty.obj"); }  // created, and closed at once
   EXPECT_EQ(readInputFile(dir_ / "empty.obj").value(), "");
 }
 
