@@ -34,8 +34,9 @@ class PathTracker : public nlohmann::json_sax<json> {
   bool start_object(std::size_t) override { return push(false); }
   bool key(string_t& k) override {
     // JSON allows a repeated key and nlohmann keeps the last copy: refused, as by every odeskin reader.
-    levels_.back().key = k;
-    if (levels_.back().keys.insert(k).second) return true;
+    Level& level = levels_.back();
+    level.key = k;
+    if (level.keys.insert(k).second) return true;
     error_ = fail(path(), "appears twice in its object");
     return false;
   }
