@@ -10,7 +10,7 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
-#include "../core/json_duplicate_keys.hpp"
+#include "../core/json_path.hpp"
 #include "../core/number_text.hpp"
 #include "text_tokens.hpp"
 

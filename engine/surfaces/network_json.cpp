@@ -3,46 +3,30 @@
 
 #include <cmath>
 #include <map>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "../core/input_file.hpp"
+#include "../core/json_path.hpp"
 
 namespace odeskin {
 namespace {
 
 using nlohmann::json;
 
-std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
-std::string element(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 Status fail(const std::string& path, const std::string& problem) {
   return parseError((path.empty() ? std::string("(top level)") : path) + ": " + problem);
 }
 
 // Follows the SAX events to know which field the parser was reading when it stopped: nlohmann's own
 // messages give only line and column, and a NaN written as a bare literal stops it mid-object.
-class PathTracker : public nlohmann::json_sax<json> {
+class PathTracker : public JsonPathSax {
  public:
-  bool null() override { return done(); }
-  bool boolean(bool) override { return done(); }
-  bool number_integer(number_integer_t) override { return done(); }
-  bool number_unsigned(number_unsigned_t) override { return done(); }
-  bool number_float(number_float_t, const string_t&) override { return done(); }
-  bool string(string_t&) override { return done(); }
-  bool binary(binary_t&) override { return done(); }
-  bool start_object(std::size_t) override { return push(false); }
   bool key(string_t& k) override {
-    // JSON allows a repeated key and nlohmann keeps the last copy: refused, as by every odeskin reader.
-    Level& level = levels_.back();
-    level.key = k;
-    if (level.keys.insert(k).second) return true;
+    if (JsonPathSax::key(k)) return true;
     error_ = fail(path(), "appears twice in its object");
     return false;
   }
-  bool end_object() override { return pop(); }
-  bool start_array(std::size_t) override { return push(true); }
-  bool end_array() override { return pop(); }
   bool parse_error(std::size_t, const std::string& last_token, const nlohmann::detail::exception& ex) override {
     std::string what = ex.what();
     // "[json.exception.parse_error.101] parse error at line 1, column 9: ..." -> from "line" on.
@@ -59,30 +43,6 @@ class PathTracker : public nlohmann::json_sax<json> {
   const Status& error() const { return error_; }
 
  private:
-  struct Level {
-    bool array = false;
-    std::size_t index = 0;
-    std::string key;
-    std::set<std::string> keys;  // of an object, so far
-  };
-  bool push(bool array) {
-    levels_.push_back({array, 0, {}, {}});
-    return true;
-  }
-  bool pop() {
-    levels_.pop_back();
-    return done();
-  }
-  bool done() {
-    if (!levels_.empty() && levels_.back().array) ++levels_.back().index;
-    return true;
-  }
-  std::string path() const {
-    std::string p;
-    for (const Level& l : levels_) p = l.array ? element(p, l.index) : (l.key.empty() ? p : child(p, l.key));
-    return p;
-  }
-  std::vector<Level> levels_;
   Status error_;
 };
 
@@ -94,7 +54,7 @@ Status checkKeys(const json& object, const std::string& path, std::initializer_l
     if (!known) {
       std::string list;
       for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      return fail(child(path, key), "unknown field (expected one of: " + list + ")");
+      return fail(jsonChild(path, key), "unknown field (expected one of: " + list + ")");
     }
   }
   return okStatus();
@@ -102,7 +62,7 @@ Status checkKeys(const json& object, const std::string& path, std::initializer_l
 
 Result<const json*> required(const json& object, const std::string& path, const char* key) {
   const auto it = object.find(key);
-  if (it == object.end()) return fail(child(path, key), "missing");
+  if (it == object.end()) return fail(jsonChild(path, key), "missing");
   return &*it;
 }
 
@@ -137,7 +97,7 @@ Result<std::string> text(const json& value, const std::string& path) {
 Result<bool> flag(const json& object, const std::string& path, const char* key, bool fallback) {
   const auto it = object.find(key);
   if (it == object.end()) return fallback;
-  if (!it->is_boolean()) return fail(child(path, key), std::string("expected true or false, got ") + it->type_name());
+  if (!it->is_boolean()) return fail(jsonChild(path, key), std::string("expected true or false, got ") + it->type_name());
   return it->get<bool>();
 }
 
@@ -147,7 +107,7 @@ Result<std::vector<double>> numbers(const json& value, const std::string& path, 
   }
   std::vector<double> out;
   for (std::size_t i = 0; i < size; ++i) {
-    ODESKIN_ASSIGN_OR_RETURN(const double x, number(value[i], element(path, i)));
+    ODESKIN_ASSIGN_OR_RETURN(const double x, number(value[i], jsonElement(path, i)));
     out.push_back(x);
   }
   return out;
@@ -164,7 +124,7 @@ Result<Ode6Shape> shape(const json& object, const std::string& path, bool with_p
   const char* names[3] = {"rho", "eta", "lambda"};
   for (int i = 0; i < 3; ++i) {
     ODESKIN_ASSIGN_OR_RETURN(const json* value, required(object, path, names[i]));
-    ODESKIN_ASSIGN_OR_RETURN(*fields[i], number(*value, child(path, names[i])));
+    ODESKIN_ASSIGN_OR_RETURN(*fields[i], number(*value, jsonChild(path, names[i])));
   }
   return s;
 }
@@ -182,14 +142,14 @@ Status readCurves(const json& root, NetworkDescription& d, CurveIndex& index) {
   ODESKIN_ASSIGN_OR_RETURN(const json* curves, required(root, "", "curves"));
   if (!curves->is_object() || curves->empty()) return fail("curves", "expected an object of named curves");
   for (const auto& [name, curve] : curves->items()) {
-    const std::string path = child("curves", name);
+    const std::string path = jsonChild("curves", name);
     ODESKIN_TRY(checkKeys(curve, path, {"points", "closed"}));
     ODESKIN_ASSIGN_OR_RETURN(const json* points, required(curve, path, "points"));
-    const std::string points_path = child(path, "points");
+    const std::string points_path = jsonChild(path, "points");
     if (!points->is_array()) return fail(points_path, std::string("expected an array of [x, y, z], got ") + points->type_name());
     std::vector<Vec3> xyz;
     for (std::size_t i = 0; i < points->size(); ++i) {
-      ODESKIN_ASSIGN_OR_RETURN(const std::vector<double> p, numbers((*points)[i], element(points_path, i), 3));
+      ODESKIN_ASSIGN_OR_RETURN(const std::vector<double> p, numbers((*points)[i], jsonElement(points_path, i), 3));
       xyz.emplace_back(p[0], p[1], p[2]);
     }
     ODESKIN_ASSIGN_OR_RETURN(const bool closed, flag(curve, path, "closed", false));
@@ -215,7 +175,7 @@ Status readDerivatives(const json& value, const std::string& path, const CurveIn
                       "and \"second\" curves");
   }
   if (coefficients) {
-    ODESKIN_ASSIGN_OR_RETURN(const std::vector<double> w, numbers(value["coefficients"], child(path, "coefficients"), 2));
+    ODESKIN_ASSIGN_OR_RETURN(const std::vector<double> w, numbers(value["coefficients"], jsonChild(path, "coefficients"), 2));
     b.source = DerivativeSource::kCoefficients;
     b.w_first = w[0];
     b.w_second = w[1];
@@ -225,33 +185,33 @@ Status readDerivatives(const json& value, const std::string& path, const CurveIn
     ODESKIN_ASSIGN_OR_RETURN(const json* first, required(value, path, "first"));
     ODESKIN_ASSIGN_OR_RETURN(const json* second, required(value, path, "second"));
     b.source = DerivativeSource::kCurves;
-    ODESKIN_ASSIGN_OR_RETURN(b.first_curve, curveRef(*first, child(path, "first"), curves));
-    ODESKIN_ASSIGN_OR_RETURN(b.second_curve, curveRef(*second, child(path, "second"), curves));
+    ODESKIN_ASSIGN_OR_RETURN(b.first_curve, curveRef(*first, jsonChild(path, "first"), curves));
+    ODESKIN_ASSIGN_OR_RETURN(b.second_curve, curveRef(*second, jsonChild(path, "second"), curves));
     return okStatus();
   }
   b.source = DerivativeSource::kControlCurves;
   const json& names = value["controls"];
-  const std::string names_path = child(path, "controls");
+  const std::string names_path = jsonChild(path, "controls");
   if (!names.is_array() || names.size() != 2) return fail(names_path, "expected two curve names, in increasing u");
-  ODESKIN_ASSIGN_OR_RETURN(b.control_lower, curveRef(names[0], element(names_path, 0), curves));
-  ODESKIN_ASSIGN_OR_RETURN(b.control_upper, curveRef(names[1], element(names_path, 1), curves));
+  ODESKIN_ASSIGN_OR_RETURN(b.control_lower, curveRef(names[0], jsonElement(names_path, 0), curves));
+  ODESKIN_ASSIGN_OR_RETURN(b.control_upper, curveRef(names[1], jsonElement(names_path, 1), curves));
   ODESKIN_ASSIGN_OR_RETURN(const json* at, required(value, path, "at"));
-  ODESKIN_ASSIGN_OR_RETURN(const std::vector<double> u, numbers(*at, child(path, "at"), 2));
+  ODESKIN_ASSIGN_OR_RETURN(const std::vector<double> u, numbers(*at, jsonChild(path, "at"), 2));
   for (std::size_t i = 0; i < 2; ++i) {
-    if (!(u[i] > 0.0 && u[i] < 1.0)) return fail(element(child(path, "at"), i), "u = " + json(u[i]).dump() + " is outside (0, 1)");
+    if (!(u[i] > 0.0 && u[i] < 1.0)) return fail(jsonElement(jsonChild(path, "at"), i), "u = " + json(u[i]).dump() + " is outside (0, 1)");
   }
-  if (!(u[0] < u[1])) return fail(child(path, "at"), "the two u must increase");
+  if (!(u[0] < u[1])) return fail(jsonChild(path, "at"), "the two u must increase");
   b.u_lower = u[0];
   b.u_upper = u[1];
   ODESKIN_ASSIGN_OR_RETURN(const json* side, required(value, path, "side"));
-  ODESKIN_ASSIGN_OR_RETURN(const std::string side_text, text(*side, child(path, "side")));
+  ODESKIN_ASSIGN_OR_RETURN(const std::string side_text, text(*side, jsonChild(path, "side")));
   if (side_text != "after" && side_text != "before") {
-    return fail(child(path, "side"), "expected \"after\" (in the patch that starts here) or \"before\" (the one that ends here)");
+    return fail(jsonChild(path, "side"), "expected \"after\" (in the patch that starts here) or \"before\" (the one that ends here)");
   }
   b.side = side_text == "after" ? ControlSide::kAfter : ControlSide::kBefore;
   if (value.contains("slopes")) {
-    ODESKIN_ASSIGN_OR_RETURN(const std::string slopes, text(value["slopes"], child(path, "slopes")));
-    if (slopes != "one-sided" && slopes != "three-point") return fail(child(path, "slopes"), "expected \"one-sided\" or \"three-point\"");
+    ODESKIN_ASSIGN_OR_RETURN(const std::string slopes, text(value["slopes"], jsonChild(path, "slopes")));
+    if (slopes != "one-sided" && slopes != "three-point") return fail(jsonChild(path, "slopes"), "expected \"one-sided\" or \"three-point\"");
     b.slopes = slopes == "one-sided" ? SlopeRule::kOneSided : SlopeRule::kThreePoint;
   }
   return okStatus();
@@ -262,16 +222,16 @@ Status readBoundaries(const json& root, const CurveIndex& curves, NetworkDescrip
   if (!boundaries->is_array()) return fail("boundaries", "expected an array in u order");
   for (std::size_t i = 0; i < boundaries->size(); ++i) {
     const json& value = (*boundaries)[i];
-    const std::string path = element("boundaries", i);
+    const std::string path = jsonElement("boundaries", i);
     ODESKIN_TRY(checkKeys(value, path, {"name", "curve", "derivatives"}));
     NetworkBoundary b;
     if (value.contains("name")) {
-      ODESKIN_ASSIGN_OR_RETURN(b.name, text(value["name"], child(path, "name")));
+      ODESKIN_ASSIGN_OR_RETURN(b.name, text(value["name"], jsonChild(path, "name")));
     }
     ODESKIN_ASSIGN_OR_RETURN(const json* curve, required(value, path, "curve"));
-    ODESKIN_ASSIGN_OR_RETURN(b.position, curveRef(*curve, child(path, "curve"), curves));
+    ODESKIN_ASSIGN_OR_RETURN(b.position, curveRef(*curve, jsonChild(path, "curve"), curves));
     ODESKIN_ASSIGN_OR_RETURN(const json* derivatives, required(value, path, "derivatives"));
-    ODESKIN_TRY(readDerivatives(*derivatives, child(path, "derivatives"), curves, b));
+    ODESKIN_TRY(readDerivatives(*derivatives, jsonChild(path, "derivatives"), curves, b));
     d.boundaries.push_back(std::move(b));
   }
   const std::size_t minimum = d.closed_u ? 1 : 2;
@@ -301,7 +261,7 @@ Status readShapes(const json& root, NetworkDescription& d) {
                                     std::to_string(list.is_array() ? list.size() : 0));
     }
     for (std::uint32_t r = 0; r < rows; ++r) {
-      ODESKIN_ASSIGN_OR_RETURN(const Ode6Shape s, shape(list[r], element("row_shapes", r), false));
+      ODESKIN_ASSIGN_OR_RETURN(const Ode6Shape s, shape(list[r], jsonElement("row_shapes", r), false));
       std::fill_n(d.shapes.begin() + std::ptrdiff_t{r} * d.columns, d.columns, s);
     }
   }
@@ -309,12 +269,12 @@ Status readShapes(const json& root, NetworkDescription& d) {
     const json& list = root["patch_shapes"];
     if (!list.is_array()) return fail("patch_shapes", "expected an array of {row, column, rho, eta, lambda}");
     for (std::size_t i = 0; i < list.size(); ++i) {
-      const std::string path = element("patch_shapes", i);
+      const std::string path = jsonElement("patch_shapes", i);
       ODESKIN_ASSIGN_OR_RETURN(const Ode6Shape s, shape(list[i], path, true));
       ODESKIN_ASSIGN_OR_RETURN(const json* row_value, required(list[i], path, "row"));
       ODESKIN_ASSIGN_OR_RETURN(const json* column_value, required(list[i], path, "column"));
-      ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t row, count(*row_value, child(path, "row"), 0));
-      ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t column, count(*column_value, child(path, "column"), 0));
+      ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t row, count(*row_value, jsonChild(path, "row"), 0));
+      ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t column, count(*column_value, jsonChild(path, "column"), 0));
       if (row >= rows || column >= d.columns) {
         return fail(path, "patch (" + std::to_string(row) + ", " + std::to_string(column) + ") is outside the " +
                               std::to_string(rows) + " x " + std::to_string(d.columns) + " network");

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/input_file.hpp"
-#include "engine/core/json_duplicate_keys.hpp"
+#include "engine/core/json_path.hpp"
 
 namespace odeskin {
 namespace {

@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/core/json_duplicate_keys.hpp"
+#include "engine/core/json_path.hpp"
 #include "temp_dir_test.hpp"
 
 #include "engine/io/obj_reader.hpp"
