@@ -19,6 +19,9 @@ struct ExampleSet {
   std::vector<std::string> pose_labels;   // K: file name, or "<file> animation A at t s", "<file> target k"
   std::optional<Rig> rig;                 // absent: derive one (--rig auto)
   RenderLayout render;                    // empty for OBJ input
+  // What the reader accepted but a user should hear of, one line each, naming the file (a glTF
+  // pose asked for outside its animation's keyframes, say). Callers print them as warnings.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace odeskin

@@ -181,6 +181,16 @@ std::vector<double> sample(const Channel& channel, double time_s) {
   return out;
 }
 
+std::optional<std::pair<double, double>> keyframeSpan(const Clip& clip) {
+  std::optional<std::pair<double, double>> span;
+  for (const Channel& ch : clip.channels) {
+    const double first = ch.times_s.front();
+    const double last = ch.times_s.back();
+    span = span ? std::pair{std::min(span->first, first), std::max(span->second, last)} : std::pair{first, last};
+  }
+  return span;
+}
+
 void applyClip(const Clip& clip, double time_s, std::span<NodeTransform> nodes, int weights_node,
                std::vector<double>& weights) {
   for (const Channel& ch : clip.channels) {

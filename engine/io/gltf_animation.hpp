@@ -6,8 +6,10 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -45,6 +47,10 @@ struct Clip {
 // Channels with no target node or with a path other than the four core ones are skipped (they
 // belong to extensions).
 Result<Clip> loadClip(const tinygltf::Model& model, int index, DecodeBudget& budget);
+
+// The span of the clip's keyframes: from its earliest first keyframe to its latest last one, or
+// nullopt for a clip with no channels. Outside it every channel holds an end value.
+std::optional<std::pair<double, double>> keyframeSpan(const Clip& clip);
 
 // The channel's value at `time_s` (width numbers).
 std::vector<double> sample(const Channel& channel, double time_s);

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 #include "../core/number_text.hpp"
 #include "../kernels/lbs_job.hpp"
@@ -185,7 +187,22 @@ Status appendAnimatedPoses(const tinygltf::Model& model, const GltfPoseRequest& 
   ODESKIN_ASSIGN_OR_RETURN(const int animation, chooseAnimation(model, request.animation));
   ODESKIN_ASSIGN_OR_RETURN(const Clip clip, loadClip(model, animation, budget));
   const std::string name = clip.name.empty() ? "animation " + std::to_string(animation) : clip.name;
+  const std::optional<std::pair<double, double>> span = keyframeSpan(clip);
+  if (!span && !request.times.empty()) {
+    out.warnings.push_back(name +
+                           " animates no node's translation, rotation, scale or weights, so every pose at a "
+                           "time is the nodes' rest pose");
+  }
   for (double t : request.times) {
+    // glTF holds the end keyframes outside them, so such a pose repeats the end's; legal, but
+    // rarely what was meant (a time in frames, or in the wrong clip).
+    if (span && (t < span->first || t > span->second)) {
+      const double held = t < span->first ? span->first : span->second;
+      out.warnings.push_back(formatTime(t) + " s is outside " + name + "'s keyframes (" +
+                             formatTime(span->first) + " to " + formatTime(span->second) +
+                             " s); glTF holds the end keyframe there, so this pose is the one at " + formatTime(held) +
+                             " s");
+    }
     const std::string label = file + " " + name + " at " + formatTime(t) + " s";
     std::vector<Vec3> pose;
     std::vector<RigidTransform> key_pose;
@@ -277,6 +294,7 @@ Result<ExampleSet> examplesNamingSource(const tinygltf::Model& model, const Gltf
                                         const std::string& source, const std::string& file) {
   Result<ExampleSet> examples = buildExamples(model, request, file);
   if (!examples.ok()) return Status(examples.status().code(), source + ": " + examples.status().message());
+  for (std::string& w : examples->warnings) w = source + ": " + w;
   return examples;
 }
 

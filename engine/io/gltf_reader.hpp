@@ -45,6 +45,10 @@ struct GltfPoseRequest {
 // JOINTS_n/WEIGHTS_n of each topology vertex's first render vertex, normalised per vertex; key
 // poses: the rigid part of every S_j (polar decomposition), identity for bind and morph poses.
 //
+// Warnings (ExampleSet::warnings, naming the file): a time outside the animation's keyframes
+// (glTF holds the end keyframe there, so the pose repeats it), an animation that moves nothing
+// odeskin reads.
+//
 // Errors name the file. kInvalidArgument: fewer than max(min_poses, 1) poses, a non-finite time, times without a
 // skin, an unknown animation (the message lists the available ones), a morph target out of range,
 // an unknown mesh node name, an extensionsRequired entry odeskin does not handle (named; see

@@ -134,6 +134,9 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
 
   Result<ExampleSet> examples = readExamples(o);
   if (!examples.ok()) return reportFailure(console, examples.status());
+  if (!console.quiet) {
+    for (const std::string& w : examples->warnings) console.err << "warning: fit: " << w << "\n";
+  }
 
   ProgressBar bar(console.err, "fit", 0, !console.quiet && console.interactive);
   pipeline.progress = [&bar](std::string_view stage, double fraction) { bar.fraction(stage, fraction); };

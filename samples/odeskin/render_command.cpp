@@ -118,6 +118,7 @@ struct Panels {
   std::vector<Vec3> points;  // every panel's vertices: the camera frames them all
   std::optional<double> heat_max;
   std::vector<double> max_errors;
+  std::vector<std::string> warnings;  // the inputs' readers'
 };
 
 // Loads every input (with its skin-only twin under --lbs), computes heat values against --heat
@@ -126,6 +127,7 @@ Result<Panels> loadPanels(const RenderOptions& o, int& code) {
   code = kExitFailure;
   std::vector<RenderInput> inputs;
   std::vector<bool> skin_only_flags;
+  std::vector<std::string> warnings;
   for (const std::filesystem::path& path : o.inputs) {
     RenderInputOptions options;
     options.t = o.t;
@@ -140,6 +142,7 @@ Result<Panels> loadPanels(const RenderOptions& o, int& code) {
       }
       // Framing measures lengths: a mesh too large for them fails here, naming its file.
       ODESKIN_TRY(checkedPositionBox(input->positions, path.string()).status());
+      if (!skin_only) warnings.insert(warnings.end(), input->warnings.begin(), input->warnings.end());
       inputs.push_back(std::move(input).value());
       skin_only_flags.push_back(skin_only);
     }
@@ -153,10 +156,14 @@ Result<Panels> loadPanels(const RenderOptions& o, int& code) {
   if (o.heat) {
     ODESKIN_ASSIGN_OR_RETURN(RenderInput ref, loadRenderInput(*o.heat, RenderInputOptions{o.t, false}));
     ODESKIN_TRY(checkedPositionBox(ref.positions, "--heat: " + o.heat->string()).status());
+    for (const std::string& w : ref.warnings) {
+      if (std::find(warnings.begin(), warnings.end(), w) == warnings.end()) warnings.push_back(w);
+    }
     reference = std::move(ref);
   }
 
   Panels panels;
+  panels.warnings = std::move(warnings);
   double worst = 0.0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     RenderInput& input = inputs[i];
@@ -254,6 +261,9 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
   Result<Panels> loaded = loadPanels(o, load_code);
   if (!loaded.ok()) return reportError(console, "render: " + loaded.status().message(), load_code);
   const Panels& panels = *loaded;
+  if (!console.quiet) {
+    for (const std::string& w : panels.warnings) console.err << "warning: render: " << w << "\n";
+  }
   Result<visual::PictureLayout> layout = pictureLayout(o, panels);
   if (!layout.ok()) return reportUsage(console, "render: " + layout.status().message());
   Result<std::vector<visual::Camera>> cameras = pictureCameras(o, panels, *layout);

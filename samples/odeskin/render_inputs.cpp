@@ -50,6 +50,7 @@ Result<RenderInput> loadGltfInput(const std::filesystem::path& path, const Rende
   if (options.t) input.label.append(" ").append(numberText(*options.t)).append(" s");
   input.positions = std::move(examples.poses.front());
   input.faces = std::move(examples.faces);
+  input.warnings = std::move(examples.warnings);
   return input;
 }
 

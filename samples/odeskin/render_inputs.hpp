@@ -34,6 +34,7 @@ struct RenderInput {
   std::vector<Vec3> positions;     // world space
   FaceList faces;                  // over positions (welded topology for glTF and assets)
   std::vector<IsoCurve> curves;    // assets: the iso-parametric curves, on these vertices
+  std::vector<std::string> warnings;  // the reader's (ExampleSet::warnings), naming the file
 };
 
 // Errors name the file: readObj's, readGltfExamples' and loadAsset's; kOutOfRange when an asset's t

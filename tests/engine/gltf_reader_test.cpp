@@ -688,6 +688,45 @@ TEST(GltfReader, AnimationByIndex) {
   EXPECT_EQ(examples->pose_labels[1], "tube.gltf wiggle at 2 s");
 }
 
+TEST(GltfReader, TimesOutsideTheKeyframesAreReadWithAWarning) {
+  const fs::path path = write(makeTube().model, "tube.gltf", false);
+  const auto inside = read(path, {0.0, 0.5, 2.0});
+  ASSERT_TRUE(inside.ok()) << inside.status().toString();
+  EXPECT_TRUE(inside->warnings.empty());
+
+  // "bend" keys its rotation at 0 and 2 s and its translation at 0 and 1 s.
+  const auto outside = read(path, {-0.5, 1.0, 3.0});
+  ASSERT_TRUE(outside.ok()) << outside.status().toString();
+  ASSERT_EQ(outside->warnings.size(), 2u);
+  for (const std::string& piece :
+       std::vector<std::string>{path.string() + ": -0.5 s is outside bend's keyframes (0 to 2 s)", "at 0 s"}) {
+    EXPECT_NE(outside->warnings[0].find(piece), std::string::npos) << outside->warnings[0];
+  }
+  for (const std::string& piece : std::vector<std::string>{path.string() + ": 3 s is outside", "at 2 s"}) {
+    EXPECT_NE(outside->warnings[1].find(piece), std::string::npos) << outside->warnings[1];
+  }
+  // The warning says what happened: the pose at 3 s is the one at 2 s.
+  const auto end = read(path, {2.0});
+  ASSERT_TRUE(end.ok());
+  EXPECT_EQ(outside->poses[3], end->poses[1]);
+}
+
+TEST(GltfReader, AnAnimationThatMovesNothingIsReadWithAWarning) {
+  Builder b;
+  b.model = makeTube().model;
+  // Its one channel targets no node (as one of an extension's may), so odeskin skips it.
+  tinygltf::Animation still;
+  still.name = "still";
+  addChannel(b, still, -1, "translation", "LINEAR", {0.0, 1.0}, {0, 0, 0, 1, 0, 0}, TINYGLTF_TYPE_VEC3);
+  b.model.animations.push_back(still);
+  const fs::path path = write(b.model, "still.gltf", false);
+  const auto examples = read(path, {0.5, 1.0}, {}, "still");
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  ASSERT_EQ(examples->warnings.size(), 1u);
+  EXPECT_NE(examples->warnings[0].find(path.string() + ": still animates no node"), std::string::npos)
+      << examples->warnings[0];
+}
+
 TEST(GltfReader, SparseMorphTargetIsApplied) {
   for (int index_type : {kUByteType, kUShortType, kUIntType}) {
     for (bool over_base : {false, true}) {

@@ -710,6 +710,21 @@ TEST_F(BadInputCli, GoodInputsSucceed) {
   }
 }
 
+TEST_F(BadInputCli, GltfTimesOutsideTheAnimationAreFittedWithAWarning) {
+  const fs::path out = dir() / "gltf_times";
+  const std::string glb = (out / "cyl.glb").string();
+  ASSERT_EQ(runOdeskin({"export", in("cyl.odsk"), "-q", "-o", glb}, out).status, 0);
+  // The exported animation keys the asset's two poses at 0 and 1 s; glTF holds its end after it.
+  const Outcome r = runOdeskin({"fit", glb, "--times", "0.5,100", "-o", (out / "x.odsk").string()}, out);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "warning: fit: " + glb +
+                       ": 100 s is outside odeskin's keyframes (0 to 1 s); glTF holds the end keyframe there, so "
+                       "this pose is the one at 1 s\n");
+  const Outcome quiet = runOdeskin({"fit", glb, "--times", "0.5,100", "-q", "-o", (out / "q.odsk").string()}, out);
+  EXPECT_EQ(quiet.status, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+}
+
 // ---- Vulkan faults -----------------------------------------------------------------------------------
 
 struct Fault {
