@@ -7,6 +7,7 @@
 #include <random>
 #include <system_error>
 
+#include "../core/pending_files.hpp"
 #include "../core/result.hpp"
 
 namespace odeskin {
@@ -53,6 +54,7 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
   std::random_device seed;
   std::filesystem::path temp = target;
   temp += ".tmp" + std::to_string(seed() % 1000000);
+  const PendingFile pending(temp);  // removed by the command line's SIGINT/SIGTERM handler
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     if (!out) return ioError(path.string() + ": cannot create file");

@@ -26,6 +26,7 @@
 #include "render_command.hpp"
 #include "surface_command.hpp"
 #include "rig_command.hpp"
+#include "signal_cleanup.hpp"
 
 namespace {
 
@@ -500,6 +501,7 @@ int reportEscaped(const std::string& verb, const char* problem, const char* deta
 // into exit status 1 and the usual one line, never an abort.
 int main(int argc, char** argv) {
   std::string verb;
+  odeskin::removeTemporariesOnSignal();
   try {
     return run(argc, argv, verb);
   } catch (const std::bad_alloc&) {

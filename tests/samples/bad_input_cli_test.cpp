@@ -7,6 +7,7 @@
 // usage errors, and the Vulkan fault hook (ODESKIN_VK_FAULT) on play, surface, demo and render
 // with --backend auto (falls back to the CPU, one note) and --backend vulkan (exit 1, one line).
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -60,6 +62,7 @@ struct RunOptions {
   std::map<std::string, std::string> env;  // set in the child only
   long file_size_limit = -1;               // RLIMIT_FSIZE bytes; SIGXFSZ ignored so writes fail instead
   long address_space_limit = -1;           // RLIMIT_AS bytes: allocations beyond it fail (std::bad_alloc)
+  std::function<void(pid_t)> while_running;  // called with the child's pid before waiting for it
 };
 
 // Runs the program with `args` (stdout and stderr captured through files in `io_dir`).
@@ -107,6 +110,7 @@ Outcome runOdeskin(const std::vector<std::string>& args, const fs::path& io_dir,
     ::_exit(127);
   }
   Outcome outcome;
+  if (pid > 0 && options.while_running) options.while_running(pid);
   int wstatus = 0;
   if (pid < 0 || ::waitpid(pid, &wstatus, 0) != pid) {
     ADD_FAILURE() << "cannot run " << ODESKIN_PROGRAM;
@@ -723,6 +727,46 @@ TEST_F(BadInputCli, GltfTimesOutsideTheAnimationAreFittedWithAWarning) {
   const Outcome quiet = runOdeskin({"fit", glb, "--times", "0.5,100", "-q", "-o", (out / "q.odsk").string()}, out);
   EXPECT_EQ(quiet.status, 0) << quiet.err;
   EXPECT_EQ(quiet.err, "");
+}
+
+// A signal while an output is being written: the command line's handler removes the temporary
+// (engine/core/pending_files.hpp) and the process still ends by the signal.
+TEST_F(BadInputCli, AnInterruptedWriteLeavesNoTemporaryFile) {
+  const fs::path files = dir() / "interrupted" / "files";
+  const auto temporaries = [&files] {
+    std::vector<fs::path> found;
+    for (const fs::directory_entry& e : fs::directory_iterator(files)) {
+      if (e.path().filename().string().find(".tmp") != std::string::npos) found.push_back(e.path());
+    }
+    return found;
+  };
+  for (const int signal_number : {SIGTERM, SIGINT, SIGHUP}) {
+    bool ended_by_signal = false;
+    // The signal is sent once the temporary appears; the 72 MB grid takes about 0.1 s to write, but
+    // a poller held off the CPU until after the rename misses it, so a few tries are allowed.
+    for (int attempt = 0; attempt < 5 && !ended_by_signal; ++attempt) {
+      fs::remove_all(files);
+      fs::create_directories(files);
+      RunOptions options;
+      options.while_running = [&](pid_t pid) {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+        while (std::chrono::steady_clock::now() < deadline && !fs::exists(files / "grid.obj")) {
+          if (!temporaries().empty()) {
+            ::kill(pid, signal_number);
+            return;
+          }
+          std::this_thread::sleep_for(std::chrono::microseconds(200));
+        }
+      };
+      const std::vector<std::string> args{"blend", "--example", "3.17", "--res", "1000,1000", "-q", "-o",
+                                          (files / "grid.obj").string()};
+      const Outcome r = runOdeskin(args, dir() / "interrupted" / "io", options);
+      ended_by_signal = !r.exited && r.status == signal_number;
+      EXPECT_TRUE(ended_by_signal || (r.exited && r.status == 0)) << strsignal(signal_number) << ": " << r.status;
+      EXPECT_EQ(temporaries(), std::vector<fs::path>{}) << strsignal(signal_number);
+    }
+    EXPECT_TRUE(ended_by_signal) << strsignal(signal_number) << " never arrived during the write";
+  }
 }
 
 // ---- Vulkan faults -----------------------------------------------------------------------------------

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+// PendingFile / removePendingFiles: what the command line's signal handler removes is exactly the
+// temporaries being written at that moment, and a slot is reused only once its mark is gone.
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/core/pending_files.hpp"
+
+namespace odeskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+class PendingFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / std::string("odeskin_pending_files_").append(std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path touch(const std::string& name) const {
+    std::ofstream(dir_ / name) << "partial";
+    return dir_ / name;
+  }
+  fs::path dir_;
+};
+
+TEST_F(PendingFiles, OnlyTheFilesStillMarkedAreRemoved) {
+  const fs::path written = touch("written.obj.tmp1");
+  const fs::path pending = touch("pending.obj.tmp2");
+  const fs::path unrelated = touch("pending.obj");
+  { const PendingFile done(written); }  // renamed into place and released before the signal
+  const PendingFile mark(pending);
+  removePendingFiles();
+  EXPECT_TRUE(fs::exists(written));
+  EXPECT_FALSE(fs::exists(pending));
+  EXPECT_TRUE(fs::exists(unrelated));
+}
+
+TEST_F(PendingFiles, ASlotIsReusedOnlyAfterItsMarkIsGone) {
+  std::vector<std::unique_ptr<PendingFile>> marks;
+  for (int i = 0; i < kMaxPendingFiles; ++i) {
+    marks.push_back(std::make_unique<PendingFile>(touch(std::string("a").append(std::to_string(i)))));
+  }
+  removePendingFiles();  // every slot now removed but still named by its mark
+  const fs::path late = touch("late");
+  { const PendingFile unregistered(late); }  // no free slot: not registered, and nothing breaks
+  marks.clear();                             // the marks free their slots
+  const PendingFile again(late);
+  removePendingFiles();
+  EXPECT_FALSE(fs::exists(late));
+  for (int i = 0; i < kMaxPendingFiles; ++i) {
+    EXPECT_FALSE(fs::exists(dir_ / std::string("a").append(std::to_string(i))));
+  }
+}
+
+TEST_F(PendingFiles, MoreFilesThanSlotsOrTooLongAPathAreWrittenUnregistered) {
+  std::vector<std::unique_ptr<PendingFile>> marks;
+  for (int i = 0; i < kMaxPendingFiles; ++i) {
+    marks.push_back(std::make_unique<PendingFile>(touch(std::string("b").append(std::to_string(i)))));
+  }
+  const fs::path extra = touch("extra");
+  const PendingFile over(extra);
+  const PendingFile too_long(fs::path(std::string(kMaxPendingPathBytes, 'x')));
+  removePendingFiles();
+  EXPECT_TRUE(fs::exists(extra));
+  EXPECT_FALSE(fs::exists(dir_ / "b0"));
+}
+
+}  // namespace
+}  // namespace odeskin
