@@ -63,6 +63,7 @@ struct RunOptions {
   long file_size_limit = -1;               // RLIMIT_FSIZE bytes; SIGXFSZ ignored so writes fail instead
   long address_space_limit = -1;           // RLIMIT_AS bytes: allocations beyond it fail (std::bad_alloc)
   std::function<void(pid_t)> while_running;  // called with the child's pid before waiting for it
+  bool stdout_unread = false;  // stdout is a pipe nobody reads, SIGPIPE ignored: writes fail (EPIPE)
 };
 
 // Runs the program with `args` (stdout and stderr captured through files in `io_dir`).
@@ -96,6 +97,13 @@ Outcome runOdeskin(const std::vector<std::string>& args, const fs::path& io_dir,
     if (out_fd < 0 || err_fd < 0) ::_exit(126);
     ::dup2(out_fd, STDOUT_FILENO);
     ::dup2(err_fd, STDERR_FILENO);
+    if (options.stdout_unread) {
+      int ends[2];
+      if (::pipe(ends) != 0) ::_exit(126);
+      ::close(ends[0]);
+      ::dup2(ends[1], STDOUT_FILENO);
+      std::signal(SIGPIPE, SIG_IGN);  // inherited through exec
+    }
     if (options.file_size_limit >= 0) {
       std::signal(SIGXFSZ, SIG_IGN);  // inherited through exec: write() fails with EFBIG instead
       const rlimit limit{static_cast<rlim_t>(options.file_size_limit), static_cast<rlim_t>(options.file_size_limit)};
@@ -727,6 +735,20 @@ TEST_F(BadInputCli, GltfTimesOutsideTheAnimationAreFittedWithAWarning) {
   const Outcome quiet = runOdeskin({"fit", glb, "--times", "0.5,100", "-q", "-o", (out / "q.odsk").string()}, out);
   EXPECT_EQ(quiet.status, 0) << quiet.err;
   EXPECT_EQ(quiet.err, "");
+}
+
+// Output that never reached stdout (here a pipe nobody reads; a full disk alike) fails the command.
+TEST_F(BadInputCli, AStandardOutputThatCannotBeWrittenIsAnError) {
+  RunOptions options;
+  options.stdout_unread = true;
+  const Outcome info = runOdeskin({"info", in("cyl.odsk")}, dir() / "io" / "unread", options);
+  expectOneErrorLine(info, 1, {"info: standard output: write failed: ", "Broken pipe"}, "info, stdout unread");
+  // Nothing to print: nothing fails.
+  const fs::path out = dir() / "unread" / "mid.obj";
+  const Outcome quiet = runOdeskin({"play", in("cyl.odsk"), "--t", "0.5", "-q", "-o", out.string()},
+                                   dir() / "io" / "unread", options);
+  EXPECT_TRUE(quiet.exited && quiet.status == 0) << quiet.err;
+  EXPECT_TRUE(fs::is_regular_file(out));
 }
 
 // A signal while an output is being written: the command line's handler removes the temporary
