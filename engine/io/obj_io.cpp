@@ -66,6 +66,11 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
       return ioError(path.string() + ": write failed (disk full?)");
     }
   }
+  // A replaced file keeps its mode: a group-writable output in a shared folder stays so.
+  if (std::filesystem::exists(status)) {
+    std::error_code ignored;
+    std::filesystem::permissions(temp, status.permissions(), ignored);
+  }
   std::filesystem::rename(temp, target, ec);
   if (ec) {
     std::error_code ignored;

@@ -20,7 +20,8 @@ Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positio
                 const std::string& comment = {});
 
 // Writes `content` to `path` through a temporary file and rename (kIoError naming the path). A
-// symbolic link is followed: the link stays and its target is replaced. An existing target that
+// symbolic link is followed: the link stays and its target is replaced, keeping its permission
+// bits (a new file gets the umask's). An existing target that
 // is not a regular file (/dev/null, a FIFO, /dev/stdout) is written in place, and a directory is
 // refused.
 Status writeFileAtomically(const std::filesystem::path& path, const std::string& content);

@@ -41,6 +41,26 @@ TEST(WriteFileAtomically, ReplacesARegularFile) {
   EXPECT_EQ(std::distance(fs::directory_iterator(file.parent_path()), fs::directory_iterator{}), 1);  // no temporary left
 }
 
+// The temporary was created with the umask's mode, so replacing a group-writable (or private)
+// output changed who may write (or read) it.
+TEST(WriteFileAtomically, AReplacedFileKeepsItsPermissions) {
+  const fs::path dir = freshDir();
+  const fs::path shared = dir / "shared.odsk";
+  const fs::path secret = dir / "secret.odsk";
+  ASSERT_TRUE(writeFileAtomically(shared, "first").ok());
+  ASSERT_TRUE(writeFileAtomically(secret, "first").ok());
+  const fs::perms group_writable = fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                                   fs::perms::group_write | fs::perms::others_read;
+  const fs::perms owner_only = fs::perms::owner_read | fs::perms::owner_write;
+  fs::permissions(shared, group_writable);
+  fs::permissions(secret, owner_only);
+  ASSERT_TRUE(writeFileAtomically(shared, "second").ok());
+  ASSERT_TRUE(writeFileAtomically(secret, "second").ok());
+  EXPECT_EQ(contents(shared), "second");
+  EXPECT_EQ(fs::status(shared).permissions(), group_writable);
+  EXPECT_EQ(fs::status(secret).permissions(), owner_only);
+}
+
 // Renaming onto a link replaced the link with a plain file, and the file it named never changed.
 TEST(WriteFileAtomically, FollowsASymbolicLink) {
   const fs::path dir = freshDir();
