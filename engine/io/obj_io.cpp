@@ -1,9 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "obj_io.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <system_error>
 
@@ -37,6 +43,24 @@ Result<std::filesystem::path> followLinks(const std::filesystem::path& path) {
   return ioError(path.string() + ": too many levels of symbolic links");
 }
 
+// Writes all of `content` to `fd` and closes it; kIoError naming `shown` with the cause.
+Status writeAndClose(int fd, const std::string& content, const std::filesystem::path& shown) {
+  std::size_t done = 0;
+  while (done < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      ::close(fd);
+      return ioError(shown.string() + ": write failed: " + std::strerror(error));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  // close, too, can report a failed write (a full disk on a network file system).
+  if (::close(fd) != 0) return ioError(shown.string() + ": write failed: " + std::strerror(errno));
+  return okStatus();
+}
+
 }  // namespace
 
 Status writeFileAtomically(const std::filesystem::path& path, const std::string& content) {
@@ -50,21 +74,31 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
     return writeInPlace(path, content);
   }
   ODESKIN_ASSIGN_OR_RETURN(const std::filesystem::path target, followLinks(path));
-  // The temporary lives beside the target so the rename stays on one file system (atomic).
+  // The temporary lives beside the target so the rename stays on one file system (atomic). It is
+  // created exclusively: a name already taken (another writer's temporary, or a link planted in a
+  // shared folder to make a root process truncate what it names) is never opened, only skipped.
+  // Each name is registered for the signal handler before the open: a signal is delivered as the
+  // open returns, and a file registered only after it stayed behind.
   std::random_device seed;
-  std::filesystem::path temp = target;
-  temp += ".tmp" + std::to_string(seed() % 1000000);
-  const PendingFile pending(temp);  // removed by the command line's SIGINT/SIGTERM handler
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) return ioError(path.string() + ": cannot create file");
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();  // close, not only flush: the last buffered bytes can fail here too (a full disk)
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(temp, ignored);
-      return ioError(path.string() + ": write failed (disk full?)");
+  std::filesystem::path temp;
+  std::optional<PendingFile> pending;
+  int fd = -1;
+  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    temp = target;
+    temp += ".tmp" + std::to_string(seed() % 1000000);
+    pending.emplace(temp);
+    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0) {
+      const int error = errno;
+      pending.reset();
+      if (error != EEXIST) return ioError(path.string() + ": cannot create file: " + std::strerror(error));
     }
+  }
+  if (fd < 0) return ioError(path.string() + ": cannot create file: every temporary name beside it is taken");
+  if (Status written = writeAndClose(fd, content, path); !written.ok()) {
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+    return written;
   }
   // A replaced file keeps its mode: a group-writable output in a shared folder stays so.
   if (std::filesystem::exists(status)) {
