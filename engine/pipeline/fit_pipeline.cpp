@@ -58,7 +58,11 @@ Result<Rig> resolveRig(const ExampleSet& ex, const PipelineOptions& opt, std::st
     auto_options.bones = opt.auto_bones;
     AutoRigReport report;
     Result<Rig> rig = autoRig(ex.rest_positions, ex.faces, ex.poses, auto_options, &report);
-    if (!rig.ok()) return Status(rig.status().code(), "automatic rig: " + rig.status().message());
+    if (!rig.ok()) {
+      // autoRig names itself ("auto rig: ..."); say so once.
+      const std::string& message = rig.status().message();
+      return message.starts_with("auto rig: ") ? rig.status() : Status(rig.status().code(), "auto rig: " + message);
+    }
     *summary = "auto: " + std::to_string(report.bones) + " bones from " + std::to_string(k_count) +
                " poses (LBS error mean " + scientific(report.mean_error) + ", max " + scientific(report.max_error) +
                " of the box)";

@@ -417,7 +417,7 @@ TEST_F(BadInputCli, BadMeshesPosesAndWeightsFailNamingTheFile) {
       {"fit_unbound_vertex", {"fit", in("good1.obj"), in("unbound.obj"), "-o", "{out}"}, "x.odsk", 1,
        {"unbound.obj: 421 vertices but "}},
       {"fit_collapsed", {"fit", in("good1.obj"), in("collapsed.obj"), "-o", "{out}"}, "x.odsk", 1,
-       {"fit: ", "good1.obj, ", "collapsed.obj: automatic rig: ", "collinear"}},
+       {"fit: ", "good1.obj, ", "collapsed.obj: auto rig: the mesh", "collinear"}},
       {"fit_weights_sum", fitWeights("sum_two.dmat"), "x.odsk", 1, {"sum_two.dmat: weights of vertex 0 sum to 2"}},
       {"fit_weights_bone_out_of_range", fitWeights("extra_bone.dmat"), "x.odsk", 1,
        {"extra_bone.dmat: weights are 420 x 5, expected 420 vertices x 4 bones"}},
