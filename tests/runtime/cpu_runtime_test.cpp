@@ -291,6 +291,13 @@ TEST(CpuRuntime, RejectsBadInputNamingTheProblem) {
   RuntimeOptions no_frames;
   no_frames.frames_in_flight = 0;
   expectStatus(CpuRuntime::create(asset, no_frames).status(), StatusCode::kInvalidArgument, "frames_in_flight");
+  // More output than the machine has memory: refused before any buffer is made (Linux would grant
+  // it and kill the process while zeroing it).
+  RuntimeOptions huge;
+  huge.capacity = 1u << 31;
+  expectStatus(CpuRuntime::create(asset, huge).status(), StatusCode::kOutOfRange,
+               "cpu runtime: 2 frames of 2147483648 instances x 420 vertices need 53760.0 GiB of output buffers, "
+               "more than this machine's ");
   RuntimeOptions no_normals;
   no_normals.normals = false;
   Result<CpuRuntime> plain = CpuRuntime::create(asset, no_normals);
