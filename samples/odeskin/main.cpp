@@ -2,9 +2,7 @@
 // The odeskin command line: CLI11 wiring only; each verb lives in its own file. Exit status: 0
 // success; 1 bad input or runtime failure, with one line "odeskin: error: ..." on stderr; 2 usage error.
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -28,6 +26,7 @@
 #include "render_command.hpp"
 #include "surface_command.hpp"
 #include "rig_command.hpp"
+#include "samples/standard_output.hpp"
 #include "signal_cleanup.hpp"
 
 namespace {
@@ -496,18 +495,6 @@ int reportEscaped(const std::string& verb, const char* problem, const char* deta
   return 1;
 }
 
-// What was printed but never reached standard output (a full disk, a closed descriptor) makes a
-// failure of a command that succeeded, as coreutils treat it: `odeskin info a.odsk > /dev/full`
-// exited 0 with nothing written.
-int checkStandardOutput(const std::string& verb, int code) noexcept {
-  errno = 0;
-  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return code;
-  const int error = errno;
-  std::fprintf(stderr, "odeskin: error: %s%sstandard output: write failed%s%s\n", verb.c_str(), verb.empty() ? "" : ": ",
-               error != 0 ? ": " : "", error != 0 ? std::strerror(error) : "");
-  return code == 0 ? 1 : code;
-}
-
 }  // namespace
 
 // Nothing the engine throws (it reports Status) is expected here; the catch turns what the standard
@@ -526,5 +513,5 @@ int main(int argc, char** argv) {
   } catch (...) {
     code = reportEscaped(verb, "unexpected failure (an unknown exception)", "");
   }
-  return checkStandardOutput(verb, code);
+  return odeskin::checkStandardOutput("odeskin: error: ", verb.c_str(), code);
 }

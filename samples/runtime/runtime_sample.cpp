@@ -31,6 +31,7 @@
 #include "engine/runtime/cpu_runtime.hpp"
 #include "host/device.hpp"
 #include "host/runtime/vulkan_runtime.hpp"
+#include "samples/standard_output.hpp"
 
 namespace odeskin {
 namespace {
@@ -333,8 +334,9 @@ int parseAndRun(int argc, char** argv) {
 // A failure to allocate (1,000 instances of a big asset) or a library's exception ends the sample
 // with one line and status 1, not an abort.
 int main(int argc, char** argv) {
+  int code = 1;
   try {
-    return parseAndRun(argc, argv);
+    code = parseAndRun(argc, argv);
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "odeskin_runtime_sample: error: out of memory\n");
   } catch (const std::exception& e) {
@@ -342,5 +344,5 @@ int main(int argc, char** argv) {
   } catch (...) {
     std::fprintf(stderr, "odeskin_runtime_sample: error: an unknown exception\n");
   }
-  return 1;
+  return odeskin::checkStandardOutput("odeskin_runtime_sample: error: ", "", code);
 }
