@@ -5,10 +5,14 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 namespace odeskin {
 
 // Physical memory in bytes (sysconf), or 0 when the system does not say.
 std::uint64_t physicalMemoryBytes();
+
+// "26.2 GiB": sizes in messages that compare a need with physicalMemoryBytes().
+std::string gibibytesText(std::uint64_t bytes);
 
 }  // namespace odeskin

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <cstdio>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -18,12 +17,6 @@ namespace {
 constexpr std::size_t kVertexChunk = 4096;
 
 std::size_t chunkCount(std::size_t vertices) { return (vertices + kVertexChunk - 1) / kVertexChunk; }
-
-std::string gibibytes(std::uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f GiB", static_cast<double>(bytes) / (1024.0 * 1024.0 * 1024.0));
-  return text;
-}
 
 }  // namespace
 
@@ -43,7 +36,7 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
   if (memory != 0 && output_bytes > memory) {
     return outOfRange("cpu runtime: " + std::to_string(options.frames_in_flight) + " frames of " +
                       std::to_string(options.capacity) + " instances x " + std::to_string(v) + " vertices need " +
-                      gibibytes(output_bytes) + " of output buffers, more than this machine's " + gibibytes(memory) +
+                      gibibytesText(output_bytes) + " of output buffers, more than this machine's " + gibibytesText(memory) +
                       "; lower the capacity or the frames in flight");
   }
   CpuRuntime rt(asset, options);

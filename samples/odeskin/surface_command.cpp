@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <set>
 
+#include "engine/core/machine_memory.hpp"
 #include "engine/core/number_text.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/surfaces/network_json.hpp"
@@ -134,6 +135,13 @@ void printSummary(std::ostream& out, const SurfaceCommandOptions& o, const Netwo
 
 }  // namespace
 
+Status surfaceFitsInMemory(std::uint64_t vertices, std::uint64_t memory_bytes) {
+  if (memory_bytes == 0 || vertices <= memory_bytes / kSurfaceBytesPerVertex) return okStatus();
+  return outOfRange(std::to_string(vertices) + " vertices need about " + gibibytesText(vertices * kSurfaceBytesPerVertex) +
+                    " to tessellate and write, more than this machine's " + gibibytesText(memory_bytes) +
+                    " of memory; lower --res");
+}
+
 int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceReport* report_out) {
   TessellationResolution resolution;
   Ode6Shape shape;
@@ -148,6 +156,18 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   }
   if (!console.quiet) {
     for (const std::string& w : warnings) console.err << "warning: " << o.network.string() << ": " << w << "\n";
+  }
+
+  // Grid-size errors concern this network at this --res; device errors speak for themselves.
+  const auto input_error = [&](const Status& s) {
+    const bool about_input = s.code() == StatusCode::kOutOfRange || s.code() == StatusCode::kInvalidArgument;
+    return reportError(console, "surface: " + (about_input ? o.network.string() + ": " : std::string()) + s.message(),
+                       kExitFailure);
+  };
+  Result<TessellationGrid> grid = tessellationGrid(*network, resolution);
+  if (!grid.ok()) return input_error(grid.status());
+  if (Status fits = surfaceFitsInMemory(grid->vertexCount(), physicalMemoryBytes()); !fits.ok()) {
+    return input_error(Status(fits.code(), "--res " + o.resolution + ": " + fits.message()));
   }
 
   SurfaceReport report;
@@ -174,13 +194,7 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
     report.tessellate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   report.backend = backend;
-  if (!mesh.ok()) {
-    const Status& s = mesh.status();
-    // Grid-size errors concern this network at this --res; device errors speak for themselves.
-    const bool about_input = s.code() == StatusCode::kOutOfRange || s.code() == StatusCode::kInvalidArgument;
-    return reportError(console, "surface: " + (about_input ? o.network.string() + ": " : std::string()) + s.message(),
-                       kExitFailure);
-  }
+  if (!mesh.ok()) return input_error(mesh.status());
   report.vertices = mesh->positions.size();
   report.triangles = 2 * mesh->faces.faceCount();
   report.rim_edges = unsharedEdges(mesh->faces).size();

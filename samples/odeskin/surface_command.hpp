@@ -9,6 +9,7 @@
 #include <string>
 
 #include "console.hpp"
+#include "engine/core/result.hpp"
 
 namespace odeskin {
 
@@ -34,6 +35,16 @@ struct SurfaceReport {
   double tessellate_seconds = 0.0;
   std::string backend;            // the one that ran: cpu or vulkan
 };
+
+// Peak memory of the verb per welded vertex: double positions and normals, the quads, the glTF
+// buffers and their serialisation. Measured (`/usr/bin/time -f %M odeskin -q surface vase.json
+// --res R,R -o x.glb`): 3.44 GB for 12.0M vertices (R = 1000), 7.48 GB for 27.0M (R = 1500),
+// about 290 bytes a vertex; the grid's own limit (kMaxTessellationVertices) allows 67M.
+inline constexpr std::uint64_t kSurfaceBytesPerVertex = 320;
+
+// kOutOfRange when `vertices` would need more than `memory_bytes` (0: unknown, then it fits):
+// Linux grants such memory and kills the process, without a message, once it is used.
+Status surfaceFitsInMemory(std::uint64_t vertices, std::uint64_t memory_bytes);
 
 // Exit status as console.hpp: usage (2) for option errors (output not .glb, malformed --res or
 // --shape, unknown backend); failure (1) for an unreadable or invalid network (one line naming the file and

@@ -197,6 +197,21 @@ TEST(SurfaceCommand, BadNetworksNameTheFileAndFieldAndLeaveNothing) {
   fs::remove_all(dir);
 }
 
+// A grid the machine cannot hold is refused before any tessellation (Linux would grant the memory
+// and kill the process once it was used); the real machine's memory stands in at run time.
+TEST(SurfaceCommand, AGridLargerThanMemoryIsRefusedUpFront) {
+  constexpr std::uint64_t kGiB = std::uint64_t{1} << 30;
+  const Status refused = surfaceFitsInMemory(12'000'000, 2 * kGiB);
+  EXPECT_EQ(refused.code(), StatusCode::kOutOfRange);
+  EXPECT_EQ(refused.message(),
+            "12000000 vertices need about 3.6 GiB to tessellate and write, more than this machine's 2.0 GiB of "
+            "memory; lower --res");
+  EXPECT_TRUE(surfaceFitsInMemory(12'000'000, 8 * kGiB).ok());
+  EXPECT_TRUE(surfaceFitsInMemory(12'000'000, 0).ok());  // memory unknown
+  EXPECT_TRUE(surfaceFitsInMemory(2 * kGiB / kSurfaceBytesPerVertex, 2 * kGiB).ok());
+  EXPECT_FALSE(surfaceFitsInMemory(2 * kGiB / kSurfaceBytesPerVertex + 1, 2 * kGiB).ok());
+}
+
 TEST(SurfaceCommand, BadOptionsAreUsageErrors) {
   const fs::path dir = scratch("usage");
   auto options = [&](const std::string& output, const std::string& res) {
