@@ -20,4 +20,11 @@ std::string gibibytesText(std::uint64_t bytes) {
   return text;
 }
 
+Status checkFitsInMemory(std::uint64_t bytes, std::uint64_t memory_bytes, const std::string& what,
+                         const std::string& remedy) {
+  if (memory_bytes == 0 || bytes <= memory_bytes) return okStatus();
+  return outOfRange(what + " need about " + gibibytesText(bytes) + ", more than this machine's " +
+                    gibibytesText(memory_bytes) + " of memory; " + remedy);
+}
+
 }  // namespace odeskin

@@ -7,12 +7,19 @@
 #include <cstdint>
 #include <string>
 
+#include "result.hpp"
+
 namespace odeskin {
 
 // Physical memory in bytes (sysconf), or 0 when the system does not say.
 std::uint64_t physicalMemoryBytes();
 
-// "26.2 GiB": sizes in messages that compare a need with physicalMemoryBytes().
+// "26.2 GiB".
 std::string gibibytesText(std::uint64_t bytes);
+
+// kOutOfRange "<what> need about X GiB, more than this machine's Y GiB of memory; <remedy>" when
+// `bytes` > `memory_bytes` (physicalMemoryBytes(), or a test's; 0: unknown, then it fits).
+Status checkFitsInMemory(std::uint64_t bytes, std::uint64_t memory_bytes, const std::string& what,
+                         const std::string& remedy);
 
 }  // namespace odeskin

@@ -32,13 +32,11 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
   // 23 GB machine, and the kernel killed the process while the buffers were zeroed.
   const std::uint64_t output_bytes = std::uint64_t{options.frames_in_flight} * options.capacity * v *
                                      sizeof(gpu::Float4) * (options.normals ? 2 : 1);
-  const std::uint64_t memory = physicalMemoryBytes();
-  if (memory != 0 && output_bytes > memory) {
-    return outOfRange("cpu runtime: " + std::to_string(options.frames_in_flight) + " frames of " +
-                      std::to_string(options.capacity) + " instances x " + std::to_string(v) + " vertices need " +
-                      gibibytesText(output_bytes) + " of output buffers, more than this machine's " + gibibytesText(memory) +
-                      "; lower the capacity or the frames in flight");
-  }
+  ODESKIN_TRY(checkFitsInMemory(output_bytes, physicalMemoryBytes(),
+                                "cpu runtime: the output buffers of " + std::to_string(options.frames_in_flight) +
+                                    " frames of " + std::to_string(options.capacity) + " instances x " +
+                                    std::to_string(v) + " vertices",
+                                "lower the capacity or the frames in flight"));
   CpuRuntime rt(asset, options);
   for (std::uint32_t p = 0; p < asset.presetCount(); ++p) {
     ODESKIN_ASSIGN_OR_RETURN(CpuDeformKernel deformer, CpuDeformKernel::create(asset.packed(p)));

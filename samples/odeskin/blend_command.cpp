@@ -7,6 +7,7 @@
 #include <cmath>
 #include <system_error>
 
+#include "engine/core/machine_memory.hpp"
 #include "engine/core/number_text.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/surfaces/blend_examples.hpp"
@@ -93,9 +94,18 @@ Status withVerb(const Status& s) { return Status(s.code(), "blend: " + s.message
 
 }  // namespace
 
+Status blendFitsInMemory(std::uint64_t vertices, std::uint64_t memory_bytes) {
+  // vertices <= kMaxBlendGridVertices (5e7), so the product stays far from overflow.
+  return checkFitsInMemory(vertices * kBlendBytesPerVertex, memory_bytes,
+                           "blend: " + std::to_string(vertices) + " grid vertices", "lower --res");
+}
+
 int runBlendCommand(const BlendCommandOptions& o, Console& console, BlendReport* report) {
   std::uint32_t u_count = 0, v_count = 0;
   if (const std::string problem = usageProblem(o, u_count, v_count); !problem.empty()) return reportUsage(console, problem);
+  if (Status fits = blendFitsInMemory(std::uint64_t{u_count} * v_count, physicalMemoryBytes()); !fits.ok()) {
+    return reportFailure(console, fits);
+  }
   Result<BlendExample> example = blendExample(o.example);
   if (!example.ok()) return reportFailure(console, withVerb(example.status()));
 

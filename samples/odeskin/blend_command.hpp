@@ -5,11 +5,13 @@
 // with u_i = i/(U-1) and v_j = 2 pi j/V; quads join the grid and wrap in v.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 
 #include "console.hpp"
+#include "engine/core/result.hpp"
 
 namespace odeskin {
 
@@ -33,10 +35,20 @@ struct BlendReport {
   double tangent_error = 0.0;           // max |S_u - Cbar| on both trimlines, of the data size
 };
 
+// Peak memory of the verb per grid vertex (the double grid, the quads, the OBJ text). Measured
+// (`/usr/bin/time -f %M odeskin -q blend --example 3.17 --res R,R -o x.obj`): 0.74 GB for 4M
+// vertices (R = 2000), 2.94 GB for 16M (R = 4000), about 184 bytes a vertex.
+inline constexpr std::uint64_t kBlendBytesPerVertex = 200;
+
+// kOutOfRange when a grid of `vertices` would need more than `memory_bytes` (0: unknown, then it
+// fits); Linux grants such memory and kills the process, without a message, once it is used.
+Status blendFitsInMemory(std::uint64_t vertices, std::uint64_t memory_bytes);
+
 // Exit status as console.hpp: usage (2) for an unknown or garbled example, a NaN or infinite
 // parameter, a malformed --res (U < 2, V < 3, too many vertices), --hermite with shape parameters,
 // --spline outside [1, 1000], or an output that is not .obj; failure (1) for parameters the ODE
-// cannot use (alpha = 0, resonance; the message says why) and write errors. Nothing is written on
+// cannot use (alpha = 0, resonance; the message says why), a grid larger than the machine's memory
+// and write errors. Nothing is written on
 // failure; the OBJ is written atomically.
 int runBlendCommand(const BlendCommandOptions& options, Console& console, BlendReport* report = nullptr);
 

@@ -136,10 +136,9 @@ void printSummary(std::ostream& out, const SurfaceCommandOptions& o, const Netwo
 }  // namespace
 
 Status surfaceFitsInMemory(std::uint64_t vertices, std::uint64_t memory_bytes) {
-  if (memory_bytes == 0 || vertices <= memory_bytes / kSurfaceBytesPerVertex) return okStatus();
-  return outOfRange(std::to_string(vertices) + " vertices need about " + gibibytesText(vertices * kSurfaceBytesPerVertex) +
-                    " to tessellate and write, more than this machine's " + gibibytesText(memory_bytes) +
-                    " of memory; lower --res");
+  // vertices <= kMaxTessellationVertices (2^26), so the product stays far from overflow.
+  return checkFitsInMemory(vertices * kSurfaceBytesPerVertex, memory_bytes,
+                           std::to_string(vertices) + " vertices, tessellated and written,", "lower --res");
 }
 
 int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceReport* report_out) {

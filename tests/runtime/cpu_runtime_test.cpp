@@ -296,8 +296,8 @@ TEST(CpuRuntime, RejectsBadInputNamingTheProblem) {
   RuntimeOptions huge;
   huge.capacity = 1u << 31;
   expectStatus(CpuRuntime::create(asset, huge).status(), StatusCode::kOutOfRange,
-               "cpu runtime: 2 frames of 2147483648 instances x 420 vertices need 53760.0 GiB of output buffers, "
-               "more than this machine's ");
+               "cpu runtime: the output buffers of 2 frames of 2147483648 instances x 420 vertices need about "
+               "53760.0 GiB, more than this machine's ");
   RuntimeOptions no_normals;
   no_normals.normals = false;
   Result<CpuRuntime> plain = CpuRuntime::create(asset, no_normals);

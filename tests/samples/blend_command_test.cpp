@@ -140,6 +140,18 @@ TEST(BlendCommand, BadOptionsAreUsageErrors) {
   EXPECT_TRUE(fs::is_empty(dir)) << "a rejected command wrote something";
 }
 
+// A grid the machine cannot hold is refused before it is computed; the real machine's memory
+// stands in at run time.
+TEST(BlendCommand, AGridLargerThanMemoryIsRefusedUpFront) {
+  constexpr std::uint64_t kGiB = std::uint64_t{1} << 30;
+  const Status refused = blendFitsInMemory(50'000'000, 4 * kGiB);
+  EXPECT_EQ(refused.code(), StatusCode::kOutOfRange);
+  EXPECT_EQ(refused.message(),
+            "blend: 50000000 grid vertices need about 9.3 GiB, more than this machine's 4.0 GiB of memory; lower --res");
+  EXPECT_TRUE(blendFitsInMemory(50'000'000, 16 * kGiB).ok());
+  EXPECT_TRUE(blendFitsInMemory(50'000'000, 0).ok());  // memory unknown
+}
+
 TEST(BlendCommand, IllPosedParametersFailWithTheReason) {
   const fs::path dir = scratch("failure");
   std::vector<CommandCase<BlendCommandOptions>> cases;

@@ -204,7 +204,7 @@ TEST(SurfaceCommand, AGridLargerThanMemoryIsRefusedUpFront) {
   const Status refused = surfaceFitsInMemory(12'000'000, 2 * kGiB);
   EXPECT_EQ(refused.code(), StatusCode::kOutOfRange);
   EXPECT_EQ(refused.message(),
-            "12000000 vertices need about 3.6 GiB to tessellate and write, more than this machine's 2.0 GiB of "
+            "12000000 vertices, tessellated and written, need about 3.6 GiB, more than this machine's 2.0 GiB of "
             "memory; lower --res");
   EXPECT_TRUE(surfaceFitsInMemory(12'000'000, 8 * kGiB).ok());
   EXPECT_TRUE(surfaceFitsInMemory(12'000'000, 0).ok());  // memory unknown
