@@ -52,6 +52,9 @@ class PictureRenderer {
                              std::span<const PanelContent> panels);
 
   const PictureStyle& style() const { return style_; }
+  // Samples per pixel of the last draw: style().samples lowered to what the device offers (0 before
+  // the first draw).
+  std::uint32_t samples() const { return renderer_.width() == 0 ? 0 : renderer_.samples(); }
 
  private:
   const Device* device_ = nullptr;

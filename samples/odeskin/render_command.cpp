@@ -236,9 +236,13 @@ Result<std::vector<visual::Camera>> pictureCameras(const RenderOptions& o, const
 
 void printSummary(const RenderOptions& o, const Panels& panels, const RenderReport& r, std::size_t frames,
                   std::ostream& out) {
-  char line[160];
-  std::snprintf(line, sizeof line, "%u x %u, %zu panel%s, %.1f ms per picture on %s\n", r.width, r.height, r.panels,
-                r.panels == 1 ? "" : "s", 1e3 * r.mean_frame_seconds, r.device.c_str());
+  // A device that offers fewer samples than asked draws with its most; say so rather than hide it.
+  char lowered[96] = "";
+  if (r.samples < o.samples) std::snprintf(lowered, sizeof lowered, " (%u asked; the nearest the device offers)", o.samples);
+  char line[400];
+  std::snprintf(line, sizeof line, "%u x %u, %zu panel%s, %u sample%s per pixel%s, %.1f ms per picture on %s\n", r.width,
+                r.height, r.panels, r.panels == 1 ? "" : "s", r.samples, r.samples == 1 ? "" : "s", lowered,
+                1e3 * r.mean_frame_seconds, r.device.c_str());
   out << (frames == 1 ? r.files.front().string()
                       : std::to_string(frames) + " frames: " + r.files.front().string() + " ... " +
                             r.files[frames - 1].string())
@@ -310,6 +314,7 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
   result.heat_max = panels.heat_max;
   result.max_errors = panels.max_errors;
   result.device = session->deviceName();
+  result.samples = session->samples();
   if (!console.quiet) printSummary(o, panels, result, files.size(), console.out);
   if (report) *report = std::move(result);
   return kExitOk;

@@ -48,6 +48,7 @@ struct RenderReport {
   std::optional<double> heat_max;
   std::vector<double> max_errors;            // per panel with a heat map, in panel order
   std::string device;
+  std::uint32_t samples = 0;                 // per pixel, as drawn: --samples lowered to what the device offers
 };
 
 // Exit status as console.hpp: usage (2) for option errors (a malformed --size, an asset time out of

@@ -83,6 +83,8 @@ Result<visual::Image> RenderSession::draw(const visual::PictureLayout& layout, c
 
 std::string RenderSession::deviceName() const { return gpu_->device.name(); }
 
+std::uint32_t RenderSession::samples() const { return renderer_->samples(); }
+
 Status RenderSession::checkValidation() const {
   if (!gpu_->instance.validationEnabled() || gpu_->instance.debugLog().count() == 0) return okStatus();
   return internalError("the Vulkan validation layer reported " + std::to_string(gpu_->instance.debugLog().count()) +

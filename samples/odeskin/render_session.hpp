@@ -57,6 +57,8 @@ class RenderSession {
   Result<visual::Image> draw(const visual::PictureLayout& layout, const visual::Camera& camera, double scene_size,
                              std::span<const vk::PanelContent> panels);
   std::string deviceName() const;
+  // Samples per pixel of the last draw (the requested count lowered to what the device offers).
+  std::uint32_t samples() const;
   // kInternal when the validation layer reported messages (the count and the first one).
   Status checkValidation() const;
 

@@ -129,6 +129,24 @@ TEST_F(RenderCommand, DrawsAnObjAtTheRequestedSize) {
   EXPECT_NE(io.out.str().find("300 x 200, 1 panel"), std::string::npos) << io.out.str();
   EXPECT_GT(report.mean_frame_seconds, 0.0);
   EXPECT_TRUE(io.err.str().empty()) << io.err.str();
+  // The summary gives the samples drawn with; more than a device offers are lowered, and said so.
+  EXPECT_NE(io.out.str().find(std::to_string(report.samples) + " samples per pixel, "), std::string::npos)
+      << io.out.str();
+  o.samples = 64;
+  Captured many;
+  ASSERT_EQ(render(o, many, &report), kExitOk) << many.err.str();
+  ASSERT_GE(report.samples, 1u);
+  ASSERT_LE(report.samples, 64u);
+  EXPECT_EQ(report.samples & (report.samples - 1), 0u);  // a power of two
+  if (report.samples < 64) {
+    EXPECT_NE(many.out.str().find("per pixel (64 asked; the nearest the device offers)"), std::string::npos)
+        << many.out.str();
+  }
+  o.samples = 1;
+  Captured one;
+  ASSERT_EQ(render(o, one, &report), kExitOk) << one.err.str();
+  EXPECT_EQ(report.samples, 1u);
+  EXPECT_NE(one.out.str().find(", 1 sample per pixel, "), std::string::npos) << one.out.str();
 }
 
 TEST_F(RenderCommand, SideBySidePanelsShareOneCameraAndScale) {
