@@ -73,7 +73,10 @@ std::string usageProblem(const RigCommandOptions& o) {
   }
   if (!curveSource(o.curves)) return "rig: --curves " + o.curves + ": use auto, levels, cuts or loops";
   if (!(o.angle_deg > 0.0 && o.angle_deg < 180.0)) return "rig: --angle must lie in (0, 180) degrees";
-  if (o.repeat < 1) return "rig: --repeat must be at least 1";
+  // Each run keeps its stage times for the medians: 1e8 runs held 7 GB of them (and days of work).
+  if (o.repeat < 1 || o.repeat > kMaxRigRepeats) {
+    return "rig: --repeat must lie in [1, " + std::to_string(kMaxRigRepeats) + "], got " + std::to_string(o.repeat);
+  }
   if (Result<Vec3> up = parseUpAxis(o.up); !up.ok()) return "rig: " + up.status().message();
   return {};
 }

@@ -14,6 +14,8 @@
 
 namespace odeskin {
 
+inline constexpr int kMaxRigRepeats = 100000;
+
 struct RigCommandOptions {
   std::vector<std::filesystem::path> meshes;  // OBJ: the bind mesh, then example poses
   std::filesystem::path output;               // .tgf (required)
@@ -27,12 +29,12 @@ struct RigCommandOptions {
   std::string up = "y";                       // the mesh's up axis (templates, picture)
   std::filesystem::path compare;              // a ground-truth .tgf: print the joint errors against it
   double azimuth_deg = 30.0;                  // --png camera angle about the up axis
-  int repeat = 1;                             // run the rig this many times; timings are the medians
+  int repeat = 1;                             // run the rig this many times (<= kMaxRigRepeats); timings are the medians
   std::string device = "auto";                // for --png
 };
 
 // Exit status as console.hpp: usage (2) for option errors (a missing -o, wrong extensions, an
-// unknown template or curve source, an angle outside (0, 180), repeat < 1); failure (1) for
+// unknown template or curve source, an angle outside (0, 180), repeat outside [1, kMaxRigRepeats]); failure (1) for
 // unreadable or mismatched meshes, a mesh no skeleton can be read from, write errors. Prints the
 // bone count, the template, and the time of each stage (Table 5.1's vertex identification and
 // skeleton creation, then the weights).

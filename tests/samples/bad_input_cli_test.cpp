@@ -522,6 +522,8 @@ TEST_F(BadInputCli, UsageErrorsExitTwoWithOneLine) {
        {"--size '100000x100000'"}},
       {"blend_grid", {"blend", "--example", "3.17", "--res", "100000,100000", "-o", "{out}"}, "x.obj", 2,
        {"--res 100000,100000"}},
+      {"rig_repeat_huge", {"rig", in("good1.obj"), "--repeat", "100000000", "-o", "{out}"}, "x.tgf", 2,
+       {"rig: --repeat must lie in [1, 100000], got 100000000"}},
       {"reconstruct_samples", {"reconstruct", in("good1.obj"), "--rows", "1000", "--cols", "1000", "--points", "1000",
                                "-o", "{out}"}, "x.obj", 2, {"--rows 1000 --cols 1000 --points 1000"}},
   };
