@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "bench_command.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -14,6 +16,7 @@
 #include "bench/harness/deform_cases.hpp"
 #include "bench/harness/device_bandwidth.hpp"
 #include "bench/harness/fit_sources.hpp"
+#include "engine/core/number_text.hpp"
 #include "engine/core/thread_count.hpp"
 #include "host/device.hpp"
 #include "output_paths.hpp"
@@ -163,6 +166,18 @@ void printTargets(const BenchReport& report, std::ostream& out) {
   }
 }
 
+// The first value that appears again in `values`, if any.
+template <class T>
+std::optional<T> repeatedValue(const std::vector<T>& values) {
+  for (std::size_t k = 1; k < values.size(); ++k) {
+    if (std::find(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values[k]) !=
+        values.begin() + static_cast<std::ptrdiff_t>(k)) {
+      return values[k];
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 CLI::App* addBenchCommand(CLI::App& app, BenchCommandOptions& o) {
@@ -197,13 +212,19 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
                                     o.backends + "'");
   }
   if (o.json.empty()) return reportUsage(console, "bench: --json OUT.json is required");
-  if (o.min_time < 0.0 || !std::isfinite(o.min_time)) return reportUsage(console, "bench: --min-time must be >= 0");
+  // An hour a case is already a long run; 1e9 s was accepted and meant decades.
+  if (!(o.min_time >= 0.0 && o.min_time <= 3600.0)) {
+    return reportUsage(console, "bench: --min-time must be in [0, 3600] seconds, got " + numberText(o.min_time));
+  }
   for (std::size_t v : o.sizes) {
     if (v == 0 || v > 16'000'000) return reportUsage(console, "bench: --sizes must be in [1, 16000000]");
   }
   for (int n : o.terms) {
     if (n < 1 || n > 64) return reportUsage(console, "bench: --terms must be in [1, 64]");
   }
+  // A repeated value timed every case again and wrote duplicate records.
+  if (const auto v = repeatedValue(o.sizes)) return reportUsage(console, "bench: --sizes lists " + std::to_string(*v) + " twice");
+  if (const auto n = repeatedValue(o.terms)) return reportUsage(console, "bench: --terms lists " + std::to_string(*n) + " twice");
   // One "bench: " prefix on every failure, whether the harness already named itself or a reader spoke.
   auto fail = [&](const Status& status) {
     const std::string& m = status.message();

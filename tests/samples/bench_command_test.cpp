@@ -127,6 +127,12 @@ TEST(BenchCommand, RejectsBadOptionsAndUnwritableOutputs) {
   usage.back().options.terms = {65};
   usage.push_back({base, "--min-time must be"});
   usage.back().options.min_time = -1.0;
+  usage.push_back({base, "--min-time must be in [0, 3600] seconds, got 1e+09"});
+  usage.back().options.min_time = 1e9;
+  usage.push_back({base, "--sizes lists 100 twice"});
+  usage.back().options.sizes = {100, 200, 100};
+  usage.push_back({base, "--terms lists 3 twice"});
+  usage.back().options.terms = {3, 3};
   auto run = [](const BenchCommandOptions& o, Captured& io) { return runBenchCommand(o, io.console); };
   testing::expectRejected(usage, run, kExitUsage, "bench");
   std::vector<CommandCase<BenchCommandOptions>> failures;
