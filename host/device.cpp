@@ -70,10 +70,14 @@ Result<std::vector<VkPhysicalDevice>> physicalDevices(const Instance& instance) 
 Result<std::uint32_t> selectPhysicalDevice(const Instance& instance, std::string_view selector) {
   ODESKIN_ASSIGN_OR_RETURN(std::vector<VkPhysicalDevice> devices, physicalDevices(instance));
   std::string chosen(selector);
+  bool from_env = false;
   if (chosen.empty() || chosen == "auto") {
     const char* env = std::getenv("ODESKIN_DEVICE");
-    chosen = (env != nullptr && env[0] != '\0') ? env : "auto";
+    from_env = env != nullptr && env[0] != '\0';
+    chosen = from_env ? env : "auto";
   }
+  // Where the selector came from, so the message points at what to change.
+  const std::string source = from_env ? "ODESKIN_DEVICE=" + chosen : "--device " + chosen;
   if (chosen == "auto") {
     std::uint32_t best = 0;
     int best_rank = 1 << 30;
@@ -92,7 +96,7 @@ Result<std::uint32_t> selectPhysicalDevice(const Instance& instance, std::string
     if (chosen.size() < 10 && std::stoul(chosen) < devices.size()) {
       return static_cast<std::uint32_t>(std::stoul(chosen));
     }
-    return invalidArgument("device index " + chosen + " out of range; available devices:" + deviceList(devices));
+    return unavailable(source + ": no device with that index; available devices:" + deviceList(devices));
   }
   std::string needle = lowerCase(chosen);
   for (std::uint32_t i = 0; i < devices.size(); ++i) {
@@ -100,8 +104,8 @@ Result<std::uint32_t> selectPhysicalDevice(const Instance& instance, std::string
     vkGetPhysicalDeviceProperties(devices[i], &p);
     if (lowerCase(p.deviceName).find(needle) != std::string::npos) return i;
   }
-  return invalidArgument("no Vulkan device name contains \"" + chosen + "\"; available devices:" +
-                         deviceList(devices));
+  return unavailable(source + ": no Vulkan device name contains \"" + chosen + "\"; available devices:" +
+                     deviceList(devices));
 }
 
 Result<Device> Device::create(const Instance& instance, std::string_view selector) {

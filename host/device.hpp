@@ -26,8 +26,10 @@ Result<std::vector<VkPhysicalDevice>> physicalDevices(const Instance& instance);
 //    then integrated, virtual, other, and finally CPU devices (lavapipe);
 //  - a decimal number: that index;
 //  - anything else: the first device whose name contains it, ignoring case.
-// kInvalidArgument (message listing every device) when the index or the name matches nothing;
-// kUnavailable when there are no devices.
+// kUnavailable when there are no devices, and when the index or the name matches none: the
+// message names the selector's source ("--device X" or "ODESKIN_DEVICE=X") and lists every device.
+// (Unavailable, not a bad argument: a device named for one machine is missing on another, and
+// `--backend auto` then uses the CPU with a note, as for a machine without Vulkan.)
 Result<std::uint32_t> selectPhysicalDevice(const Instance& instance, std::string_view selector);
 
 // "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other".

@@ -76,11 +76,24 @@ TEST_F(GpuTest, BadSelectorsListDevices) {
   for (const char* selector : {"99", "no-such-device-xyz"}) {
     Result<std::uint32_t> index = vk::selectPhysicalDevice(instance(), selector);
     ASSERT_FALSE(index.ok()) << selector;
-    EXPECT_EQ(index.status().code(), StatusCode::kInvalidArgument);
+    EXPECT_EQ(index.status().code(), StatusCode::kUnavailable);
+    EXPECT_EQ(index.status().message().rfind(std::string("--device ") + selector + ": ", 0), 0u)
+        << index.status().message();
     EXPECT_NE(index.status().message().find(device().name()), std::string::npos) << index.status().message();
     Result<vk::Device> opened = vk::Device::create(instance(), selector);
-    EXPECT_EQ(opened.status().code(), StatusCode::kInvalidArgument);
+    EXPECT_EQ(opened.status().code(), StatusCode::kUnavailable);
   }
+}
+
+// A selector from the environment is named as such, so the user knows what to change.
+TEST_F(GpuTest, ASelectorFromTheEnvironmentIsNamedInItsError) {
+  ASSERT_EQ(::setenv("ODESKIN_DEVICE", "99", 1), 0);
+  Result<std::uint32_t> index = vk::selectPhysicalDevice(instance(), "auto");
+  ::unsetenv("ODESKIN_DEVICE");
+  ASSERT_FALSE(index.ok());
+  EXPECT_EQ(index.status().code(), StatusCode::kUnavailable);
+  EXPECT_EQ(index.status().message().rfind("ODESKIN_DEVICE=99: no device with that index; available devices:", 0), 0u)
+      << index.status().message();
 }
 
 TEST_F(GpuTest, PrintDeviceInfoNamesTheDevice) {
@@ -94,7 +107,7 @@ TEST_F(GpuTest, PrintDeviceInfoNamesTheDevice) {
   EXPECT_NE(text.find("<- selected"), std::string::npos);
 
   std::ostringstream bad;
-  EXPECT_EQ(vk::printDeviceInfo(bad, "no-such-device-xyz").code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(vk::printDeviceInfo(bad, "no-such-device-xyz").code(), StatusCode::kUnavailable);
   EXPECT_NE(bad.str().find(device().name()), std::string::npos);
 }
 
