@@ -295,6 +295,14 @@ int main(int argc, char** argv) {
   bool has_min_time = false;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
+    // Google Benchmark prints its own flags and exits; this program's two come first.
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+      std::printf(
+          "odeskin_deform_bench [--quick] [--cat=DIR] [Google Benchmark flags]\n"
+          "  --quick     V = 1e4, 32,185 and 1e5 with N = 9 only (also ODESKIN_BENCH_QUICK=1)\n"
+          "  --cat=DIR   also the cat of DIR (shared/data/cat-poses), fitted by the whole pipeline\n"
+          "Without --benchmark_min_time each case runs for at least 0.2 s.\n\n");
+    }
     if (std::strcmp(argv[i], "--quick") == 0) {
       quick = true;
       continue;
