@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "engine/surfaces/blend_error.hpp"
 #include "engine/surfaces/blend_examples.hpp"
 #include "engine/surfaces/blending_surface.hpp"
@@ -62,14 +64,9 @@ void sink(const Cardinals& c, std::uint32_t count) {
 
 int main(int argc, char** argv) {
   int repeat = 21;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
-      repeat = std::max(1, std::atoi(argv[++i]));
-    } else {
-      std::fprintf(stderr, "usage: odeskin_blend_table [--repeat N]\n");
-      return 2;
-    }
-  }
+  CLI::App app("odeskin_blend_table: the thesis's Fig. 3.5 blends, ODE against the spline approximation (docs/surfaces.md)");
+  app.add_option("--repeat", repeat, "Runs per timing; the median is printed (default 21)")->check(CLI::Range(1, 100000));
+  CLI11_PARSE(app, argc, argv);
   const BlendExample example = orDie(blendExample("3.18"), "example 3.18");
   std::printf("Eq 3.18 blend; relative error of Eq 3.44: profile v = 0, I = 100 samples; surface %u x %u grid.\n",
               kGrid, kGrid);

@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "engine/baselines/fd_curve_deformer.hpp"
 #include "engine/baselines/odeskin_baseline.hpp"
 #include "engine/kernels/fourier_deform_fast_job.hpp"
@@ -164,24 +166,17 @@ Row measure(const Dataset& set, int frames, int repeats) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fs::path data = fs::path(ODESKIN_DATA_DIR);
+  std::string data_text = ODESKIN_DATA_DIR;
   int frames = 120;
   int repeats = 3;
   bool quick = false;
-  for (int a = 1; a < argc; ++a) {
-    const std::string arg = argv[a];
-    if ((arg == "--frames" || arg == "--repeats") && a + 1 < argc) {
-      const int value = std::atoi(argv[++a]);
-      if (value < (arg == "--frames" ? 2 : 1)) fail(arg + " must be a positive count (frames at least 2)");
-      (arg == "--frames" ? frames : repeats) = value;
-    } else if (arg == "--quick") {
-      quick = true;
-    } else if (!arg.empty() && arg[0] == '-') {
-      fail("unknown option " + arg + " (usage: odeskin_fd_fps_report [DATA_DIR] [--frames F] [--repeats R] [--quick])");
-    } else {
-      data = arg;
-    }
-  }
+  CLI::App app("odeskin_fd_fps_report: odeskin against the finite-difference solver, frames per second (thesis Table 6.1)");
+  app.add_option("data", data_text, "The shared data folder (default " ODESKIN_DATA_DIR ")");
+  app.add_option("--frames", frames, "Frames per pass over the animation (default 120)")->check(CLI::Range(2, 1000000));
+  app.add_option("--repeats", repeats, "Passes; the fastest is printed (default 3)")->check(CLI::Range(1, 1000));
+  app.add_flag("--quick", quick, "The horse only");
+  CLI11_PARSE(app, argc, argv);
+  const fs::path data = data_text;
   std::vector<Dataset> sets;
   sets.push_back({"horse-gallop frames 1-25, keys every 4",
                   numbered(data / "horse-gallop", "horse-%02d.obj", {1, 5, 9, 13, 17, 21, 25})});

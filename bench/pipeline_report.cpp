@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "engine/io/asset_file.hpp"
 #include "engine/io/libigl_io.hpp"
 #include "engine/io/obj_reader.hpp"
@@ -92,19 +94,15 @@ std::size_t assetBytes(const DeformAsset& asset) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fs::path data = fs::path(ODESKIN_DATA_DIR);
+  std::string data_text = ODESKIN_DATA_DIR;
   bool quick = false;
   std::string only;
-  for (int a = 1; a < argc; ++a) {
-    const std::string arg = argv[a];
-    if (arg == "--quick") {
-      quick = true;
-    } else if (arg == "--only" && a + 1 < argc) {
-      only = argv[++a];
-    } else {
-      data = arg;
-    }
-  }
+  CLI::App app("odeskin_pipeline_report: Fourier error and fitting stages per dataset and N (thesis Tables 6.2, 6.3)");
+  app.add_option("data", data_text, "The shared data folder (default " ODESKIN_DATA_DIR ")");
+  app.add_flag("--quick", quick, "Fewer datasets");
+  app.add_option("--only", only, "Only the datasets whose name contains TEXT");
+  CLI11_PARSE(app, argc, argv);
+  const fs::path data = data_text;
   Result<std::vector<Dataset>> sets = loadDatasets(data, quick, only);
   if (!sets.ok()) {
     std::fprintf(stderr, "odeskin_pipeline_report: error: %s\n", sets.status().toString().c_str());

@@ -17,6 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "engine/surfaces/tessellation.hpp"
 #include "engine/surfaces/tessellation_cache.hpp"
 #include "host/device.hpp"
@@ -218,10 +220,11 @@ int hundredPatches(int repeats, std::uint32_t samples) {
 }  // namespace odeskin
 
 int main(int argc, char** argv) {
-  int repeats = 21;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--quick") == 0) repeats = 3;
-  }
+  bool quick = false;
+  CLI::App app("odeskin_surface_tessellation_bench: C2 patch tessellation, CPU against Vulkan (docs/surfaces.md)");
+  app.add_flag("--quick", quick, "Median of 3 runs instead of 21");
+  CLI11_PARSE(app, argc, argv);
+  const int repeats = quick ? 3 : 21;
   std::printf("# odeskin C2 surface patches: tessellation timings (%s build)\n\n", ODESKIN_BUILD_TYPE);
   std::printf("CPU: %u hardware threads; median of %d runs.\n", std::thread::hardware_concurrency(), repeats);
   odeskin::Result<odeskin::vk::Gpu> gpu = odeskin::vk::Gpu::open("auto", false);
