@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "engine/io/obj_io.hpp"
 #include "engine/surfaces/blend_examples.hpp"
 #include "engine/surfaces/blending_surface.hpp"
@@ -240,15 +242,21 @@ bool parseRes(const std::string& text, std::uint32_t& u, std::uint32_t& v) {
 
 int main(int argc, char** argv) {
   std::uint32_t u_count = 48, v_count = 48;
-  if (argc != 2 && !(argc == 4 && std::string(argv[2]) == "--res")) {
-    std::fprintf(stderr, "usage: odeskin_blend_samples OUT_DIR [--res U,V]\n");
+  std::string out_dir;
+  std::string res;
+  CLI::App app("odeskin_blend_samples: the thesis's three-plane corner (Eqs 3.22-3.25) and Fig. 3.7's profiles, self-checked");
+  app.add_option("out_dir", out_dir, "Folder for the OBJ files and the profile plot")->required();
+  app.add_option("--res", res, "Grid samples U,V of each blend, 2 to 2000 (default 48,48)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help exits 0; usage errors 2, as before
+  }
+  if (!res.empty() && !parseRes(res, u_count, v_count)) {
+    std::fprintf(stderr, "odeskin_blend_samples: --res must be U,V with 2 <= U, V <= 2000, got '%s'\n", res.c_str());
     return 2;
   }
-  if (argc == 4 && !parseRes(argv[3], u_count, v_count)) {
-    std::fprintf(stderr, "odeskin_blend_samples: --res must be U,V with 2 <= U, V <= 2000, got '%s'\n", argv[3]);
-    return 2;
-  }
-  const fs::path dir = argv[1];
+  const fs::path dir = out_dir;
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) {
