@@ -236,7 +236,7 @@ Result<std::vector<visual::Camera>> pictureCameras(const RenderOptions& o, const
 
 void printSummary(const RenderOptions& o, const Panels& panels, const RenderReport& r, std::size_t frames,
                   std::ostream& out) {
-  // A device that offers fewer samples than asked draws with its most; say so rather than hide it.
+  // A device without the asked count draws with the nearest one below it; say so rather than hide it.
   char lowered[96] = "";
   if (r.samples < o.samples) std::snprintf(lowered, sizeof lowered, " (%u asked; the nearest the device offers)", o.samples);
   char line[400];
