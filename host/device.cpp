@@ -133,8 +133,6 @@ Result<Device> Device::create(const Instance& instance, std::string_view selecto
   }
   if (family < 0) return unavailable(std::string("Vulkan device has no compute queue: ") + device.name());
   device.queue_family_ = static_cast<std::uint32_t>(family);
-  device.timestamp_valid_bits_ = families[device.queue_family_].timestampValidBits;
-  device.queue_flags_ = families[device.queue_family_].queueFlags;
 
   // A single queue: every submission is ordered on it, which keeps synchronization simple.
   float priority = 1.0f;
@@ -150,24 +148,63 @@ Result<Device> Device::create(const Instance& instance, std::string_view selecto
   VkResult created = injectedResult(VkFault::kDeviceCreate);
   if (created == VK_SUCCESS) created = vkCreateDevice(device.physical_, &info, nullptr, &device.device_);
   ODESKIN_TRY(vkStatus(created, "vkCreateDevice"));
-  vkGetDeviceQueue(device.device_, device.queue_family_, 0, &device.queue_);
+  ODESKIN_TRY(device.finish(families, 0));
+  return device;
+}
+
+Result<Device> Device::adopt(const ExternalDevice& external) {
+  if (external.physical_device == VK_NULL_HANDLE || external.device == VK_NULL_HANDLE) {
+    return invalidArgument("adopted Vulkan device: the physical device and the device must not be null");
+  }
+  Device device;
+  device.owns_device_ = false;
+  device.index_ = UINT32_MAX;
+  device.physical_ = external.physical_device;
+  vkGetPhysicalDeviceProperties(device.physical_, &device.properties_);
+  vkGetPhysicalDeviceMemoryProperties(device.physical_, &device.memory_);
+  std::uint32_t family_count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device.physical_, &family_count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(family_count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device.physical_, &family_count, families.data());
+  const std::string where = std::string("adopted Vulkan device ") + device.name() + ": queue family " +
+                            std::to_string(external.queue_family);
+  if (external.queue_family >= family_count) {
+    return invalidArgument(where + " does not exist (the device has " + std::to_string(family_count) + ")");
+  }
+  if (!(families[external.queue_family].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+    return invalidArgument(where + " cannot run compute");
+  }
+  if (external.queue_index >= families[external.queue_family].queueCount) {
+    return invalidArgument(where + " has " + std::to_string(families[external.queue_family].queueCount) +
+                           " queues, not queue " + std::to_string(external.queue_index));
+  }
+  device.queue_family_ = external.queue_family;
+  device.device_ = external.device;
+  ODESKIN_TRY(device.finish(families, external.queue_index));
+  return device;
+}
+
+Status Device::finish(const std::vector<VkQueueFamilyProperties>& families, std::uint32_t queue_index) {
+  timestamp_valid_bits_ = families[queue_family_].timestampValidBits;
+  queue_flags_ = families[queue_family_].queueFlags;
+  vkGetDeviceQueue(device_, queue_family_, queue_index, &queue_);
 
   // Resettable command buffers: per-frame buffers are re-recorded in place instead of reallocated.
   VkCommandPoolCreateInfo pool_info{};
   pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
   pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  pool_info.queueFamilyIndex = device.queue_family_;
+  pool_info.queueFamilyIndex = queue_family_;
   VkCommandPool pool = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkCreateCommandPool(device.device_, &pool_info, nullptr, &pool));
-  device.command_pool_ = UniqueCommandPool(device.device_, pool);
+  ODESKIN_VK_TRY(vkCreateCommandPool(device_, &pool_info, nullptr, &pool));
+  command_pool_ = UniqueCommandPool(device_, pool);
 
   // An in-memory cache shares compiled pipelines between dispatchers built on this device.
   VkPipelineCacheCreateInfo cache_info{};
   cache_info.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO;
   VkPipelineCache cache = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkCreatePipelineCache(device.device_, &cache_info, nullptr, &cache));
-  device.pipeline_cache_ = UniquePipelineCache(device.device_, cache);
-  return device;
+  ODESKIN_VK_TRY(vkCreatePipelineCache(device_, &cache_info, nullptr, &cache));
+  pipeline_cache_ = UniquePipelineCache(device_, cache);
+  return okStatus();
 }
 
 Device::Device(Device&& other) noexcept { *this = std::move(other); }
@@ -178,6 +215,7 @@ Device& Device::operator=(Device&& other) noexcept {
     physical_ = std::exchange(other.physical_, VK_NULL_HANDLE);
     device_ = std::exchange(other.device_, VK_NULL_HANDLE);
     queue_ = std::exchange(other.queue_, VK_NULL_HANDLE);
+    owns_device_ = other.owns_device_;
     index_ = other.index_;
     queue_family_ = other.queue_family_;
     queue_flags_ = other.queue_flags_;
@@ -195,10 +233,15 @@ Device::~Device() { destroy(); }
 void Device::destroy() {
   if (device_ == VK_NULL_HANDLE) return;
   // Children before the device; idle first so no command buffer from the pool is still running.
-  vkDeviceWaitIdle(device_);
+  // An adopted device is the application's: only odeskin's queue is waited for, and it stays.
+  if (owns_device_) {
+    vkDeviceWaitIdle(device_);
+  } else if (queue_ != VK_NULL_HANDLE) {
+    vkQueueWaitIdle(queue_);
+  }
   command_pool_.reset();
   pipeline_cache_.reset();
-  vkDestroyDevice(device_, nullptr);
+  if (owns_device_) vkDestroyDevice(device_, nullptr);
   device_ = VK_NULL_HANDLE;
 }
 

@@ -35,11 +35,29 @@ Result<std::uint32_t> selectPhysicalDevice(const Instance& instance, std::string
 // "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other".
 const char* deviceTypeName(VkPhysicalDeviceType type);
 
+// A device the application created and keeps: a game engine's own VkDevice, so that the runtime's
+// output buffers live where its renderer binds vertex buffers (docs/runtime.md). odeskin needs no
+// device feature or extension beyond Vulkan 1.1 core.
+struct ExternalDevice {
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;      // created from physical_device through the Vulkan loader
+  std::uint32_t queue_family = 0;        // must support compute
+  std::uint32_t queue_index = 0;         // within the family, as created
+};
+
 class Device {
  public:
   // Selects a physical device (see selectPhysicalDevice) and creates a logical device with one
   // compute-capable queue. kUnavailable when the device has no compute queue.
   static Result<Device> create(const Instance& instance, std::string_view selector = "auto");
+
+  // Wraps an application's device without owning it: odeskin creates only its command pool and
+  // pipeline cache there and submits to that queue. Vulkan requires the application not to use the
+  // queue from another thread during odeskin's calls that submit (DeformRuntime::submitFrame, the
+  // uploads of create()) or wait. Destroying the wrapper waits for that queue to idle and
+  // destroys odeskin's pool and cache, never the device. kInvalidArgument for null handles, a
+  // queue family or index the device does not have, or a family without compute.
+  static Result<Device> adopt(const ExternalDevice& external);
 
   Device(Device&& other) noexcept;
   Device& operator=(Device&& other) noexcept;
@@ -49,7 +67,8 @@ class Device {
 
   VkDevice handle() const { return device_; }
   VkPhysicalDevice physicalDevice() const { return physical_; }
-  std::uint32_t index() const { return index_; }  // into physicalDevices()
+  std::uint32_t index() const { return index_; }  // into physicalDevices(); UINT32_MAX when adopted
+  bool ownsDevice() const { return owns_device_; }
   const char* name() const { return properties_.deviceName; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
@@ -74,10 +93,13 @@ class Device {
  private:
   Device() = default;
   void destroy();
+  // The queue's family facts, the queue, the command pool and the pipeline cache, once device_ exists.
+  Status finish(const std::vector<VkQueueFamilyProperties>& families, std::uint32_t queue_index);
 
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
+  bool owns_device_ = true;
   std::uint32_t index_ = 0;
   std::uint32_t queue_family_ = 0;
   VkQueueFlags queue_flags_ = 0;

@@ -118,6 +118,67 @@ TEST_F(GpuTest, RuntimeMatchesTheCpuRuntimeOnTheCat) {
   EXPECT_LT(times->deform_seconds, 10.0);
 }
 
+// A game engine's own device (here made by the test as an engine would): the runtime works on it,
+// its buffers are that device's, and dropping odeskin's wrapper leaves the device usable. The
+// validation layer reports any object odeskin left on it when the engine destroys it.
+TEST_F(GpuTest, RuntimeRunsOnAnEnginesOwnDevice) {
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queue_info{};
+  queue_info.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+  queue_info.queueFamilyIndex = device().queueFamily();
+  queue_info.queueCount = 1;
+  queue_info.pQueuePriorities = &priority;
+  VkDeviceCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+  info.queueCreateInfoCount = 1;
+  info.pQueueCreateInfos = &queue_info;
+  VkDevice engine_device = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateDevice(device().physicalDevice(), &info, nullptr, &engine_device), VK_SUCCESS);
+
+  vk::ExternalDevice external{device().physicalDevice(), engine_device, device().queueFamily(), 0};
+  {
+    Result<vk::Device> adopted = vk::Device::adopt(external);
+    ASSERT_TRUE(adopted.ok()) << adopted.status().toString();
+    EXPECT_FALSE(adopted->ownsDevice());
+    EXPECT_EQ(adopted->handle(), engine_device);
+    const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+    Result<VulkanRuntime> gpu = VulkanRuntime::create(*adopted, asset, withCapacity(4));
+    Result<CpuRuntime> cpu = CpuRuntime::create(asset, withCapacity(4));
+    ASSERT_TRUE(gpu.ok() && cpu.ok()) << gpu.status().toString();
+    ASSERT_TRUE(gpu->setInstanceCount(4).ok() && cpu->setInstanceCount(4).ok());
+    for (std::uint32_t k = 0; k < 4; ++k) setBoth(*cpu, *gpu, k, InstanceState::atTime(0.6 * k).withPreset(k % 3));
+    Result<std::uint64_t> cpu_frame = cpu->submitFrame();
+    Result<std::uint64_t> gpu_frame = gpu->submitFrame();
+    ASSERT_TRUE(cpu_frame.ok() && gpu_frame.ok()) << gpu_frame.status().toString();
+    expectSameFrame(*cpu, *cpu_frame, *gpu, *gpu_frame, 4, "cylinder on the engine's device");
+    Result<RuntimeFrameBuffers> buffers = gpu->frameBuffers(*gpu_frame);
+    ASSERT_TRUE(buffers.ok());
+    EXPECT_NE(buffers->positions, VK_NULL_HANDLE);
+  }  // the runtime, then odeskin's wrapper, go; the device stays
+
+  // Still the engine's, and alive: it makes and drops an object, then is destroyed by its owner.
+  VkCommandPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  pool_info.queueFamilyIndex = device().queueFamily();
+  VkCommandPool pool = VK_NULL_HANDLE;
+  EXPECT_EQ(vkCreateCommandPool(engine_device, &pool_info, nullptr, &pool), VK_SUCCESS);
+  vkDestroyCommandPool(engine_device, pool, nullptr);
+  EXPECT_EQ(vkDeviceWaitIdle(engine_device), VK_SUCCESS);
+
+  // What an engine can get wrong is named.
+  vk::ExternalDevice no_family = external;
+  no_family.queue_family = 99;
+  Result<vk::Device> bad = vk::Device::adopt(no_family);
+  EXPECT_EQ(bad.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(bad.status().message().find("queue family 99 does not exist"), std::string::npos) << bad.status().message();
+  vk::ExternalDevice no_queue = external;
+  no_queue.queue_index = 5;
+  bad = vk::Device::adopt(no_queue);
+  EXPECT_NE(bad.status().message().find("has 1 queues, not queue 5"), std::string::npos) << bad.status().message();
+  EXPECT_EQ(vk::Device::adopt(vk::ExternalDevice{}).status().code(), StatusCode::kInvalidArgument);
+  vkDestroyDevice(engine_device, nullptr);
+}
+
 TEST_F(GpuTest, RuntimeMatchesTheCpuRuntimeWithDualQuaternions) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset(SkinningMode::kDualQuaternion));
   Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(5));
