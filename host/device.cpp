@@ -189,15 +189,6 @@ Status Device::finish(const std::vector<VkQueueFamilyProperties>& families, std:
   queue_flags_ = families[queue_family_].queueFlags;
   vkGetDeviceQueue(device_, queue_family_, queue_index, &queue_);
 
-  // Resettable command buffers: per-frame buffers are re-recorded in place instead of reallocated.
-  VkCommandPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-  pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  pool_info.queueFamilyIndex = queue_family_;
-  VkCommandPool pool = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkCreateCommandPool(device_, &pool_info, nullptr, &pool));
-  command_pool_ = UniqueCommandPool(device_, pool);
-
   // An in-memory cache shares compiled pipelines between dispatchers built on this device.
   VkPipelineCacheCreateInfo cache_info{};
   cache_info.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO;
@@ -222,8 +213,8 @@ Device& Device::operator=(Device&& other) noexcept {
     timestamp_valid_bits_ = other.timestamp_valid_bits_;
     properties_ = other.properties_;
     memory_ = other.memory_;
-    command_pool_ = std::move(other.command_pool_);
     pipeline_cache_ = std::move(other.pipeline_cache_);
+    queue_mutex_ = std::move(other.queue_mutex_);
   }
   return *this;
 }
@@ -237,9 +228,9 @@ void Device::destroy() {
   if (owns_device_) {
     vkDeviceWaitIdle(device_);
   } else if (queue_ != VK_NULL_HANDLE) {
+    const std::lock_guard lock(*queue_mutex_);
     vkQueueWaitIdle(queue_);
   }
-  command_pool_.reset();
   pipeline_cache_.reset();
   if (owns_device_) vkDestroyDevice(device_, nullptr);
   device_ = VK_NULL_HANDLE;
@@ -259,21 +250,29 @@ Result<std::uint32_t> Device::findMemoryType(std::uint32_t type_bits, VkMemoryPr
   return unavailable("no Vulkan memory type with the required properties on " + std::string(name()));
 }
 
+Status Device::submit(const VkSubmitInfo& info, VkFence fence) const {
+  const std::lock_guard lock(*queue_mutex_);
+  VkResult submitted = injectedResult(VkFault::kDeviceLost);
+  if (submitted == VK_SUCCESS) submitted = vkQueueSubmit(queue_, 1, &info, fence);
+  return vkStatus(submitted, "vkQueueSubmit");
+}
+
 Status Device::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+  // A pool per call: two threads uploading on one device must not share one (uploads are rare).
+  VkCommandPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  pool_info.queueFamilyIndex = queue_family_;
+  VkCommandPool pool_handle = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateCommandPool(device_, &pool_info, nullptr, &pool_handle));
+  const UniqueCommandPool pool(device_, pool_handle);
   VkCommandBufferAllocateInfo alloc{};
   alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-  alloc.commandPool = command_pool_.get();
+  alloc.commandPool = pool.get();
   alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   alloc.commandBufferCount = 1;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkAllocateCommandBuffers(device_, &alloc, &cmd));
-  // Freed on every path: the pool outlives this call but should not accumulate one-off buffers.
-  struct FreeOnExit {
-    VkDevice device;
-    VkCommandPool pool;
-    VkCommandBuffer cmd;
-    ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
-  } free_on_exit{device_, command_pool_.get(), cmd};
+  ODESKIN_VK_TRY(vkAllocateCommandBuffers(device_, &alloc, &cmd));  // freed with the pool
 
   VkCommandBufferBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
@@ -292,9 +291,7 @@ Status Device::submitAndWait(const std::function<void(VkCommandBuffer)>& record)
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
-  VkResult submitted = injectedResult(VkFault::kDeviceLost);
-  if (submitted == VK_SUCCESS) submitted = vkQueueSubmit(queue_, 1, &submit, fence.get());
-  ODESKIN_TRY(vkStatus(submitted, "vkQueueSubmit"));
+  ODESKIN_TRY(this->submit(submit, fence.get()));
   ODESKIN_VK_TRY(vkWaitForFences(device_, 1, &fence_handle, VK_TRUE, UINT64_MAX));
   return okStatus();
 }

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,11 +53,11 @@ class Device {
   // compute-capable queue. kUnavailable when the device has no compute queue.
   static Result<Device> create(const Instance& instance, std::string_view selector = "auto");
 
-  // Wraps an application's device without owning it: odeskin creates only its command pool and
-  // pipeline cache there and submits to that queue. Vulkan requires the application not to use the
-  // queue from another thread during odeskin's calls that submit (DeformRuntime::submitFrame, the
-  // uploads of create()) or wait. Destroying the wrapper waits for that queue to idle and
-  // destroys odeskin's pool and cache, never the device. kInvalidArgument for null handles, a
+  // Wraps an application's device without owning it: odeskin creates its pipeline cache there (and
+  // its runtimes their command pools) and submits to that queue. Vulkan requires the application
+  // not to use the queue from another thread during odeskin's calls that submit
+  // (DeformRuntime::submitFrame, the uploads of create()) or wait. Destroying the wrapper waits for
+  // that queue to idle and destroys odeskin's cache, never the device. kInvalidArgument for null handles, a
   // queue family or index the device does not have, or a family without compute.
   static Result<Device> adopt(const ExternalDevice& external);
 
@@ -78,22 +80,27 @@ class Device {
   VkQueueFlags queueFlags() const { return queue_flags_; }
   // Bits of a timestamp written on queue(); 0 means the queue cannot time dispatches.
   std::uint32_t timestampValidBits() const { return timestamp_valid_bits_; }
-  VkCommandPool commandPool() const { return command_pool_.get(); }
   VkPipelineCache pipelineCache() const { return pipeline_cache_.get(); }
+
+  // Every submission odeskin makes on queue() goes through here: the queue must be used by one
+  // thread at a time, and runtimes sharing this device may be driven from different threads.
+  // Command pools are the other object Vulkan wants so guarded; odeskin gives each FrameRing and
+  // each submitAndWait its own, so none is shared.
+  Status submit(const VkSubmitInfo& info, VkFence fence) const;
 
   // Index of a memory type allowed by `type_bits` that has all `required` flags, preferring one
   // that also has all `preferred` flags. kUnavailable when none has the required flags.
   Result<std::uint32_t> findMemoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required,
                                        VkMemoryPropertyFlags preferred) const;
 
-  // Records `record` into a one-off command buffer, submits it and waits for it (uploads,
-  // readbacks, tests). Not for the per-frame path.
+  // Records `record` into a one-off command buffer (from a pool of its own), submits it and waits
+  // for it (uploads, readbacks, tests). Not for the per-frame path.
   Status submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
 
  private:
   Device() = default;
   void destroy();
-  // The queue's family facts, the queue, the command pool and the pipeline cache, once device_ exists.
+  // The queue's family facts, the queue and the pipeline cache, once device_ exists.
   Status finish(const std::vector<VkQueueFamilyProperties>& families, std::uint32_t queue_index);
 
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
@@ -106,8 +113,8 @@ class Device {
   std::uint32_t timestamp_valid_bits_ = 0;
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
-  UniqueCommandPool command_pool_;
   UniquePipelineCache pipeline_cache_;
+  std::unique_ptr<std::mutex> queue_mutex_ = std::make_unique<std::mutex>();  // movable Device
 };
 
 // An instance and a device opened together; members in destruction order (device first).

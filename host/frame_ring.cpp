@@ -3,7 +3,6 @@
 
 #include <utility>
 
-#include "fault_injection.hpp"
 #include "vk_status.hpp"
 
 namespace odeskin::vk {
@@ -12,7 +11,15 @@ Result<FrameRing> FrameRing::create(const Device& device, const FrameRingDesc& d
   if (desc.frames_in_flight == 0) return invalidArgument("FrameRing: frames_in_flight is 0");
   FrameRing ring;
   ring.device_ = device.handle();
-  ring.queue_ = device.queue();
+  ring.owner_ = &device;
+  // Resettable command buffers: per-frame buffers are re-recorded in place instead of reallocated.
+  VkCommandPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pool_info.queueFamilyIndex = device.queueFamily();
+  VkCommandPool pool = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateCommandPool(device.handle(), &pool_info, nullptr, &pool));
+  ring.pool_ = UniqueCommandPool(device.handle(), pool);
   ODESKIN_ASSIGN_OR_RETURN(ring.timestamps_, TimestampQueries::create(device, desc.frames_in_flight));
   ring.slots_.resize(desc.frames_in_flight);
   for (Slot& slot : ring.slots_) {
@@ -23,12 +30,12 @@ Result<FrameRing> FrameRing::create(const Device& device, const FrameRingDesc& d
     }
     VkCommandBufferAllocateInfo alloc{};
     alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-    alloc.commandPool = device.commandPool();
+    alloc.commandPool = ring.pool_.get();
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     alloc.commandBufferCount = 1;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     ODESKIN_VK_TRY(vkAllocateCommandBuffers(device.handle(), &alloc, &cmd));
-    slot.cmd = UniqueCommandBuffer(device.handle(), device.commandPool(), cmd);
+    slot.cmd = UniqueCommandBuffer(device.handle(), ring.pool_.get(), cmd);
     VkFenceCreateInfo fence_info{};
     fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     VkFence fence = VK_NULL_HANDLE;
@@ -42,7 +49,10 @@ FrameRing& FrameRing::operator=(FrameRing&& other) noexcept {
   if (this != &other) {
     waitAllNoThrow();
     device_ = std::exchange(other.device_, VK_NULL_HANDLE);
-    queue_ = std::exchange(other.queue_, VK_NULL_HANDLE);
+    owner_ = std::exchange(other.owner_, nullptr);
+    // Slots (their command buffers) before the pool they came from.
+    slots_.clear();
+    pool_ = std::move(other.pool_);
     timestamps_ = std::move(other.timestamps_);
     slots_ = std::move(other.slots_);
     next_ = other.next_;
@@ -110,9 +120,7 @@ Status FrameRing::submit() {
   submit_info.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit_info.commandBufferCount = 1;
   submit_info.pCommandBuffers = &cmd;
-  VkResult submitted = injectedResult(VkFault::kDeviceLost);
-  if (submitted == VK_SUCCESS) submitted = vkQueueSubmit(queue_, 1, &submit_info, slot.fence.get());
-  ODESKIN_TRY(vkStatus(submitted, "vkQueueSubmit"));
+  ODESKIN_TRY(owner_->submit(submit_info, slot.fence.get()));
   slot.pending = true;
   last_submitted_ = current_;
   next_ = (current_ + 1) % slotCount();

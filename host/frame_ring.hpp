@@ -73,7 +73,10 @@ class FrameRing {
   void waitAllNoThrow() noexcept;
 
   VkDevice device_ = VK_NULL_HANDLE;
-  VkQueue queue_ = VK_NULL_HANDLE;
+  const Device* owner_ = nullptr;  // submits through it (one thread at a time on its queue)
+  // The ring's own: a command pool may be used by one thread at a time, and rings on one device
+  // may be driven from different threads. Before slots_, so their command buffers go first.
+  UniqueCommandPool pool_;
   TimestampQueries timestamps_;
   std::vector<Slot> slots_;
   std::uint32_t next_ = 0;     // slot beginFrame hands out

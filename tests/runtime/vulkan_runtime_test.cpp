@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -177,6 +178,42 @@ TEST_F(GpuTest, RuntimeRunsOnAnEnginesOwnDevice) {
   EXPECT_NE(bad.status().message().find("has 1 queues, not queue 5"), std::string::npos) << bad.status().message();
   EXPECT_EQ(vk::Device::adopt(vk::ExternalDevice{}).status().code(), StatusCode::kInvalidArgument);
   vkDestroyDevice(engine_device, nullptr);
+}
+
+// One device, two runtimes (two assets, say), each driven by its own thread as the threading rules
+// allow: the device's queue and command pool are shared, and Vulkan requires both to be used by one
+// thread at a time. The validation layer's thread checks report any overlap.
+TEST_F(GpuTest, RuntimesSharingADeviceRunOnTwoThreads) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  Result<CpuRuntime> cpu = CpuRuntime::create(asset, withCapacity(3));
+  ASSERT_TRUE(cpu.ok());
+  ASSERT_TRUE(cpu->setInstanceCount(3).ok());
+  for (std::uint32_t k = 0; k < 3; ++k) ASSERT_TRUE(cpu->setInstance(k, InstanceState::atTime(0.9 * k)).ok());
+  Result<std::uint64_t> cpu_frame = cpu->submitFrame();
+  ASSERT_TRUE(cpu_frame.ok());
+  std::vector<Result<VulkanRuntime>> runtimes;
+  for (int r = 0; r < 2; ++r) runtimes.push_back(VulkanRuntime::create(device(), asset, withCapacity(3)));
+  for (Result<VulkanRuntime>& rt : runtimes) {
+    ASSERT_TRUE(rt.ok()) << rt.status().toString();
+    ASSERT_TRUE(rt->setInstanceCount(3).ok());
+    for (std::uint32_t k = 0; k < 3; ++k) ASSERT_TRUE(rt->setInstance(k, InstanceState::atTime(0.9 * k)).ok());
+  }
+  std::vector<Status> results(2);
+  std::vector<std::thread> threads;
+  for (int r = 0; r < 2; ++r) {
+    threads.emplace_back([&, r] {
+      for (int frame = 0; frame < 200 && results[r].ok(); ++frame) {
+        Result<std::uint64_t> submitted = runtimes[r]->submitFrame();
+        results[r] = submitted.ok() ? okStatus() : submitted.status();
+      }
+      if (results[r].ok()) results[r] = runtimes[r]->wait();
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  for (int r = 0; r < 2; ++r) {
+    ASSERT_TRUE(results[r].ok()) << results[r].toString();
+    expectSameFrame(*cpu, *cpu_frame, *runtimes[r], runtimes[r]->lastFrame(), 3, "runtime " + std::to_string(r));
+  }
 }
 
 TEST_F(GpuTest, RuntimeMatchesTheCpuRuntimeWithDualQuaternions) {
