@@ -3,7 +3,8 @@
 # UndefinedBehaviorSanitizer into ${ODESKIN_BUILD_DIR:-build}-asan and runs every test there (GoogleTest
 # via CTest, sample self-checks, GPU/CPU parity under whatever Vulkan device exists: lavapipe in CI).
 # GPU tests fail rather than skip here (ODESKIN_REQUIRE_GPU=1), and the validation layer is on
-# whenever it is installed. It also checks that engine/ builds without Vulkan. scripts/build.sh
+# whenever it is installed. It also checks that engine/ builds without Vulkan, as a subproject
+# (tests/consumer), and runs that consumer. scripts/build.sh
 # alone (scripts/demo.sh) still gives the plain Release build in ${ODESKIN_BUILD_DIR:-build}.
 # docs/reliability.md ("Sanitizers") has the ThreadSanitizer build and why CI does not run it.
 set -euo pipefail
