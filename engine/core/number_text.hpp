@@ -1,29 +1,41 @@
 // SPDX-License-Identifier: MIT
-// How odeskin prints numbers in summaries and messages: short and locale-independent.
-// std::to_string writes "%f": a weight of -1e-9 read "-0.000000 < 0", a rank test's 1e-17 read
-// "0.000000", and 1e308 took 309 digits.
+// How odeskin prints numbers, in messages and in the files it writes: short and independent of the
+// C locale. std::to_string writes "%f": a weight of -1e-9 read "-0.000000 < 0", a rank test's 1e-17
+// read "0.000000", and 1e308 took 309 digits. snprintf follows LC_NUMERIC: an application that set
+// a German locale got OBJ vertices written "v 1,5 2 0", which no reader takes. std::to_chars
+// gives printf's "C" output whatever the locale.
 #pragma once
 
-#include <cstdio>
+#include <charconv>
 #include <string>
+#include <system_error>
 
 namespace odeskin {
 
+// Appends x as printf's "%.{precision}g" (general) or "%.{precision}e" (scientific) in the "C"
+// locale would.
+inline void appendNumber(std::string& out, double x, int precision,
+                         std::chars_format format = std::chars_format::general) {
+  char text[48];
+  const auto [end, ec] = std::to_chars(text, text + sizeof text, x, format, precision);
+  out.append(text, ec == std::errc() ? end : text);
+}
+
 namespace number_text_detail {
-inline std::string formatted(const char* format, double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, format, x);
+inline std::string formatted(double x, int precision, std::chars_format format) {
+  std::string text;
+  appendNumber(text, x, precision, format);
   return text;
 }
 }  // namespace number_text_detail
 
 // "1.23e-04": errors and tolerances, whose magnitude is what matters.
-inline std::string scientific(double x) { return number_text_detail::formatted("%.2e", x); }
+inline std::string scientific(double x) { return number_text_detail::formatted(x, 2, std::chars_format::scientific); }
 
 // "%g": times, sizes and option values as the user typed them.
-inline std::string numberText(double x) { return number_text_detail::formatted("%g", x); }
+inline std::string numberText(double x) { return number_text_detail::formatted(x, 6, std::chars_format::general); }
 
 // "%.9g", for values in error messages: enough digits to tell a sum of 1.000001 from 1.
-inline std::string messageNumber(double x) { return number_text_detail::formatted("%.9g", x); }
+inline std::string messageNumber(double x) { return number_text_detail::formatted(x, 9, std::chars_format::general); }
 
 }  // namespace odeskin

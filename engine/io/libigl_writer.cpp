@@ -9,16 +9,14 @@
 
 #include <glm/geometric.hpp>
 
+#include "../core/number_text.hpp"
 #include "obj_io.hpp"
 
 namespace odeskin {
 namespace {
 
-void appendNumber(std::string& text, double x) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  text += buffer;
-}
+// Round-trips a double exactly, whatever the locale.
+void appendNumber(std::string& text, double x) { odeskin::appendNumber(text, x, 17); }
 
 }  // namespace
 

@@ -13,6 +13,7 @@
 #include <random>
 #include <system_error>
 
+#include "../core/number_text.hpp"
 #include "../core/pending_files.hpp"
 #include "../core/result.hpp"
 
@@ -119,15 +120,19 @@ Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positio
   std::string text;
   text.reserve(positions.size() * 40 + faces.indices.size() * 8 + 64);
   if (!comment.empty()) text += "# " + comment + "\n";
-  char line[96];
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Vec3& p = positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
       return invalidArgument(path.string() + ": vertex " + std::to_string(i) + " is not finite");
     }
-    // %.9g round-trips float32 exactly and keeps double output readable.
-    std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
-    text += line;
+    // %.9g round-trips float32 exactly and keeps double output readable; to_chars, not snprintf,
+    // so the host's locale cannot turn the points into commas.
+    text += 'v';
+    for (const double c : {p.x, p.y, p.z}) {
+      text += ' ';
+      appendNumber(text, c, 9);
+    }
+    text += '\n';
   }
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {
     text += 'f';
