@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstring>
 #include <string>
+#include <system_error>
 
 namespace odeskin {
 namespace {
@@ -29,7 +30,11 @@ static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs l
 }  // namespace
 
 PendingFile::PendingFile(const std::filesystem::path& path) {
-  const std::string& text = path.native();
+  // Absolute: a handler may run after another thread of the host changed directory.
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  if (ec) return;
+  const std::string& text = absolute.native();
   if (text.size() >= static_cast<std::size_t>(kMaxPendingPathBytes)) return;
   for (int s = 0; s < kMaxPendingFiles; ++s) {
     int expected = kFree;

@@ -45,6 +45,19 @@ TEST_F(PendingFiles, OnlyTheFilesStillMarkedAreRemoved) {
   EXPECT_TRUE(fs::exists(unrelated));
 }
 
+// Registered by absolute path: a host thread may change directory before a signal arrives.
+TEST_F(PendingFiles, ARelativePathIsRemovedAfterAChangeOfDirectory) {
+  const fs::path before = fs::current_path();
+  fs::current_path(dir_);
+  touch("relative.obj.tmp3");
+  {
+    const PendingFile mark("relative.obj.tmp3");
+    fs::current_path(before);
+    removePendingFiles();
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "relative.obj.tmp3"));
+}
+
 TEST_F(PendingFiles, ASlotIsReusedOnlyAfterItsMarkIsGone) {
   std::vector<std::unique_ptr<PendingFile>> marks;
   for (int i = 0; i < kMaxPendingFiles; ++i) {
