@@ -113,18 +113,12 @@ Result<Device> Device::create(const Instance& instance, std::string_view selecto
   ODESKIN_ASSIGN_OR_RETURN(std::vector<VkPhysicalDevice> devices, physicalDevices(instance));
   Device device;
   device.index_ = index;
-  device.physical_ = devices[index];
-  vkGetPhysicalDeviceProperties(device.physical_, &device.properties_);
-  vkGetPhysicalDeviceMemoryProperties(device.physical_, &device.memory_);
+  const std::vector<VkQueueFamilyProperties> families = device.readPhysical(devices[index]);
 
   // One compute-capable family; among those, prefer one that can write timestamps so GPU times
   // are available (lavapipe has a single GRAPHICS|COMPUTE|TRANSFER family that can).
-  std::uint32_t family_count = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(device.physical_, &family_count, nullptr);
-  std::vector<VkQueueFamilyProperties> families(family_count);
-  vkGetPhysicalDeviceQueueFamilyProperties(device.physical_, &family_count, families.data());
   int family = -1;
-  for (std::uint32_t i = 0; i < family_count; ++i) {
+  for (std::uint32_t i = 0; i < families.size(); ++i) {
     if (!(families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) continue;
     if (family < 0 || (families[i].timestampValidBits > 0 &&
                        families[static_cast<std::uint32_t>(family)].timestampValidBits == 0)) {
@@ -159,13 +153,8 @@ Result<Device> Device::adopt(const ExternalDevice& external) {
   Device device;
   device.owns_device_ = false;
   device.index_ = UINT32_MAX;
-  device.physical_ = external.physical_device;
-  vkGetPhysicalDeviceProperties(device.physical_, &device.properties_);
-  vkGetPhysicalDeviceMemoryProperties(device.physical_, &device.memory_);
-  std::uint32_t family_count = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(device.physical_, &family_count, nullptr);
-  std::vector<VkQueueFamilyProperties> families(family_count);
-  vkGetPhysicalDeviceQueueFamilyProperties(device.physical_, &family_count, families.data());
+  const std::vector<VkQueueFamilyProperties> families = device.readPhysical(external.physical_device);
+  const auto family_count = static_cast<std::uint32_t>(families.size());
   const std::string where = std::string("adopted Vulkan device ") + device.name() + ": queue family " +
                             std::to_string(external.queue_family);
   if (external.queue_family >= family_count) {
@@ -182,6 +171,17 @@ Result<Device> Device::adopt(const ExternalDevice& external) {
   device.device_ = external.device;
   ODESKIN_TRY(device.finish(families, external.queue_index));
   return device;
+}
+
+std::vector<VkQueueFamilyProperties> Device::readPhysical(VkPhysicalDevice physical) {
+  physical_ = physical;
+  vkGetPhysicalDeviceProperties(physical_, &properties_);
+  vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+  std::uint32_t family_count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &family_count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(family_count);
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &family_count, families.data());
+  return families;
 }
 
 Status Device::finish(const std::vector<VkQueueFamilyProperties>& families, std::uint32_t queue_index) {

@@ -100,6 +100,8 @@ class Device {
  private:
   Device() = default;
   void destroy();
+  // Sets physical_, its properties and memory; returns its queue families.
+  std::vector<VkQueueFamilyProperties> readPhysical(VkPhysicalDevice physical);
   // The queue's family facts, the queue and the pipeline cache, once device_ exists.
   Status finish(const std::vector<VkQueueFamilyProperties>& families, std::uint32_t queue_index);
 
