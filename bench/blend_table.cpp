@@ -64,8 +64,10 @@ void sink(const Cardinals& c, std::uint32_t count) {
 
 int main(int argc, char** argv) {
   int repeat = 21;
-  CLI::App app("odeskin_blend_table: the thesis's Fig. 3.5 blends, ODE against the spline approximation (docs/surfaces.md)");
-  app.add_option("--repeat", repeat, "Runs per timing; the median is printed (default 21)")->check(CLI::Range(1, 100000));
+  CLI::App app("odeskin_blend_table: the thesis's Fig. 3.5 blends, ODE against the spline approximation "
+               "(docs/surfaces.md)");
+  app.add_option("--repeat", repeat, "Runs per timing; the median is printed (default 21)")
+      ->check(CLI::Range(1, 100000));
   CLI11_PARSE(app, argc, argv);
   const BlendExample example = orDie(blendExample("3.18"), "example 3.18");
   std::printf("Eq 3.18 blend; relative error of Eq 3.44: profile v = 0, I = 100 samples; surface %u x %u grid.\n",

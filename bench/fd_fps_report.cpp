@@ -170,7 +170,8 @@ int main(int argc, char** argv) {
   int frames = 120;
   int repeats = 3;
   bool quick = false;
-  CLI::App app("odeskin_fd_fps_report: odeskin against the finite-difference solver, frames per second (thesis Table 6.1)");
+  CLI::App app("odeskin_fd_fps_report: odeskin against the finite-difference solver, frames per second "
+               "(thesis Table 6.1)");
   app.add_option("data", data_text, "The shared data folder (default " ODESKIN_DATA_DIR ")");
   app.add_option("--frames", frames, "Frames per pass over the animation (default 120)")->check(CLI::Range(2, 1000000));
   app.add_option("--repeats", repeats, "Passes; the fastest is printed (default 3)")->check(CLI::Range(1, 1000));

@@ -3,7 +3,7 @@
 
 #include <unistd.h>
 
-#include <cstdio>
+#include "number_text.hpp"
 
 namespace odeskin {
 
@@ -15,9 +15,9 @@ std::uint64_t physicalMemoryBytes() {
 }
 
 std::string gibibytesText(std::uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f GiB", static_cast<double>(bytes) / (1024.0 * 1024.0 * 1024.0));
-  return text;
+  std::string text;
+  appendNumber(text, static_cast<double>(bytes) / (1024.0 * 1024.0 * 1024.0), 1, std::chars_format::fixed);
+  return text + " GiB";
 }
 
 Status checkFitsInMemory(std::uint64_t bytes, std::uint64_t memory_bytes, const std::string& what,

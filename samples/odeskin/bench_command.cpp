@@ -223,8 +223,12 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
     if (n < 1 || n > 64) return reportUsage(console, "bench: --terms must be in [1, 64]");
   }
   // A repeated value timed every case again and wrote duplicate records.
-  if (const auto v = repeatedValue(o.sizes)) return reportUsage(console, "bench: --sizes lists " + std::to_string(*v) + " twice");
-  if (const auto n = repeatedValue(o.terms)) return reportUsage(console, "bench: --terms lists " + std::to_string(*n) + " twice");
+  if (const auto v = repeatedValue(o.sizes)) {
+    return reportUsage(console, "bench: --sizes lists " + std::to_string(*v) + " twice");
+  }
+  if (const auto n = repeatedValue(o.terms)) {
+    return reportUsage(console, "bench: --terms lists " + std::to_string(*n) + " twice");
+  }
   // One "bench: " prefix on every failure, whether the harness already named itself or a reader spoke.
   auto fail = [&](const Status& status) {
     const std::string& m = status.message();

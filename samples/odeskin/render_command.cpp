@@ -238,7 +238,9 @@ void printSummary(const RenderOptions& o, const Panels& panels, const RenderRepo
                   std::ostream& out) {
   // A device without the asked count draws with the nearest one below it; say so rather than hide it.
   char lowered[96] = "";
-  if (r.samples < o.samples) std::snprintf(lowered, sizeof lowered, " (%u asked; the nearest the device offers)", o.samples);
+  if (r.samples < o.samples) {
+    std::snprintf(lowered, sizeof lowered, " (%u asked; the nearest the device offers)", o.samples);
+  }
   char line[400];
   std::snprintf(line, sizeof line, "%u x %u, %zu panel%s, %u sample%s per pixel%s, %.1f ms per picture on %s\n", r.width,
                 r.height, r.panels, r.panels == 1 ? "" : "s", r.samples, r.samples == 1 ? "" : "s", lowered,

@@ -29,7 +29,7 @@ struct RigCommandOptions {
   std::string up = "y";                       // the mesh's up axis (templates, picture)
   std::filesystem::path compare;              // a ground-truth .tgf: print the joint errors against it
   double azimuth_deg = 30.0;                  // --png camera angle about the up axis
-  int repeat = 1;                             // run the rig this many times (<= kMaxRigRepeats); timings are the medians
+  int repeat = 1;                             // runs (<= kMaxRigRepeats); timings are the medians
   std::string device = "auto";                // for --png
 };
 

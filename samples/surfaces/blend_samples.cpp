@@ -244,7 +244,8 @@ int main(int argc, char** argv) {
   std::uint32_t u_count = 48, v_count = 48;
   std::string out_dir;
   std::string res;
-  CLI::App app("odeskin_blend_samples: the thesis's three-plane corner (Eqs 3.22-3.25) and Fig. 3.7's profiles, self-checked");
+  CLI::App app("odeskin_blend_samples: the thesis's three-plane corner (Eqs 3.22-3.25) and Fig. 3.7's "
+               "profiles, self-checked");
   app.add_option("out_dir", out_dir, "Folder for the OBJ files and the profile plot")->required();
   app.add_option("--res", res, "Grid samples U,V of each blend, 2 to 2000 (default 48,48)");
   try {

@@ -64,7 +64,8 @@ int main() {
                  gap / size);
     return 1;
   }
-  std::printf("odeskin_consumer: ok: %zu vertices, 3 instances on the CPU runtime, %.2g of the size from the reference\n",
+  std::printf("odeskin_consumer: ok: %zu vertices, 3 instances on the CPU runtime, %.2g of the size from the "
+              "reference\n",
               positions.size(), gap / size);
   return 0;
 }

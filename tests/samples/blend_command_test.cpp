@@ -147,7 +147,8 @@ TEST(BlendCommand, AGridLargerThanMemoryIsRefusedUpFront) {
   const Status refused = blendFitsInMemory(50'000'000, 4 * kGiB);
   EXPECT_EQ(refused.code(), StatusCode::kOutOfRange);
   EXPECT_EQ(refused.message(),
-            "blend: 50000000 grid vertices need about 9.3 GiB, more than this machine's 4.0 GiB of memory; lower --res");
+            "blend: 50000000 grid vertices need about 9.3 GiB, more than this machine's 4.0 GiB of memory; "
+            "lower --res");
   EXPECT_TRUE(blendFitsInMemory(50'000'000, 16 * kGiB).ok());
   EXPECT_TRUE(blendFitsInMemory(50'000'000, 0).ok());  // memory unknown
 }
