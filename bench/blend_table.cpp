@@ -21,6 +21,7 @@
 #include "engine/surfaces/blend_examples.hpp"
 #include "engine/surfaces/blending_surface.hpp"
 #include "engine/surfaces/cardinal_spline.hpp"
+#include "samples/main_guard.hpp"
 
 namespace {
 
@@ -62,7 +63,7 @@ void sink(const Cardinals& c, std::uint32_t count) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   int repeat = 21;
   CLI::App app("odeskin_blend_table: the thesis's Fig. 3.5 blends, ODE against the spline approximation "
                "(docs/surfaces.md)");
@@ -116,3 +117,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return odeskin::runGuarded("odeskin_blend_table", run, argc, argv); }

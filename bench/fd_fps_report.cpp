@@ -36,6 +36,7 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "bench/harness/numbered_paths.hpp"
+#include "samples/main_guard.hpp"
 
 namespace {
 
@@ -165,7 +166,7 @@ Row measure(const Dataset& set, int frames, int repeats) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   std::string data_text = ODESKIN_DATA_DIR;
   int frames = 120;
   int repeats = 3;
@@ -199,3 +200,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return odeskin::runGuarded("odeskin_fd_fps_report", run, argc, argv); }

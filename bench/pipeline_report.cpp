@@ -19,6 +19,7 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "bench/harness/numbered_paths.hpp"
+#include "samples/main_guard.hpp"
 
 namespace {
 
@@ -93,7 +94,7 @@ std::size_t assetBytes(const DeformAsset& asset) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   std::string data_text = ODESKIN_DATA_DIR;
   bool quick = false;
   std::string only;
@@ -150,3 +151,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return odeskin::runGuarded("odeskin_pipeline_report", run, argc, argv); }

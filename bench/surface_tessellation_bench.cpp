@@ -24,6 +24,7 @@
 #include "host/device.hpp"
 #include "host/surface_tessellator.hpp"
 #include "engine/offline/residual_fit.hpp"
+#include "samples/main_guard.hpp"
 
 namespace odeskin {
 namespace {
@@ -219,7 +220,7 @@ int hundredPatches(int repeats, std::uint32_t samples) {
 }  // namespace
 }  // namespace odeskin
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   bool quick = false;
   CLI::App app("odeskin_surface_tessellation_bench: C2 patch tessellation, CPU against Vulkan (docs/surfaces.md)");
   app.add_flag("--quick", quick, "Median of 3 runs instead of 21");
@@ -241,3 +242,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return odeskin::runGuarded("odeskin_surface_tessellation_bench", run, argc, argv); }

@@ -6,7 +6,7 @@
 
 #include <cerrno>
 #include <cstdio>
-#include <cstring>
+#include <string.h>  // GNU strerror_r
 
 namespace odeskin {
 
@@ -17,8 +17,10 @@ inline int checkStandardOutput(const char* prefix, const char* verb, int code) n
   errno = 0;
   if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return code;
   const int error = errno;
+  char buffer[128];
+  const char* cause = error != 0 ? ::strerror_r(error, buffer, sizeof buffer) : "";  // GNU: returns the text
   std::fprintf(stderr, "%s%s%sstandard output: write failed%s%s\n", prefix, verb, *verb != '\0' ? ": " : "",
-               error != 0 ? ": " : "", error != 0 ? std::strerror(error) : "");
+               error != 0 ? ": " : "", cause);
   return code == 0 ? 1 : code;
 }
 

@@ -7,7 +7,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <optional>
 #include <random>
@@ -53,12 +52,12 @@ Status writeAndClose(int fd, const std::string& content, const std::filesystem::
     if (n <= 0) {
       const int error = n < 0 ? errno : EIO;
       ::close(fd);
-      return ioError(shown.string() + ": write failed: " + std::strerror(error));
+      return ioError(shown.string() + ": write failed: " + std::generic_category().message(error));
     }
     done += static_cast<std::size_t>(n);
   }
   // close, too, can report a failed write (a full disk on a network file system).
-  if (::close(fd) != 0) return ioError(shown.string() + ": write failed: " + std::strerror(errno));
+  if (::close(fd) != 0) return ioError(shown.string() + ": write failed: " + std::generic_category().message(errno));
   return okStatus();
 }
 
@@ -92,7 +91,7 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
     if (fd < 0) {
       const int error = errno;
       pending.reset();
-      if (error != EEXIST) return ioError(path.string() + ": cannot create file: " + std::strerror(error));
+      if (error != EEXIST) return ioError(path.string() + ": cannot create file: " + std::generic_category().message(error));
     }
   }
   if (fd < 0) return ioError(path.string() + ": cannot create file: every temporary name beside it is taken");

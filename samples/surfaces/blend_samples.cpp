@@ -31,6 +31,7 @@
 #include "engine/visual/compose.hpp"
 #include "engine/visual/png_writer.hpp"
 #include "engine/visual/text.hpp"
+#include "samples/main_guard.hpp"
 
 namespace {
 
@@ -240,7 +241,7 @@ bool parseRes(const std::string& text, std::uint32_t& u, std::uint32_t& v) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   std::uint32_t u_count = 48, v_count = 48;
   std::string out_dir;
   std::string res;
@@ -271,3 +272,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return odeskin::runGuarded("odeskin_blend_samples", run, argc, argv); }

@@ -60,6 +60,7 @@ TEST_F(PendingFiles, ARelativePathIsRemovedAfterAChangeOfDirectory) {
 
 TEST_F(PendingFiles, ASlotIsReusedOnlyAfterItsMarkIsGone) {
   std::vector<std::unique_ptr<PendingFile>> marks;
+  marks.reserve(kMaxPendingFiles);
   for (int i = 0; i < kMaxPendingFiles; ++i) {
     marks.push_back(std::make_unique<PendingFile>(touch(std::string("a").append(std::to_string(i)))));
   }
@@ -77,6 +78,7 @@ TEST_F(PendingFiles, ASlotIsReusedOnlyAfterItsMarkIsGone) {
 
 TEST_F(PendingFiles, MoreFilesThanSlotsOrTooLongAPathAreWrittenUnregistered) {
   std::vector<std::unique_ptr<PendingFile>> marks;
+  marks.reserve(kMaxPendingFiles);
   for (int i = 0; i < kMaxPendingFiles; ++i) {
     marks.push_back(std::make_unique<PendingFile>(touch(std::string("b").append(std::to_string(i)))));
   }

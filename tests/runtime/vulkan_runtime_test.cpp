@@ -192,6 +192,7 @@ TEST_F(GpuTest, RuntimesSharingADeviceRunOnTwoThreads) {
   Result<std::uint64_t> cpu_frame = cpu->submitFrame();
   ASSERT_TRUE(cpu_frame.ok());
   std::vector<Result<VulkanRuntime>> runtimes;
+  runtimes.reserve(2);
   for (int r = 0; r < 2; ++r) runtimes.push_back(VulkanRuntime::create(device(), asset, withCapacity(3)));
   for (Result<VulkanRuntime>& rt : runtimes) {
     ASSERT_TRUE(rt.ok()) << rt.status().toString();
@@ -200,6 +201,7 @@ TEST_F(GpuTest, RuntimesSharingADeviceRunOnTwoThreads) {
   }
   std::vector<Status> results(2);
   std::vector<std::thread> threads;
+  threads.reserve(2);
   for (int r = 0; r < 2; ++r) {
     threads.emplace_back([&, r] {
       for (int frame = 0; frame < 200 && results[r].ok(); ++frame) {

@@ -764,7 +764,13 @@ TEST_F(BadInputCli, AnInterruptedWriteLeavesNoTemporaryFile) {
     }
     return found;
   };
-  for (const int signal_number : {SIGTERM, SIGINT, SIGHUP}) {
+  struct Named {
+    int number;
+    const char* name;
+  };
+  for (const Named signal : {Named{SIGTERM, "SIGTERM"}, Named{SIGINT, "SIGINT"}, Named{SIGHUP, "SIGHUP"}}) {
+    const int signal_number = signal.number;
+    const char* const name = signal.name;
     bool ended_by_signal = false;
     // The signal is sent once the temporary appears; the 72 MB grid takes about 0.1 s to write, but
     // a poller held off the CPU until after the rename misses it, so a few tries are allowed.
@@ -786,10 +792,10 @@ TEST_F(BadInputCli, AnInterruptedWriteLeavesNoTemporaryFile) {
                                           (files / "grid.obj").string()};
       const Outcome r = runOdeskin(args, dir() / "interrupted" / "io", options);
       ended_by_signal = !r.exited && r.status == signal_number;
-      EXPECT_TRUE(ended_by_signal || (r.exited && r.status == 0)) << strsignal(signal_number) << ": " << r.status;
-      EXPECT_EQ(temporaries(), std::vector<fs::path>{}) << strsignal(signal_number);
+      EXPECT_TRUE(ended_by_signal || (r.exited && r.status == 0)) << name << ": " << r.status;
+      EXPECT_EQ(temporaries(), std::vector<fs::path>{}) << name;
     }
-    EXPECT_TRUE(ended_by_signal) << strsignal(signal_number) << " never arrived during the write";
+    EXPECT_TRUE(ended_by_signal) << name << " never arrived during the write";
   }
 }
 
