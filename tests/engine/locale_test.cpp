@@ -41,15 +41,16 @@ class GermanNumbers : public ::testing::Test {
         "localedef -i de_DE -f UTF-8 '" + (dir_ / "locales" / "de_DE.UTF-8").string() + "' > /dev/null 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0)
         << "localedef could not build de_DE.UTF-8: Debian's `locales` package (scripts/install-deps.sh) is missing";
-    ::setenv("LOCPATH", (dir_ / "locales").c_str(), 1);
-    ASSERT_NE(std::setlocale(LC_ALL, "de_DE.UTF-8"), nullptr);
+    // The process's environment and locale change while no other thread of the test runs.
+    ::setenv("LOCPATH", (dir_ / "locales").c_str(), 1);            // NOLINT(concurrency-mt-unsafe)
+    ASSERT_NE(std::setlocale(LC_ALL, "de_DE.UTF-8"), nullptr);  // NOLINT(concurrency-mt-unsafe)
     char probe[16];
     std::snprintf(probe, sizeof probe, "%.1f", 1.5);
     ASSERT_STREQ(probe, "1,5");  // the locale is in force: printf would write commas
   }
   void TearDown() override {
-    std::setlocale(LC_ALL, "C");
-    ::unsetenv("LOCPATH");
+    std::setlocale(LC_ALL, "C");  // NOLINT(concurrency-mt-unsafe)
+    ::unsetenv("LOCPATH");        // NOLINT(concurrency-mt-unsafe)
     fs::remove_all(dir_);
   }
   fs::path dir_;
