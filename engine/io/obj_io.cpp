@@ -6,8 +6,6 @@
 
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <optional>
 #include <random>
 #include <system_error>
@@ -19,15 +17,6 @@
 namespace odeskin {
 
 namespace {
-
-Status writeInPlace(const std::filesystem::path& path, const std::string& content) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) return ioError(path.string() + ": cannot open for writing");
-  out.write(content.data(), static_cast<std::streamsize>(content.size()));
-  out.close();
-  if (!out) return ioError(path.string() + ": write failed");
-  return okStatus();
-}
 
 // The path a chain of symbolic links names (which may not exist yet), at most 40 links deep as
 // the kernel allows. Renaming onto a link would replace the link itself; the user meant its file.
@@ -43,6 +32,8 @@ Result<std::filesystem::path> followLinks(const std::filesystem::path& path) {
   return ioError(path.string() + ": too many levels of symbolic links");
 }
 
+std::string errnoText(int error) { return std::generic_category().message(error); }
+
 // Writes all of `content` to `fd` and closes it; kIoError naming `shown` with the cause.
 Status writeAndClose(int fd, const std::string& content, const std::filesystem::path& shown) {
   std::size_t done = 0;
@@ -52,13 +43,20 @@ Status writeAndClose(int fd, const std::string& content, const std::filesystem::
     if (n <= 0) {
       const int error = n < 0 ? errno : EIO;
       ::close(fd);
-      return ioError(shown.string() + ": write failed: " + std::generic_category().message(error));
+      return ioError(shown.string() + ": write failed: " + errnoText(error));
     }
     done += static_cast<std::size_t>(n);
   }
   // close, too, can report a failed write (a full disk on a network file system).
-  if (::close(fd) != 0) return ioError(shown.string() + ": write failed: " + std::generic_category().message(errno));
+  if (::close(fd) != 0) return ioError(shown.string() + ": write failed: " + errnoText(errno));
   return okStatus();
+}
+
+// A device or FIFO that exists, written through (the same loop as a temporary file).
+Status writeInPlace(const std::filesystem::path& path, const std::string& content) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd < 0) return ioError(path.string() + ": cannot open for writing: " + errnoText(errno));
+  return writeAndClose(fd, content, path);
 }
 
 }  // namespace
@@ -91,7 +89,7 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
     if (fd < 0) {
       const int error = errno;
       pending.reset();
-      if (error != EEXIST) return ioError(path.string() + ": cannot create file: " + std::generic_category().message(error));
+      if (error != EEXIST) return ioError(path.string() + ": cannot create file: " + errnoText(error));
     }
   }
   if (fd < 0) return ioError(path.string() + ": cannot create file: every temporary name beside it is taken");
