@@ -257,15 +257,19 @@ Status Device::submit(const VkSubmitInfo& info, VkFence fence) const {
   return vkStatus(submitted, "vkQueueSubmit");
 }
 
+Result<UniqueCommandPool> Device::createCommandPool(VkCommandPoolCreateFlags flags) const {
+  VkCommandPoolCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  info.flags = flags;
+  info.queueFamilyIndex = queue_family_;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateCommandPool(device_, &info, nullptr, &pool));
+  return UniqueCommandPool(device_, pool);
+}
+
 Status Device::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
   // A pool per call: two threads uploading on one device must not share one (uploads are rare).
-  VkCommandPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-  pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  pool_info.queueFamilyIndex = queue_family_;
-  VkCommandPool pool_handle = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkCreateCommandPool(device_, &pool_info, nullptr, &pool_handle));
-  const UniqueCommandPool pool(device_, pool_handle);
+  ODESKIN_ASSIGN_OR_RETURN(const UniqueCommandPool pool, createCommandPool(VK_COMMAND_POOL_CREATE_TRANSIENT_BIT));
   VkCommandBufferAllocateInfo alloc{};
   alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
   alloc.commandPool = pool.get();

@@ -93,6 +93,9 @@ class Device {
   Result<std::uint32_t> findMemoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required,
                                        VkMemoryPropertyFlags preferred) const;
 
+  // A command pool on queue()'s family, for one user at a time (a FrameRing, one submitAndWait).
+  Result<UniqueCommandPool> createCommandPool(VkCommandPoolCreateFlags flags) const;
+
   // Records `record` into a one-off command buffer (from a pool of its own), submits it and waits
   // for it (uploads, readbacks, tests). Not for the per-frame path.
   Status submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;

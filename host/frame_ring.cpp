@@ -10,16 +10,9 @@ namespace odeskin::vk {
 Result<FrameRing> FrameRing::create(const Device& device, const FrameRingDesc& desc) {
   if (desc.frames_in_flight == 0) return invalidArgument("FrameRing: frames_in_flight is 0");
   FrameRing ring;
-  ring.device_ = device.handle();
   ring.owner_ = &device;
   // Resettable command buffers: per-frame buffers are re-recorded in place instead of reallocated.
-  VkCommandPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-  pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  pool_info.queueFamilyIndex = device.queueFamily();
-  VkCommandPool pool = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkCreateCommandPool(device.handle(), &pool_info, nullptr, &pool));
-  ring.pool_ = UniqueCommandPool(device.handle(), pool);
+  ODESKIN_ASSIGN_OR_RETURN(ring.pool_, device.createCommandPool(VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT));
   ODESKIN_ASSIGN_OR_RETURN(ring.timestamps_, TimestampQueries::create(device, desc.frames_in_flight));
   ring.slots_.resize(desc.frames_in_flight);
   for (Slot& slot : ring.slots_) {
@@ -48,7 +41,6 @@ Result<FrameRing> FrameRing::create(const Device& device, const FrameRingDesc& d
 FrameRing& FrameRing::operator=(FrameRing&& other) noexcept {
   if (this != &other) {
     waitAllNoThrow();
-    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
     owner_ = std::exchange(other.owner_, nullptr);
     // Slots (their command buffers) before the pool they came from.
     slots_.clear();
@@ -70,7 +62,7 @@ void FrameRing::waitAllNoThrow() noexcept {
     if (!slot.pending) continue;
     VkFence fence = slot.fence.get();
     // A failure here (device lost) leaves nothing better to do than to go on destroying.
-    (void)vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX);
+    (void)vkWaitForFences(owner_->handle(), 1, &fence, VK_TRUE, UINT64_MAX);
     slot.pending = false;
   }
 }
@@ -84,8 +76,8 @@ Status FrameRing::waitSlot(std::uint32_t s) {
   Slot& slot = slots_[s];
   if (!slot.pending) return okStatus();
   VkFence fence = slot.fence.get();
-  ODESKIN_VK_TRY(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
-  ODESKIN_VK_TRY(vkResetFences(device_, 1, &fence));
+  ODESKIN_VK_TRY(vkWaitForFences(owner_->handle(), 1, &fence, VK_TRUE, UINT64_MAX));
+  ODESKIN_VK_TRY(vkResetFences(owner_->handle(), 1, &fence));
   slot.pending = false;
   ODESKIN_ASSIGN_OR_RETURN(slot.gpu_seconds, timestamps_.seconds(s));
   last_gpu_seconds_ = slot.gpu_seconds;

@@ -72,8 +72,7 @@ class FrameRing {
   };
   void waitAllNoThrow() noexcept;
 
-  VkDevice device_ = VK_NULL_HANDLE;
-  const Device* owner_ = nullptr;  // submits through it (one thread at a time on its queue)
+  const Device* owner_ = nullptr;  // waits and submits through it (one thread at a time on its queue)
   // The ring's own: a command pool may be used by one thread at a time, and rings on one device
   // may be driven from different threads. Before slots_, so their command buffers go first.
   UniqueCommandPool pool_;
