@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "frame_ring.hpp"
 
+#include <cstring>
+#include <string>
 #include <utility>
+
+#include "compute_pipeline.hpp"
 
 #include "vk_status.hpp"
 
@@ -14,6 +18,9 @@ Result<FrameRing> FrameRing::create(const Device& device, const FrameRingDesc& d
   // Resettable command buffers: per-frame buffers are re-recorded in place instead of reallocated.
   ODESKIN_ASSIGN_OR_RETURN(ring.pool_, device.createCommandPool(VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT));
   ODESKIN_ASSIGN_OR_RETURN(ring.timestamps_, TimestampQueries::create(device, desc.frames_in_flight));
+  ODESKIN_ASSIGN_OR_RETURN(ring.finished_, Buffer::create(device, VkDeviceSize{desc.frames_in_flight} * sizeof(std::uint64_t),
+                                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::kHostVisible));
+  std::memset(ring.finished_.mapped(), 0, ring.finished_.size());
   ring.slots_.resize(desc.frames_in_flight);
   for (Slot& slot : ring.slots_) {
     // Host-visible and mapped for the slot's lifetime: per-frame writes are plain stores.
@@ -46,6 +53,7 @@ FrameRing& FrameRing::operator=(FrameRing&& other) noexcept {
     slots_.clear();
     pool_ = std::move(other.pool_);
     timestamps_ = std::move(other.timestamps_);
+    finished_ = std::move(other.finished_);
     slots_ = std::move(other.slots_);
     next_ = other.next_;
     current_ = other.current_;
@@ -74,6 +82,10 @@ std::span<std::byte> FrameRing::inputs(std::uint32_t slot) const {
 
 Status FrameRing::waitSlot(std::uint32_t s) {
   Slot& slot = slots_[s];
+  if (slot.recorded != 0) {
+    return invalidArgument("FrameRing: slot " + std::to_string(s) +
+                           " holds a frame recorded into a command buffer of the caller's, not completed yet");
+  }
   if (!slot.pending) return okStatus();
   VkFence fence = slot.fence.get();
   ODESKIN_VK_TRY(vkWaitForFences(owner_->handle(), 1, &fence, VK_TRUE, UINT64_MAX));
@@ -116,6 +128,36 @@ Status FrameRing::submit() {
   slot.pending = true;
   last_submitted_ = current_;
   next_ = (current_ + 1) % slotCount();
+  return okStatus();
+}
+
+void FrameRing::endRecordingInto(VkCommandBuffer cmd, std::uint64_t frame) {
+  // The word is written after everything recorded before it, so it holding `frame` means the
+  // frame's work is done; frame numbers do not repeat, so an old value never passes for it.
+  recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_TRANSFER_WRITE_BIT);
+  vkCmdUpdateBuffer(cmd, finished_.handle(), VkDeviceSize{current_} * sizeof(frame), sizeof(frame), &frame);
+  recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                      VK_ACCESS_HOST_READ_BIT);
+  timestamps_.recordEnd(cmd, current_);
+  slots_[current_].recorded = frame;
+  last_submitted_ = current_;
+  next_ = (current_ + 1) % slotCount();
+}
+
+Status FrameRing::completeRecorded(std::uint32_t s) {
+  Slot& slot = slots_[s];
+  if (slot.recorded == 0) return okStatus();
+  std::uint64_t finished = 0;
+  std::memcpy(&finished, finished_.mapped() + std::size_t{s} * sizeof(finished), sizeof(finished));
+  if (finished != slot.recorded) {
+    return invalidArgument("FrameRing: slot " + std::to_string(s) + "'s frame has not finished on the device");
+  }
+  slot.recorded = 0;
+  // Written at the end of the same command buffer: waiting for it is waiting for the submission's end.
+  ODESKIN_ASSIGN_OR_RETURN(slot.gpu_seconds, timestamps_.seconds(s));
+  last_gpu_seconds_ = slot.gpu_seconds;
   return okStatus();
 }
 

@@ -53,7 +53,21 @@ class FrameRing {
   // Host writes to the mapped (coherent) inputs become visible to the device at this submission.
   Status submit();
 
-  // Waits for slot `slot`'s frame (nothing if none is pending) and reads its GPU time.
+  // Instead of beginRecording() and submit(), a frame recorded into a command buffer the caller
+  // submits (VulkanRuntime::recordFrame): beginRecordingInto writes the current slot's begin mark
+  // into `cmd`, the caller records its work, endRecordingInto writes the end mark and `frame` (a
+  // number unique to this frame) into the slot's word of a host-visible buffer once all earlier
+  // work in `cmd` is done, and moves on to the next slot. Only the caller knows when its submission
+  // finished, so the slot stays busy until it says so with completeRecorded(slot): that checks the
+  // slot's word, refusing (kInvalidArgument) while it does not hold the frame yet (the submission
+  // has not finished, or was never made), then reads the frame's GPU time.
+  void beginRecordingInto(VkCommandBuffer cmd) const { timestamps_.recordBegin(cmd, current_); }
+  void endRecordingInto(VkCommandBuffer cmd, std::uint64_t frame);
+  Status completeRecorded(std::uint32_t slot);
+  bool awaitsCompletion(std::uint32_t slot) const { return slots_[slot].recorded != 0; }
+
+  // Waits for slot `slot`'s frame (nothing if none is pending) and reads its GPU time;
+  // kInvalidArgument for a recorded frame not completed yet.
   Status waitSlot(std::uint32_t slot);
   // Waits for every submitted frame, oldest first.
   Status waitAll();
@@ -67,7 +81,8 @@ class FrameRing {
     Buffer inputs;
     UniqueCommandBuffer cmd;
     UniqueFence fence;
-    bool pending = false;
+    bool pending = false;   // submitted with the fence, not waited for yet
+    std::uint64_t recorded = 0;  // frame recorded into the caller's command buffer, not completed yet
     double gpu_seconds = 0.0;
   };
   void waitAllNoThrow() noexcept;
@@ -77,6 +92,7 @@ class FrameRing {
   // may be driven from different threads. Before slots_, so their command buffers go first.
   UniqueCommandPool pool_;
   TimestampQueries timestamps_;
+  Buffer finished_;  // host-visible: per slot, the last recorded frame whose commands completed
   std::vector<Slot> slots_;
   std::uint32_t next_ = 0;     // slot beginFrame hands out
   std::uint32_t current_ = 0;  // slot being filled between beginFrame and submit

@@ -133,6 +133,7 @@ Result<std::uint64_t> DeformRuntime::submitFrame() {
   const auto start = std::chrono::steady_clock::now();
   const std::uint32_t slot = static_cast<std::uint32_t>(last_frame_ % options_.frames_in_flight);
   FrameTimes times;
+  ODESKIN_TRY(checkSlotFree(slot));
   // The slot's old frame is gone from here on, whether or not this submission succeeds.
   slots_[slot] = Slot{};
   ODESKIN_TRY(submitSlot(slot, instance_count_, times));

@@ -110,7 +110,8 @@ class DeformRuntime {
   Status setInstance(std::uint32_t index, const InstanceState& state);
 
   // Deforms every instance in its current state; returns the frame's number. Waits first for the
-  // frame that last used this frame's slot (framesInFlight() frames ago). Backend errors only.
+  // frame that last used this frame's slot (framesInFlight() frames ago). Backend errors only
+  // (and, on Vulkan, a slot still held by a recorded frame: VulkanRuntime::recordFrame).
   Result<std::uint64_t> submitFrame();
   // Waits for every submitted frame.
   virtual Status wait() = 0;
@@ -142,6 +143,9 @@ class DeformRuntime {
   // prepareInputs, and store its host times. Frame bookkeeping is the base's.
   virtual Status submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) = 0;
   virtual Status waitSlot(std::uint32_t slot) = 0;
+  // Whether `slot` may take a new frame now, checked before its old frame is given up (a Vulkan
+  // frame recorded into an engine's command buffer keeps its slot until the engine completes it).
+  virtual Status checkSlotFree(std::uint32_t /*slot*/) const { return okStatus(); }
   // Copies from the finished slot. Sizes and indices are checked already.
   virtual Status copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) = 0;
   virtual Status copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) = 0;

@@ -102,6 +102,7 @@ Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const Runt
   rt.reuse_stages_ = vk::outputReuseStages(device);
   rt.groups_x_ = (asset.vertexCount() + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
   rt.subgroup_bounds_ = allow_subgroups && subgroupArithmetic(device);
+  rt.recorded_frames_.assign(options.frames_in_flight, 0);
   rt.records_.resize(options.capacity);
   rt.bones_.resize(std::size_t{options.capacity} * asset.boneCount());
   rt.basis_.resize(std::size_t{options.capacity} * asset.basisEntries());
@@ -243,9 +244,64 @@ Status VulkanRuntime::submitSlot(std::uint32_t slot, std::uint32_t instance_coun
   vk::writeSlice(inputs, records_offset_, std::span<const gpu::InstanceRecord>(records_).first(instance_count));
   palettes_.write(inputs, std::span<const gpu::BoneMatrix>(bones_).first(bone_values));
   vk::writeSlice(inputs, basis_offset_, std::span<const gpu::ModeBasis>(basis_).first(basis_values));
+  if (target_ != VK_NULL_HANDLE) {
+    ring_.beginRecordingInto(target_);
+    record(target_, slot, instance_count);
+    recorded_frames_[slot] = lastFrame() + 1;
+    ring_.endRecordingInto(target_, recorded_frames_[slot]);
+    return okStatus();
+  }
+  recorded_frames_[slot] = 0;
   ODESKIN_ASSIGN_OR_RETURN(VkCommandBuffer cmd, ring_.beginRecording());
   record(cmd, slot, instance_count);
   return ring_.submit();
+}
+
+Result<std::uint64_t> VulkanRuntime::recordFrame(VkCommandBuffer cmd) {
+  if (cmd == VK_NULL_HANDLE) return invalidArgument("vulkan runtime: recordFrame: the command buffer is null");
+  target_ = cmd;
+  Result<std::uint64_t> frame = submitFrame();
+  target_ = VK_NULL_HANDLE;
+  return frame;
+}
+
+Status VulkanRuntime::frameCompleted(std::uint64_t frame) {
+  ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, slotOf(frame, "frameCompleted"));
+  if (recorded_frames_[slot] != frame) {
+    return invalidArgument("vulkan runtime: frameCompleted: frame " + std::to_string(frame) +
+                           " was submitted by submitFrame(), which waits for its frames itself");
+  }
+  Status status = ring_.completeRecorded(slot);
+  if (status.code() != StatusCode::kInvalidArgument) return status;
+  return invalidArgument("vulkan runtime: frameCompleted: frame " + std::to_string(frame) +
+                         " has not finished on the device (its last command has not run); call it once the "
+                         "fence of the submission holding the frame has signalled");
+}
+
+Status VulkanRuntime::wait() {
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    if (ring_.awaitsCompletion(s)) return notCompleted(s, "wait() cannot wait for it");
+  }
+  return ring_.waitAll();
+}
+
+Status VulkanRuntime::waitSlot(std::uint32_t slot) {
+  if (ring_.awaitsCompletion(slot)) return notCompleted(slot, "its outputs cannot be read yet");
+  return ring_.waitSlot(slot);
+}
+
+Status VulkanRuntime::checkSlotFree(std::uint32_t slot) const {
+  if (ring_.awaitsCompletion(slot)) {
+    return notCompleted(slot, "frame " + std::to_string(lastFrame() + 1) + " needs its slot");
+  }
+  return okStatus();
+}
+
+Status VulkanRuntime::notCompleted(std::uint32_t slot, const std::string& what) const {
+  const std::string frame = std::to_string(recorded_frames_[slot]);
+  return invalidArgument("vulkan runtime: frame " + frame +
+                         " was recorded into a command buffer of the engine's and is not completed (" + what +
+                         "); call frameCompleted(" + frame + ") once the submission holding it has finished");
 }
 
 void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const {

@@ -8,12 +8,14 @@
 // boxes, then one dispatch of instance_normals.comp. framesInFlight() slots (default 2) each own their outputs, so
 // the host prepares frame k+1 and a renderer draws frame k while the GPU deforms. No allocation
 // per frame (readbacks from non-mappable memory stage through a temporary buffer, on request only).
+// recordFrame() records the same commands into a command buffer of the engine's instead.
 // Reference: CpuRuntime, instance for instance (tests/runtime/vulkan_runtime_test.cpp).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -71,7 +73,26 @@ class VulkanRuntime final : public DeformRuntime {
   ~VulkanRuntime() override = default;
 
   std::string_view backendName() const override { return "vulkan"; }
-  Status wait() override { return ring_.waitAll(); }
+  // kInvalidArgument, naming it, while a recorded frame is not completed (it cannot wait for those).
+  Status wait() override;
+
+  // Instead of submitFrame(): the frame recorded into `cmd`, a primary command buffer of the
+  // engine's in the recording state, outside a render pass, from a pool of the device's queue
+  // family, to be submitted with the engine's own work. Returns the frame's number; readers and
+  // outputBarriers() take it as for a submitted frame. The contract, which the runtime cannot see:
+  // - the engine submits `cmd` on the device's queue (vk::Device::queue()), and frames in the order
+  //   they were recorded, after the inputs written here (host writes before the submission);
+  // - once that submission has finished (its fence), it calls frameCompleted(frame). Until then the
+  //   frame cannot be read, and the frame framesInFlight() later cannot take its slot: both are
+  //   kInvalidArgument naming the frame, never a wait that could not end.
+  // On error nothing is recorded into `cmd`.
+  Result<std::uint64_t> recordFrame(VkCommandBuffer cmd);
+  // The engine's word that the submission holding recorded frame `frame` has finished; reads the
+  // frame's GPU time. The frame's last command writes its number to host-visible memory, so a call
+  // before it has run (the submission is still running, or was never made) is refused
+  // (kInvalidArgument) rather than taken on trust. Completing a frame twice is harmless; a frame
+  // submitFrame() submitted, or one not held, is kInvalidArgument.
+  Status frameCompleted(std::uint64_t frame);
 
   // `frame`'s buffers, without waiting (kInvalidArgument for a frame not held). Valid until its
   // slot is reused, framesInFlight() submissions later.
@@ -83,7 +104,8 @@ class VulkanRuntime final : public DeformRuntime {
 
  protected:
   Status submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) override;
-  Status waitSlot(std::uint32_t slot) override { return ring_.waitSlot(slot); }
+  Status waitSlot(std::uint32_t slot) override;
+  Status checkSlotFree(std::uint32_t slot) const override;
   Status copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) override;
   Status copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) override;
   Status copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) override;
@@ -97,6 +119,8 @@ class VulkanRuntime final : public DeformRuntime {
   // `statics`: the buffers every slot shares (createPipelines' list).
   Status createFoldPipeline(std::span<const vk::StaticBinding> statics, const vk::FrameInputLayout& layout);
   void record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const;
+  // kInvalidArgument telling the engine to complete `slot`'s recorded frame first.
+  Status notCompleted(std::uint32_t slot, const std::string& what) const;
 
   struct Slot {
     vk::Buffer positions;  // capacity x V Float4
@@ -120,6 +144,10 @@ class VulkanRuntime final : public DeformRuntime {
   vk::Buffer corner_offsets_;  // normals: RuntimeAsset::cornerOffsets
   vk::Buffer corners_;         // normals: RuntimeAsset::corners
   std::vector<Slot> slots_;
+  // Per slot, the frame recordFrame() put there (0: submitted by submitFrame()). recordFrame sets
+  // target_ to the engine's command buffer for the duration of its submitFrame().
+  std::vector<std::uint64_t> recorded_frames_;
+  VkCommandBuffer target_ = VK_NULL_HANDLE;
   vk::Buffer folded_;  // capacity x C x (2N + 2) Float4: fold_series.comp's output, shared by the slots
   vk::ComputePipeline fold_;
   vk::ComputePipeline deform_;
