@@ -4,7 +4,7 @@
 # via CTest, sample self-checks, GPU/CPU parity under whatever Vulkan device exists: lavapipe in CI).
 # GPU tests fail rather than skip here (ODESKIN_REQUIRE_GPU=1), and the validation layer is on
 # whenever it is installed. It also checks that engine/ builds without Vulkan, as a subproject
-# (tests/consumer), and runs that consumer. scripts/build.sh
+# (tests/consumer), that the installed package serves the same consumer, and runs both. scripts/build.sh
 # alone (scripts/demo.sh) still gives the plain Release build in ${ODESKIN_BUILD_DIR:-build}.
 # docs/reliability.md ("Sanitizers") has the ThreadSanitizer build and why CI does not run it.
 set -euo pipefail
@@ -54,6 +54,18 @@ cmake -S "$root/tests/consumer" -B "$build-consumer" -G Ninja -DCMAKE_BUILD_TYPE
 cmake --build "$build-consumer" -j "$jobs" > /dev/null
 "$build-consumer/odeskin_consumer"
 echo "odeskin: engine builds without Vulkan, and as a subproject"
+
+# The installed package (cmake/OdeskinInstall.cmake): this build installed into a prefix, and the
+# consumer built against it with find_package(odeskin) alone; with the host, it also runs its frame
+# on the Vulkan runtime (lavapipe) against the CPU runtime.
+rm -rf "$build-prefix"
+cmake --install "$asan" --prefix "$build-prefix" > /dev/null
+cmake -S "$root/tests/consumer" -B "$build-package-consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DODESKIN_CONSUMER_PACKAGE=ON -DCMAKE_PREFIX_PATH="$build-prefix" "${launcher[@]}" \
+  -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined > /dev/null
+cmake --build "$build-package-consumer" -j "$jobs" > /dev/null
+XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}" "$build-package-consumer/odeskin_consumer"
+echo "odeskin: the installed package builds a consumer (find_package(odeskin))"
 
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 export ODESKIN_REQUIRE_GPU="${ODESKIN_REQUIRE_GPU:-1}"
