@@ -235,8 +235,8 @@ TEST_F(GpuTest, RecordedFramesWaitForTheEnginesWord) {
 }
 
 // frameCompleted before the frame's commands have run is refused, not taken on trust: here the
-// engine has not even submitted them. (Lavapipe runs a submission within vkQueueSubmit, so a call
-// while one is still running cannot be staged here; it reads the same unwritten word.)
+// engine has not even submitted them. (A call while the submission still runs reads the same
+// unwritten word; that moment cannot be staged reliably in a test.)
 TEST_F(GpuTest, FrameCompletedTooEarlyIsRefused) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
   Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(3));
