@@ -8,11 +8,14 @@
 // and the count of operator new calls; at the end neither may have grown beyond the bounds below.
 // Every 100th frame (and the last), four instances are compared with the double reference (1e-5
 // of the box's longest side) and every instance's bounds must be exactly the min and max of its
-// positions.
+// positions. It runs twice: frames submitted by the runtime (submitFrame), and frames recorded into
+// an engine's command buffers (recordFrame), which the engine submits, waits for with its fences
+// and reports finished (frameCompleted) before reading their bounds.
 // The same ODESKIN_SOAK_* variables as soak_test set a longer run, e.g.
 //   ODESKIN_SOAK_INSTANCES=100 ODESKIN_SOAK_FRAMES=10000 XDG_RUNTIME_DIR=/tmp build/tests/vulkan_soak_test
 // Like every GPU test, it skips without a device unless ODESKIN_REQUIRE_GPU=1, and any message
 // from the loader (or the validation layer, with ODESKIN_VALIDATION=1) fails it.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -23,6 +26,7 @@
 #include "host/gpu_test_support.hpp"
 #include "host/runtime/vulkan_runtime.hpp"
 #include "runtime/allocation_counter.hpp"
+#include "runtime/engine_frames.hpp"
 #include "runtime/soak_support.hpp"
 
 namespace odeskin {
@@ -42,9 +46,15 @@ class VulkanSoak : public testing::GpuTest {
  protected:
   bool wantsValidation() const override { return false; }
   bool validation() const { return instance_ && instance_->validationEnabled(); }
+  // `record`: frames recorded into the engine's command buffers instead of submitted.
+  void soak(bool record);
 };
 
-TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
+TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) { soak(false); }
+
+TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesRecordedIntoAnEnginesCommandBuffers) { soak(true); }
+
+void VulkanSoak::soak(bool record) {
   SoakConfig defaults;
   defaults.instances = 32;
   defaults.frames = 500;
@@ -71,9 +81,17 @@ TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
   std::vector<InstanceBounds> bounds(config.instances);
   std::vector<gpu::Float4> positions(v);
   const double box = longestBoxSide(source->rest_positions);
-  std::printf("vulkan soak: %s (%zu vertices), %u instances, %llu frames, check every %llu, device %s\n",
+  std::printf("vulkan soak: %s (%zu vertices), %u instances, %llu frames %s, check every %llu, device %s\n",
               config.mesh.c_str(), v, config.instances, static_cast<unsigned long long>(config.frames),
+              record ? "recorded into an engine's command buffers" : "submitted by the runtime",
               static_cast<unsigned long long>(config.check_every), device().name());
+  const std::uint32_t slots = rt.framesInFlight();
+  testing::EngineFrames engine(device(), slots);
+  // Frame `frame`'s engine slot, whose fence the engine waits for before the runtime hears of it.
+  auto completeRecorded = [&](std::uint64_t frame) {
+    engine.waitFor(static_cast<std::uint32_t>((frame - 1) % slots));
+    return rt.frameCompleted(frame);
+  };
 
   double worst = 0.0, gpu_seconds = 0.0;
   std::uint64_t checks = 0, allocations_in_frames = 0, bytes_in_frames = 0;
@@ -91,19 +109,30 @@ TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
     const testing::AllocationCount before = testing::allocationsSoFar();
     const Status set = testing::setInstances(rt, *asset, clock, config.instances, f, engine_bones);
     ASSERT_TRUE(set.ok()) << "frame " << f << ": " << set.toString();
-    Result<std::uint64_t> frame = rt.submitFrame();
-    ASSERT_TRUE(frame.ok()) << "frame " << f << ": " << frame.status().toString();
-    ASSERT_EQ(*frame, f + 1);
-    // An engine culls with the previous frame's boxes while this one runs.
-    if (*frame > 1) {
-      ASSERT_TRUE(rt.readBounds(*frame - 1, bounds).ok());
+    // An engine culls with an earlier frame's boxes while this one runs: the previous frame's when
+    // the runtime submits; when the engine does, the one its fence for this slot has just waited
+    // for, read before this frame takes over its slot.
+    auto cull = [&](std::uint64_t culled) {
+      ASSERT_TRUE(rt.readBounds(culled, bounds).ok()) << "frame " << culled;
       for (std::uint32_t k = 0; k < config.instances; ++k) {
-        ASSERT_FALSE(bounds[k].empty()) << "frame " << *frame - 1 << " instance " << k;
+        ASSERT_FALSE(bounds[k].empty()) << "frame " << culled << " instance " << k;
       }
-      Result<FrameTimes> times = rt.frameTimes(*frame - 1);
+      Result<FrameTimes> times = rt.frameTimes(culled);
       ASSERT_TRUE(times.ok());
       if (f > config.warm_up) gpu_seconds += times->deform_seconds;
+    };
+    const std::uint32_t slot = static_cast<std::uint32_t>(f % slots);
+    if (record && f >= slots) {
+      ASSERT_TRUE(completeRecorded(f + 1 - slots).ok()) << "frame " << f + 1 - slots;
+      cull(f + 1 - slots);
+      if (HasFatalFailure()) return;
     }
+    Result<std::uint64_t> frame = record ? rt.recordFrame(engine.begin(slot)) : rt.submitFrame();
+    ASSERT_TRUE(frame.ok()) << "frame " << f << ": " << frame.status().toString();
+    ASSERT_EQ(*frame, f + 1);
+    if (record) engine.submit(slot);
+    if (!record && f > 0) cull(f);
+    if (HasFatalFailure()) return;
     const testing::AllocationCount after = testing::allocationsSoFar();
     if (f >= config.warm_up) {
       allocations_in_frames += after.calls - before.calls;
@@ -112,6 +141,9 @@ TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
     if (!check) continue;
 
     const auto check_start = std::chrono::steady_clock::now();
+    if (record) {
+      ASSERT_TRUE(completeRecorded(*frame).ok());
+    }
     ASSERT_TRUE(rt.readBounds(*frame, bounds).ok());
     for (std::uint32_t k = 0; k < config.instances; ++k) {
       ASSERT_TRUE(rt.readPositions(*frame, k, positions).ok());
@@ -127,6 +159,11 @@ TEST_F(VulkanSoak, VulkanRuntimeFiveHundredFramesDoubleBuffered) {
       ++checks;
     }
     check_seconds += testing::secondsSince(check_start);
+  }
+  if (record) {
+    for (std::uint64_t frame = rt.lastFrame() - std::min<std::uint64_t>(rt.lastFrame(), slots) + 1; frame <= rt.lastFrame(); ++frame) {
+      ASSERT_TRUE(completeRecorded(frame).ok()) << "frame " << frame;
+    }
   }
   ASSERT_TRUE(rt.wait().ok());
   const double total = testing::secondsSince(start);
