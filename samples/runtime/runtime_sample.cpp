@@ -5,7 +5,8 @@
 // own time offset and material preset, every fourth with bones from "the engine" (the asset's
 // bones placed in the world), and prints per-frame host and GPU times (timestamp queries) and
 // totals. It checks itself at the end: two instances of the last frame against the
-// double-precision reference, within 1e-5 of the box.
+// double-precision reference, within 1e-5 of the box. With --record it plays the engine's part
+// too: each frame is recorded into its own command buffers, which it submits (EngineSubmissions).
 // Exit status: 0 success; 1 failure (no Vulkan device for --backend vulkan, bad asset, failed
 // check), with one line "odeskin_runtime_sample: error: ..."; 2 usage error.
 // docs/runtime.md quotes the part between the snippet markers; a test keeps the two identical.
@@ -31,6 +32,7 @@
 #include "engine/runtime/cpu_runtime.hpp"
 #include "host/device.hpp"
 #include "host/runtime/vulkan_runtime.hpp"
+#include "samples/runtime/engine_submissions.hpp"
 #include "samples/standard_output.hpp"
 
 namespace odeskin {
@@ -49,6 +51,7 @@ struct SampleOptions {
   bool validation = false;
   unsigned threads = 0;
   bool quiet = false;
+  bool record = false;  // Vulkan: frames recorded into the sample's command buffers (EngineSubmissions)
 };
 
 int fail(const Status& status) {
@@ -200,8 +203,15 @@ int run(const SampleOptions& o) {
     runtime = std::make_unique<CpuRuntime>(std::move(created).value());
   }
   // [runtime-snippet]
+  std::optional<EngineSubmissions> engine;  // after the runtime, so it goes first and waits for its submissions
+  if (o.record) {
+    Result<EngineSubmissions> created = EngineSubmissions::create(gpu->device, runtime->framesInFlight());
+    if (!created.ok()) return fail(created.status());
+    engine.emplace(std::move(created).value());
+  }
   if (gpu) {
-    std::printf("backend: vulkan on %s\n", gpu->device.name());
+    std::printf("backend: vulkan on %s%s\n", gpu->device.name(),
+                engine ? ", frames recorded into the sample's own command buffers" : "");
   } else {
     std::printf("backend: cpu, %u threads\n", WorkerArena(o.threads).threads());
   }
@@ -228,8 +238,9 @@ int run(const SampleOptions& o) {
     }
     const double set_time = secondsSince(set_start);
     // Deforms every instance: one dispatch (after the fold, plus normals) on Vulkan; waits only for the frame
-    // that used this slot two frames ago, so the GPU still runs the previous frame meanwhile.
-    Result<std::uint64_t> frame = rt.submitFrame();
+    // that used this slot two frames ago, so the GPU still runs the previous frame meanwhile. With
+    // --record, the same commands go into the engine's command buffer, which it submits itself.
+    Result<std::uint64_t> frame = engine ? engine->record(*vulkan) : rt.submitFrame();
     if (!frame.ok()) return fail(frame.status());
     if (vulkan != nullptr) {
       // A renderer binds this frame's buffers as vertex input after recording the barriers:
@@ -241,6 +252,9 @@ int run(const SampleOptions& o) {
     set_seconds[*frame % set_seconds.size()] = set_time;
     // The previous frame is done or nearly: its bounds cull the next frame's draws, its times are final.
     if (*frame > 1) {
+      if (engine) {  // the engine's fence for it, and its word to the runtime
+        if (Status s = engine->complete(*vulkan, *frame - 1); !s.ok()) return fail(s);
+      }
       if (Status s = rt.readBounds(*frame - 1, bounds); !s.ok()) return fail(s);
       Result<FrameTimes> times = rt.frameTimes(*frame - 1);
       if (!times.ok()) return fail(times.status());
@@ -248,6 +262,9 @@ int run(const SampleOptions& o) {
     }
   }
   // [runtime-snippet]
+  if (engine && rt.lastFrame() > 0) {
+    if (Status s = engine->complete(*vulkan, rt.lastFrame()); !s.ok()) return fail(s);
+  }
   if (Status s = rt.wait(); !s.ok()) return fail(s);
   const std::uint64_t last = rt.lastFrame();
   if (last > 0) {
@@ -318,12 +335,19 @@ int parseAndRun(int argc, char** argv) {
   app.add_flag("--validation", o.validation, "Khronos validation layer; any message fails the run");
   app.add_option("--threads", o.threads, "Host threads (0: all)");
   app.add_flag("-q,--quiet", o.quiet, "Totals only, no per-frame lines");
+  app.add_flag("--record", o.record,
+               "Vulkan: record each frame into the sample's own command buffers and submit them, as an engine "
+               "does with its draws (VulkanRuntime::recordFrame), instead of the runtime submitting");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
+    return 2;
+  }
+  if (o.record && o.backend != "vulkan") {
+    std::fprintf(stderr, "odeskin_runtime_sample: --record needs --backend vulkan\n");
     return 2;
   }
   return odeskin::run(o);
