@@ -30,12 +30,19 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
   }
   // The frames' outputs dominate; 1,048,576 instances of a 420-vertex asset asked for 27 GB on a
   // 23 GB machine, and the kernel killed the process while the buffers were zeroed.
-  const std::uint64_t output_bytes = std::uint64_t{options.frames_in_flight} * options.capacity * v *
+  // Render vertices are gathered into arrays of their own, beside the topology's.
+  const std::size_t r = options.render_layout && !asset.renderTopology().empty() ? asset.renderVertexCount() : 0;
+  if (r != 0 && std::size_t{options.capacity} * options.frames_in_flight > limit / r) {
+    return outOfRange("cpu runtime: capacity " + std::to_string(options.capacity) + " x " + std::to_string(r) +
+                      " render vertices does not fit in memory");
+  }
+  const std::uint64_t output_bytes = std::uint64_t{options.frames_in_flight} * options.capacity * (v + r) *
                                      sizeof(gpu::Float4) * (options.normals ? 2 : 1);
   ODESKIN_TRY(checkFitsInMemory(output_bytes, physicalMemoryBytes(),
                                 "cpu runtime: the output buffers of " + std::to_string(options.frames_in_flight) +
                                     " frames of " + std::to_string(options.capacity) + " instances x " +
-                                    std::to_string(v) + " vertices",
+                                    std::to_string(v) + " vertices" +
+                                    (r != 0 ? " (and " + std::to_string(r) + " render vertices)" : std::string()),
                                 "lower the capacity or the frames in flight"));
   CpuRuntime rt(asset, options);
   for (std::uint32_t p = 0; p < asset.presetCount(); ++p) {
@@ -51,6 +58,10 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
     slot.positions.resize(std::size_t{options.capacity} * v);
     if (options.normals) slot.normals.resize(slot.positions.size());
     slot.bounds.resize(options.capacity);
+    if (r != 0) {
+      slot.render_positions.resize(std::size_t{options.capacity} * r);
+      if (options.normals) slot.render_normals.resize(slot.render_positions.size());
+    }
   }
   return rt;
 }
@@ -105,9 +116,22 @@ Status CpuRuntime::deformInstances(Slot& slot, std::uint32_t first, std::uint32_
         computeVertexNormals(asset().cornerOffsets(), asset().corners(), out, std::span(slot.normals).subspan(k * v, v));
       }
       slot.bounds[k] = computeBounds(out);
+      if (gathersRenderVertices()) gatherInstance(slot, k, 0, outputVertexCount());
     }
   });
   return first_error;
+}
+
+void CpuRuntime::gatherInstance(Slot& slot, std::size_t k, std::size_t begin, std::size_t end) const {
+  const std::size_t v = asset().vertexCount();
+  const std::size_t r = outputVertexCount();
+  const std::span<const std::uint32_t> topology = asset().renderTopology();
+  gatherRenderVertices(topology, std::span<const gpu::Float4>(slot.positions).subspan(k * v, v),
+                       std::span(slot.render_positions).subspan(k * r, r), begin, end);
+  if (!slot.render_normals.empty()) {
+    gatherRenderVertices(topology, std::span<const gpu::Float4>(slot.normals).subspan(k * v, v),
+                         std::span(slot.render_normals).subspan(k * r, r), begin, end);
+  }
 }
 
 Status CpuRuntime::deformSpread(Slot& slot, std::uint32_t first, std::uint32_t end) {
@@ -134,31 +158,41 @@ Status CpuRuntime::deformSpread(Slot& slot, std::uint32_t first, std::uint32_t e
     for (std::size_t c = 0; c < chunks; ++c) bounds.merge(chunk_bounds_[(k - first) * chunks + c]);
     slot.bounds[k] = bounds;
   }
+  if (!gathersRenderVertices()) return okStatus();
+  // After every normal of the instances: a render vertex may copy any topology vertex.
+  const std::size_t r = outputVertexCount();
+  const std::size_t render_chunks = chunkCount(r);
+  arena().parallelFor((end - first) * render_chunks, 1, [&](std::size_t begin_job, std::size_t end_job) {
+    for (std::size_t job = begin_job; job < end_job; ++job) {
+      const std::size_t from = (job % render_chunks) * kVertexChunk;
+      gatherInstance(slot, first + job / render_chunks, from, std::min(from + kVertexChunk, r));
+    }
+  });
   return okStatus();
 }
 
 Result<std::span<const gpu::Float4>> CpuRuntime::positions(std::uint64_t frame) {
   ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, heldSlot(frame, "positions"));
-  return std::span<const gpu::Float4>(slots_[slot].positions)
-      .first(std::size_t{slots_[slot].instance_count} * asset().vertexCount());
+  return std::span<const gpu::Float4>(slots_[slot].outPositions())
+      .first(std::size_t{slots_[slot].instance_count} * outputVertexCount());
 }
 
 Result<std::span<const gpu::Float4>> CpuRuntime::normals(std::uint64_t frame) {
   ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, heldSlot(frame, "normals"));
   if (slots_[slot].normals.empty()) return std::span<const gpu::Float4>();
-  return std::span<const gpu::Float4>(slots_[slot].normals)
-      .first(std::size_t{slots_[slot].instance_count} * asset().vertexCount());
+  return std::span<const gpu::Float4>(slots_[slot].outNormals())
+      .first(std::size_t{slots_[slot].instance_count} * outputVertexCount());
 }
 
 Status CpuRuntime::copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
-  const std::size_t v = asset().vertexCount();
-  std::copy_n(slots_[slot].positions.begin() + static_cast<std::ptrdiff_t>(instance * v), v, out.begin());
+  const std::size_t v = outputVertexCount();
+  std::copy_n(slots_[slot].outPositions().begin() + static_cast<std::ptrdiff_t>(instance * v), v, out.begin());
   return okStatus();
 }
 
 Status CpuRuntime::copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
-  const std::size_t v = asset().vertexCount();
-  std::copy_n(slots_[slot].normals.begin() + static_cast<std::ptrdiff_t>(instance * v), v, out.begin());
+  const std::size_t v = outputVertexCount();
+  std::copy_n(slots_[slot].outNormals().begin() + static_cast<std::ptrdiff_t>(instance * v), v, out.begin());
   return okStatus();
 }
 

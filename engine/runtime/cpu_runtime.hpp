@@ -3,9 +3,11 @@
 // deformed by CpuDeformKernel (float32 at SIMD width, within float rounding of the shader and of the
 // double reference), instances spread over the WorkerArena's threads, then normals and bounds per
 // instance (instance_outputs.hpp); the instances left over after whole rounds of one per thread
-// have their vertices spread over the threads instead. This backend is the reference of the
-// instanced shaders (shaders/instanced_deform.comp, shaders/instance_normals.comp). submitFrame()
-// does the work before it returns; wait() has nothing to wait for.
+// have their vertices spread over the threads instead. With RuntimeOptions::render_layout the
+// outputs are then gathered into the asset's render vertices. This backend is the reference of the
+// instanced shaders (shaders/instanced_deform.comp, shaders/instance_normals.comp,
+// shaders/render_gather.comp). submitFrame() does the work before it returns; wait() has nothing
+// to wait for.
 #pragma once
 
 #include <cstdint>
@@ -31,8 +33,9 @@ class CpuRuntime final : public DeformRuntime {
   Status wait() override { return okStatus(); }
 
   // Zero-copy views of a finished frame's outputs, valid until its slot is reused (framesInFlight()
-  // submissions later): every instance's positions (instance k at k * V), likewise normals (empty
-  // when normals are off). kInvalidArgument as readPositions for a frame not held.
+  // submissions later): every instance's positions (instance k at k * outputVertexCount()),
+  // likewise normals (empty when normals are off). kInvalidArgument as readPositions for a frame
+  // not held.
   Result<std::span<const gpu::Float4>> positions(std::uint64_t frame);
   Result<std::span<const gpu::Float4>> normals(std::uint64_t frame);
 
@@ -51,7 +54,13 @@ class CpuRuntime final : public DeformRuntime {
     std::vector<gpu::Float4> positions;  // capacity x V
     std::vector<gpu::Float4> normals;    // capacity x V, or empty
     std::vector<InstanceBounds> bounds;  // capacity
+    // The outputs in render vertices (capacity x R) when gathersRenderVertices(), else empty.
+    std::vector<gpu::Float4> render_positions;
+    std::vector<gpu::Float4> render_normals;
     std::uint32_t instance_count = 0;
+
+    const std::vector<gpu::Float4>& outPositions() const { return render_positions.empty() ? positions : render_positions; }
+    const std::vector<gpu::Float4>& outNormals() const { return render_positions.empty() ? normals : render_normals; }
   };
 
   // Instances [first, end), fewer than threads: each one's deformation spreads over the arena,
@@ -61,6 +70,8 @@ class CpuRuntime final : public DeformRuntime {
   // kernel's meaning); with `outputs`, its normals and bounds too, while its positions are in cache.
   Status deformInstances(Slot& slot, std::uint32_t first, std::uint32_t end, unsigned threads, bool outputs);
   Status deformInstance(Slot& slot, std::size_t k, unsigned threads);
+  // Render vertices [begin, end) of instance k from its topology outputs (gathersRenderVertices()).
+  void gatherInstance(Slot& slot, std::size_t k, std::size_t begin, std::size_t end) const;
 
   std::vector<CpuDeformKernel> deformers_;  // one per material preset (the SIMD kernel, prepared once)
   // This frame's inputs; one set suffices, since the frame is done when submitFrame returns.

@@ -172,9 +172,10 @@ Result<std::uint32_t> DeformRuntime::checkRead(std::uint64_t frame, std::uint32_
                            " is out of range: frame " + std::to_string(frame) + " has " +
                            std::to_string(slots_[slot].instance_count) + " instances");
   }
-  if (out_size != asset_->vertexCount()) {
+  if (out_size != outputVertexCount()) {
     return invalidArgument(std::string("runtime: ") + what + ": out has " + std::to_string(out_size) +
-                           " entries, expected the asset's " + std::to_string(asset_->vertexCount()) + " vertices");
+                           " entries, expected the asset's " + std::to_string(outputVertexCount()) +
+                           (options_.render_layout ? " render vertices" : " vertices"));
   }
   return slot;
 }

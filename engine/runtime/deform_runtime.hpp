@@ -31,6 +31,11 @@ struct RuntimeOptions {
   std::uint32_t capacity = 1;          // most instances per frame; every buffer is sized for it once
   std::uint32_t frames_in_flight = 2;  // frames whose outputs stay readable (>= 1); Vulkan runs that many at once
   bool normals = true;                 // recompute vertex normals every frame
+  // Outputs in the asset's render vertices (RuntimeAsset::renderTopology: glTF input split at UV
+  // and normal seams) instead of its topology vertices, so they bind beside the glTF's own UVs.
+  // The deformation, normals and bounds are the topology's, copied to each render vertex; an asset
+  // without a render layout (OBJ input) outputs the same either way.
+  bool render_layout = false;
   unsigned threads = 0;                // host threads for preparing inputs (and the CPU backend's deformation); 0 = all;
                                        // capped at the machine's (WorkerArena)
 };
@@ -97,6 +102,13 @@ class DeformRuntime {
   std::uint32_t capacity() const { return options_.capacity; }
   std::uint32_t framesInFlight() const { return options_.frames_in_flight; }
   std::uint32_t instanceCount() const { return instance_count_; }
+  // Vertices per instance in the outputs (readPositions, frame buffers): the asset's render
+  // vertices with options().render_layout, else its topology vertices.
+  std::uint32_t outputVertexCount() const {
+    return options_.render_layout ? asset_->renderVertexCount() : asset_->vertexCount();
+  }
+  // Whether the outputs are gathered from the topology's (a render layout that differs from it).
+  bool gathersRenderVertices() const { return options_.render_layout && !asset_->renderTopology().empty(); }
   std::uint64_t lastFrame() const { return last_frame_; }
   virtual std::string_view backendName() const = 0;
 
@@ -118,7 +130,7 @@ class DeformRuntime {
 
   // Outputs of `frame`, one of the last framesInFlight() submitted (kInvalidArgument otherwise,
   // naming the frames held), for `instance` < that frame's instance count; each waits for the frame.
-  // `out` has exactly vertexCount() entries (kInvalidArgument otherwise).
+  // `out` has exactly outputVertexCount() entries (kInvalidArgument otherwise).
   Status readPositions(std::uint64_t frame, std::uint32_t instance, std::span<gpu::Float4> out);
   // kInvalidArgument when options().normals is false.
   Status readNormals(std::uint64_t frame, std::uint32_t instance, std::span<gpu::Float4> out);

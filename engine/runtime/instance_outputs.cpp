@@ -79,8 +79,7 @@ void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::sp
 
 #endif
 
-void buildCorners(const FaceList& faces, std::size_t vertex_count, std::vector<std::uint32_t>& triangles,
-                  std::vector<std::uint32_t>& offsets, std::vector<gpu::Corner>& corners) {
+void appendFanTriangles(const FaceList& faces, std::vector<std::uint32_t>& triangles) {
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {
     const std::uint32_t begin = faces.face_offsets[f];
     const std::uint32_t end = faces.face_offsets[f + 1];
@@ -88,6 +87,11 @@ void buildCorners(const FaceList& faces, std::size_t vertex_count, std::vector<s
       triangles.insert(triangles.end(), {faces.indices[begin], faces.indices[k], faces.indices[k + 1]});
     }
   }
+}
+
+void buildCorners(const FaceList& faces, std::size_t vertex_count, std::vector<std::uint32_t>& triangles,
+                  std::vector<std::uint32_t>& offsets, std::vector<gpu::Corner>& corners) {
+  appendFanTriangles(faces, triangles);
   offsets.assign(vertex_count + 1, 0);
   for (std::uint32_t v : triangles) ++offsets[v + 1];
   for (std::size_t i = 0; i < vertex_count; ++i) offsets[i + 1] += offsets[i];
@@ -104,6 +108,11 @@ void buildCorners(const FaceList& faces, std::size_t vertex_count, std::vector<s
 void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
                           std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals) {
   computeVertexNormals(corner_offsets, corners, positions, normals, 0, normals.size());
+}
+
+void gatherRenderVertices(std::span<const std::uint32_t> topology_of_render, std::span<const gpu::Float4> topology,
+                          std::span<gpu::Float4> out, std::size_t begin, std::size_t end) {
+  for (std::size_t r = begin; r < end; ++r) out[r] = topology[topology_of_render[r]];
 }
 
 void InstanceBounds::merge(const InstanceBounds& later) {

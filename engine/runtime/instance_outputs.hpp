@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The per-instance outputs besides positions: vertex normals recomputed from the deformed
-// triangles (with the corner lists they gather from), and the axis-aligned bounding box. CPU
-// references of shaders/instance_normals.comp and of the bounds reduction in
-// shaders/instanced_deform.comp (same float operations, same order).
+// triangles (with the corner lists they gather from), the axis-aligned bounding box, and the
+// outputs gathered into a glTF asset's render vertices. CPU references of
+// shaders/instance_normals.comp, of the bounds reduction in shaders/instanced_deform.comp and of
+// shaders/render_gather.comp (same float operations, same order).
 #pragma once
 
 #include <cstdint>
@@ -22,6 +23,16 @@ namespace odeskin {
 //   triangles: appended, 3 indices each; offsets: V + 1; corners: 3 per triangle.
 void buildCorners(const FaceList& faces, std::size_t vertex_count, std::vector<std::uint32_t>& triangles,
                   std::vector<std::uint32_t>& offsets, std::vector<gpu::Corner>& corners);
+// The fans of every polygon of `faces`, appended to `triangles` (3 indices each), in the order
+// buildCorners makes them.
+void appendFanTriangles(const FaceList& faces, std::vector<std::uint32_t>& triangles);
+
+// Render vertex r of one instance is topology vertex topology_of_render[r] (RenderLayout): glTF
+// input split at UV and normal seams gets its deformed positions and normals back in its own
+// vertices, so an engine binds them beside its UVs. Entries [begin, end) of `out` only.
+//   topology: V entries; topology_of_render, out: R each.
+void gatherRenderVertices(std::span<const std::uint32_t> topology_of_render, std::span<const gpu::Float4> topology,
+                          std::span<gpu::Float4> out, std::size_t begin, std::size_t end);
 
 // Why recomputed, not rotated: the analytic residual (series and remainders) changes the surface's
 // shape between keys, which the bones' rotation of rest normals cannot show. Each normal is the

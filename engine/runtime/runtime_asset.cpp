@@ -72,6 +72,10 @@ Result<RuntimeAsset> RuntimeAsset::create(const DeformAsset& asset, const Runtim
     r.packed_.push_back(std::move(packed));
   }
   ODESKIN_TRY(checkIndexRange(r.packed_[0], r.packed_.size()));
+  if (asset.render.topology_of_render.size() > std::numeric_limits<std::uint32_t>::max()) {
+    return outOfRange("runtime asset: " + std::to_string(asset.render.topology_of_render.size()) +
+                      " render vertices exceed 32-bit indices");
+  }
   std::uint32_t rates = 0;
   for (const PackedDeformData& p : r.packed_) {
     r.rates_offsets_.push_back(p.rates.empty() ? gpu::kNoRates : rates);
@@ -80,7 +84,12 @@ Result<RuntimeAsset> RuntimeAsset::create(const DeformAsset& asset, const Runtim
   r.basis_entries_ = static_cast<std::uint32_t>(r.players_[0].basisSize());
   r.bone_paths_ = boneKeyPaths(asset);
   buildCorners(asset.faces, asset.vertexCount(), r.triangles_, r.corner_offsets_, r.corners_);
+  appendFanTriangles(asset.render.faces, r.render_triangles_);
   return r;
+}
+
+std::uint32_t RuntimeAsset::renderVertexCount() const {
+  return asset_.render.empty() ? vertexCount() : static_cast<std::uint32_t>(asset_.render.topology_of_render.size());
 }
 
 Result<RuntimeAsset> RuntimeAsset::load(const std::filesystem::path& path, const RuntimeAssetOptions& options) {

@@ -91,6 +91,17 @@ class RuntimeAsset {
   // Triangle list (3 indices per triangle, the same fans) for drawing the output as a mesh.
   std::span<const std::uint32_t> triangleIndices() const { return triangles_; }
 
+  // A glTF asset's render vertices (DeformAsset::render: the input's vertices, split at UV and
+  // normal seams, primitives in file order): render vertex r is topology vertex renderTopology()[r].
+  // The runtime outputs them with RuntimeOptions::render_layout. Without a render layout (OBJ
+  // input) they are the topology vertices: renderTopology() is empty, the count and triangles are
+  // vertexCount() and triangleIndices().
+  std::uint32_t renderVertexCount() const;
+  std::span<const std::uint32_t> renderTopology() const { return asset_.render.topology_of_render; }
+  std::span<const std::uint32_t> renderTriangleIndices() const {
+    return asset_.render.empty() ? std::span<const std::uint32_t>(triangles_) : render_triangles_;
+  }
+
  private:
   RuntimeAsset() = default;
 
@@ -102,6 +113,7 @@ class RuntimeAsset {
   std::vector<RigidKeyPath> bone_paths_;        // B
   std::uint32_t basis_entries_ = 0;
   std::vector<std::uint32_t> triangles_;
+  std::vector<std::uint32_t> render_triangles_;  // fans of the render faces; empty without a render layout
   std::vector<std::uint32_t> corner_offsets_;   // V + 1
   std::vector<gpu::Corner> corners_;            // 3 per triangle
 };

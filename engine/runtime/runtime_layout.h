@@ -27,6 +27,12 @@ namespace odeskin::gpu {
 #define ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS 1 // uint[V + 1]: vertex i's corners are [offsets[i], offsets[i+1])
 #define ODESKIN_RT_NORMALS_BINDING_CORNERS 2        // Corner[offsets[V]]
 #define ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS 3    // Float4[capacity * V]: unit normal xyz, w = 0
+// render_gather.comp, descriptor set 0 (RuntimeOptions::render_layout with a glTF asset's render vertices).
+#define ODESKIN_RT_GATHER_BINDING_POSITIONS 0       // Float4[capacity * V]: the slot's deformed positions
+#define ODESKIN_RT_GATHER_BINDING_NORMALS 1         // Float4[capacity * V]: its normals (the positions again without)
+#define ODESKIN_RT_GATHER_BINDING_TOPOLOGY 2        // uint[R]: render vertex r is topology vertex topology[r]
+#define ODESKIN_RT_GATHER_BINDING_OUT_POSITIONS 3   // Float4[capacity * R]: instance k's render vertex r at k * R + r
+#define ODESKIN_RT_GATHER_BINDING_OUT_NORMALS 4     // Float4[capacity * R] (the out positions again without normals)
 
 // InstanceRecord::rates_offset of an instance whose preset carries no rates (all zero).
 #define ODESKIN_RT_NO_RATES 0xFFFFFFFFu
@@ -76,6 +82,13 @@ struct NormalsPushConstants {
   uint instance_count;
   uint pad0;
   uint pad1;
+};
+
+struct GatherPushConstants {
+  uint vertex_count;    // V
+  uint render_count;    // R
+  uint instance_count;
+  uint normals;         // 1: gather the normals too
 };
 
 #ifdef __cplusplus

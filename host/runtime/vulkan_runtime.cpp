@@ -13,6 +13,7 @@
 #include "shaders/instance_normals.spv.h"
 #include "shaders/instanced_deform.spv.h"
 #include "shaders/instanced_deform_shared.spv.h"
+#include "shaders/render_gather.spv.h"
 
 namespace odeskin {
 namespace {
@@ -88,6 +89,19 @@ Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, co
   if (out_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's positions", out_bytes, device);
   const VkDeviceSize fold_bytes = foldedBytes(asset, options.capacity);
   if (fold_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's folded coefficients", fold_bytes, device);
+  if (options.render_layout && !asset.renderTopology().empty()) {
+    const std::uint32_t r = asset.renderVertexCount();
+    const std::uint32_t render_groups = (r + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+    if (render_groups > limits.maxComputeWorkGroupCount[0]) {
+      return unavailable("vulkan runtime: " + std::to_string(r) + " render vertices need " +
+                         std::to_string(render_groups) + " workgroups, more than maxComputeWorkGroupCount[0] of " +
+                         device.name());
+    }
+    const VkDeviceSize render_bytes = VkDeviceSize{options.capacity} * r * sizeof(gpu::Float4);
+    if (render_bytes > limits.maxStorageBufferRange) {
+      return tooLarge("one frame's render-vertex positions", render_bytes, device);
+    }
+  }
   return okStatus();
 }
 
@@ -101,6 +115,7 @@ Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const Runt
   rt.device_ = &device;
   rt.reuse_stages_ = vk::outputReuseStages(device);
   rt.groups_x_ = (asset.vertexCount() + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  rt.render_groups_x_ = (asset.renderVertexCount() + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
   rt.subgroup_bounds_ = allow_subgroups && subgroupArithmetic(device);
   rt.recorded_frames_.assign(options.frames_in_flight, 0);
   rt.records_.resize(options.capacity);
@@ -145,6 +160,9 @@ Status VulkanRuntime::uploadAsset() {
   }
   ODESKIN_ASSIGN_OR_RETURN(corner_offsets_, vk::createStorageBuffer(*device_, bytesOf(a.cornerOffsets())));
   ODESKIN_ASSIGN_OR_RETURN(corners_, vk::createStorageBuffer(*device_, bytesOf(a.corners())));
+  if (gathersRenderVertices()) {
+    ODESKIN_ASSIGN_OR_RETURN(render_topology_, vk::createStorageBuffer(*device_, bytesOf(a.renderTopology())));
+  }
   return okStatus();
 }
 
@@ -164,6 +182,14 @@ Status VulkanRuntime::createSlots() {
     ODESKIN_ASSIGN_OR_RETURN(slot.bounds, vk::Buffer::create(*device_, bounds_bytes,
                                                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                              vk::MemoryUse::kHostVisible));
+    if (gathersRenderVertices()) {
+      const VkDeviceSize render_bytes =
+          std::max<VkDeviceSize>(VkDeviceSize{capacity()} * asset().renderVertexCount() * sizeof(gpu::Float4), 16);
+      ODESKIN_ASSIGN_OR_RETURN(slot.render_positions, vk::Buffer::create(*device_, render_bytes, vk::kOutputBufferUsage));
+      if (options().normals) {
+        ODESKIN_ASSIGN_OR_RETURN(slot.render_normals, vk::Buffer::create(*device_, render_bytes, vk::kOutputBufferUsage));
+      }
+    }
     slots_.push_back(std::move(slot));
   }
   return okStatus();
@@ -196,6 +222,7 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
     ODESKIN_TRY(deform_.bindBuffer(s, ODESKIN_RT_BINDING_BOUNDS, slots_[s].bounds.handle()));
   }
   ODESKIN_TRY(createFoldPipeline(statics, layout));
+  if (gathersRenderVertices()) ODESKIN_TRY(createGatherPipeline());
   if (!options().normals) return okStatus();
 
   const std::uint32_t normal_bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
@@ -208,6 +235,28 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
     ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, corner_offsets_.handle()));
     ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNERS, corners_.handle()));
     ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS, slots_[s].normals.handle()));
+  }
+  return okStatus();
+}
+
+Status VulkanRuntime::createGatherPipeline() {
+  const std::uint32_t bindings[] = {ODESKIN_RT_GATHER_BINDING_POSITIONS, ODESKIN_RT_GATHER_BINDING_NORMALS,
+                                    ODESKIN_RT_GATHER_BINDING_TOPOLOGY, ODESKIN_RT_GATHER_BINDING_OUT_POSITIONS,
+                                    ODESKIN_RT_GATHER_BINDING_OUT_NORMALS};
+  ODESKIN_ASSIGN_OR_RETURN(gather_, vk::createSortedPipeline(*device_, kRenderGatherSpirv, bindings, {},
+                                                             sizeof(gpu::GatherPushConstants), framesInFlight()));
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    const Slot& slot = slots_[s];
+    // Without normals the shader reads and writes no normal (GatherPushConstants::normals = 0),
+    // but every declared binding needs a buffer: the positions stand in.
+    const bool normals = options().normals;
+    ODESKIN_TRY(gather_.bindBuffer(s, ODESKIN_RT_GATHER_BINDING_POSITIONS, slot.positions.handle()));
+    ODESKIN_TRY(gather_.bindBuffer(s, ODESKIN_RT_GATHER_BINDING_NORMALS,
+                                   (normals ? slot.normals : slot.positions).handle()));
+    ODESKIN_TRY(gather_.bindBuffer(s, ODESKIN_RT_GATHER_BINDING_TOPOLOGY, render_topology_.handle()));
+    ODESKIN_TRY(gather_.bindBuffer(s, ODESKIN_RT_GATHER_BINDING_OUT_POSITIONS, slot.render_positions.handle()));
+    ODESKIN_TRY(gather_.bindBuffer(s, ODESKIN_RT_GATHER_BINDING_OUT_NORMALS,
+                                   (normals ? slot.render_normals : slot.render_positions).handle()));
   }
   return okStatus();
 }
@@ -341,6 +390,13 @@ void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_
       const gpu::NormalsPushConstants npc{v, instance_count, 0, 0};
       dispatch(cmd, normals_, slot, &npc, sizeof(npc), groups_x_, instance_count);
     }
+    if (gathersRenderVertices()) {
+      // A render vertex may copy any topology vertex's position and normal: all of them first.
+      vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+      const gpu::GatherPushConstants gpc{v, outputVertexCount(), instance_count, options().normals ? 1u : 0u};
+      dispatch(cmd, gather_, slot, &gpc, sizeof(gpc), render_groups_x_, instance_count);
+    }
   }
   // A fence alone does not make device writes visible to the host (mapped bounds and outputs).
   vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
@@ -350,28 +406,36 @@ void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_
 Result<RuntimeFrameBuffers> VulkanRuntime::frameBuffers(std::uint64_t frame) const {
   ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, slotOf(frame, "frameBuffers"));
   RuntimeFrameBuffers b;
-  b.positions = slots_[slot].positions.handle();
-  b.normals = options().normals ? slots_[slot].normals.handle() : VK_NULL_HANDLE;
-  b.instance_stride = VkDeviceSize{asset().vertexCount()} * sizeof(gpu::Float4);
+  b.positions = outPositions(slot).handle();
+  b.normals = options().normals ? outNormals(slot).handle() : VK_NULL_HANDLE;
+  b.instance_stride = VkDeviceSize{outputVertexCount()} * sizeof(gpu::Float4);
   return b;
 }
 
 Result<RuntimeOutputBarriers> VulkanRuntime::outputBarriers(std::uint64_t frame) const {
   ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, slotOf(frame, "outputBarriers"));
   RuntimeOutputBarriers b;
-  b.barriers[b.count++] = vertexInputBarrier(slots_[slot].positions.handle());
-  if (options().normals) b.barriers[b.count++] = vertexInputBarrier(slots_[slot].normals.handle());
+  b.barriers[b.count++] = vertexInputBarrier(outPositions(slot).handle());
+  if (options().normals) b.barriers[b.count++] = vertexInputBarrier(outNormals(slot).handle());
   return b;
 }
 
+const vk::Buffer& VulkanRuntime::outPositions(std::uint32_t slot) const {
+  return gathersRenderVertices() ? slots_[slot].render_positions : slots_[slot].positions;
+}
+
+const vk::Buffer& VulkanRuntime::outNormals(std::uint32_t slot) const {
+  return gathersRenderVertices() ? slots_[slot].render_normals : slots_[slot].normals;
+}
+
 Status VulkanRuntime::copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
-  const VkDeviceSize offset = VkDeviceSize{instance} * asset().vertexCount() * sizeof(gpu::Float4);
-  return vk::downloadSpan(*device_, slots_[slot].positions, out, offset);
+  const VkDeviceSize offset = VkDeviceSize{instance} * outputVertexCount() * sizeof(gpu::Float4);
+  return vk::downloadSpan(*device_, outPositions(slot), out, offset);
 }
 
 Status VulkanRuntime::copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
-  const VkDeviceSize offset = VkDeviceSize{instance} * asset().vertexCount() * sizeof(gpu::Float4);
-  return vk::downloadSpan(*device_, slots_[slot].normals, out, offset);
+  const VkDeviceSize offset = VkDeviceSize{instance} * outputVertexCount() * sizeof(gpu::Float4);
+  return vk::downloadSpan(*device_, outNormals(slot), out, offset);
 }
 
 Status VulkanRuntime::copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) {

@@ -5,7 +5,8 @@
 // dispatch of fold_series.comp that folds every instance's time basis into its copy of the curve
 // coefficients, ONE dispatch of instanced_deform.comp over (ceil(V / 64), instances) workgroups that
 // deforms all instances into the slot's output buffer (instance k at k * V) and reduces their
-// boxes, then one dispatch of instance_normals.comp. framesInFlight() slots (default 2) each own their outputs, so
+// boxes, then one dispatch of instance_normals.comp (and, with RuntimeOptions::render_layout on a
+// glTF asset, one of render_gather.comp into the render vertices). framesInFlight() slots (default 2) each own their outputs, so
 // the host prepares frame k+1 and a renderer draws frame k while the GPU deforms. No allocation
 // per frame (readbacks from non-mappable memory stage through a temporary buffer, on request only).
 // recordFrame() records the same commands into a command buffer of the engine's instead.
@@ -37,7 +38,7 @@ namespace odeskin {
 struct RuntimeFrameBuffers {
   VkBuffer positions = VK_NULL_HANDLE;  // Float4 xyz1 per vertex, instance k at k * instance_stride bytes
   VkBuffer normals = VK_NULL_HANDLE;    // Float4 xyz0 per vertex, same layout; null with normals off
-  VkDeviceSize instance_stride = 0;     // vertexCount() * 16 bytes
+  VkDeviceSize instance_stride = 0;     // outputVertexCount() * 16 bytes
 };
 
 // The barriers a renderer records (same queue, after submitFrame's submission, before the draws)
@@ -119,13 +120,19 @@ class VulkanRuntime final : public DeformRuntime {
   // `statics`: the buffers every slot shares (createPipelines' list).
   Status createFoldPipeline(std::span<const vk::StaticBinding> statics, const vk::FrameInputLayout& layout);
   void record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const;
+  Status createGatherPipeline();
+  // What the renderer reads: the render-vertex buffers when gathering, else the topology's.
+  const vk::Buffer& outPositions(std::uint32_t slot) const;
+  const vk::Buffer& outNormals(std::uint32_t slot) const;
   // kInvalidArgument telling the engine to complete `slot`'s recorded frame first.
   Status notCompleted(std::uint32_t slot, const std::string& what) const;
 
   struct Slot {
-    vk::Buffer positions;  // capacity x V Float4
-    vk::Buffer normals;    // likewise, when normals are on
-    vk::Buffer bounds;     // capacity BoundsKeys, host-visible
+    vk::Buffer positions;         // capacity x V Float4
+    vk::Buffer normals;           // likewise, when normals are on
+    vk::Buffer bounds;            // capacity BoundsKeys, host-visible
+    vk::Buffer render_positions;  // capacity x R Float4, when gathersRenderVertices()
+    vk::Buffer render_normals;    // likewise, when normals are on too
   };
   const vk::Device* device_ = nullptr;
   VkPipelineStageFlags reuse_stages_ = 0;
@@ -152,6 +159,9 @@ class VulkanRuntime final : public DeformRuntime {
   vk::ComputePipeline fold_;
   vk::ComputePipeline deform_;
   vk::ComputePipeline normals_;
+  vk::ComputePipeline gather_;   // render_gather.comp, when gathersRenderVertices()
+  vk::Buffer render_topology_;   // RuntimeAsset::renderTopology, likewise
+  std::uint32_t render_groups_x_ = 0;  // ceil(R / 64)
   // Last, so it is destroyed first: it waits for in-flight frames before anything they use goes.
   vk::FrameRing ring_;
 };

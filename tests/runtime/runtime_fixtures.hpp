@@ -63,6 +63,26 @@ inline const DeformAsset& catAsset() {
   return *asset;
 }
 
+// `asset` with a render layout like a glTF's split at seams (RenderLayout): render vertex r < V is
+// topology vertex V - 1 - r (reversed, so a gather that ignored the map would show), and V + i a
+// second copy of topology vertex i < 20, which the even-numbered faces use instead of the first.
+inline DeformAsset withSeams(const DeformAsset& asset) {
+  DeformAsset out = asset;
+  const std::uint32_t v = static_cast<std::uint32_t>(asset.vertexCount());
+  const std::uint32_t seam = std::min<std::uint32_t>(20, v);
+  out.render.topology_of_render.resize(v + seam);
+  for (std::uint32_t r = 0; r < v; ++r) out.render.topology_of_render[r] = v - 1 - r;
+  for (std::uint32_t i = 0; i < seam; ++i) out.render.topology_of_render[v + i] = i;
+  out.render.faces = asset.faces;
+  for (std::size_t f = 0; f < asset.faces.faceCount(); ++f) {
+    for (std::uint32_t k = asset.faces.face_offsets[f]; k < asset.faces.face_offsets[f + 1]; ++k) {
+      const std::uint32_t i = asset.faces.indices[k];
+      out.render.faces.indices[k] = f % 2 == 0 && i < seam ? v + i : v - 1 - i;
+    }
+  }
+  return out;
+}
+
 // The double-precision reference of one instance: preset `preset` of `runtime_asset` at (segment,
 // tau), with `bones` from the engine (rounded float matrices, as the runtime gets them) or, when
 // empty, the asset's key paths in double.

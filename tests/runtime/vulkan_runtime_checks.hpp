@@ -41,7 +41,7 @@ inline void setBoth(DeformRuntime& a, DeformRuntime& b, std::uint32_t index, con
 }
 
 inline std::vector<gpu::Float4> read(DeformRuntime& rt, std::uint64_t frame, std::uint32_t instance, bool normals = false) {
-  std::vector<gpu::Float4> out(rt.asset().vertexCount());
+  std::vector<gpu::Float4> out(rt.outputVertexCount());
   const Status status = normals ? rt.readNormals(frame, instance, out) : rt.readPositions(frame, instance, out);
   EXPECT_TRUE(status.ok()) << status.toString();
   return out;

@@ -259,6 +259,35 @@ TEST_F(GpuTest, RuntimeWithoutNormals) {
   EXPECT_EQ(gpu->outputBarriers(*g)->count, 1u);
 }
 
+// A glTF-like asset's render vertices (runtime_fixtures.hpp's withSeams): render_gather.comp's
+// outputs against the CPU runtime's gather, and the frame buffers a renderer binds are those.
+TEST_F(GpuTest, RuntimeRenderLayoutMatchesTheCpuRuntime) {
+  const RuntimeAsset asset = makeAsset(testing::withSeams(testing::cylinderAsset()));
+  for (const bool normals : {true, false}) {
+    RuntimeOptions options = withCapacity(5);
+    options.render_layout = true;
+    options.normals = normals;
+    Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, options);
+    Result<CpuRuntime> cpu = CpuRuntime::create(asset, options);
+    ASSERT_TRUE(gpu.ok() && cpu.ok()) << gpu.status().toString();
+    ASSERT_TRUE(gpu->setInstanceCount(5).ok() && cpu->setInstanceCount(5).ok());
+    for (std::uint32_t k = 0; k < 5; ++k) setBoth(*cpu, *gpu, k, InstanceState::atTime(0.55 * k).withPreset(k % 3));
+    Result<std::uint64_t> g = gpu->submitFrame();
+    Result<std::uint64_t> c = cpu->submitFrame();
+    ASSERT_TRUE(g.ok() && c.ok()) << g.status().toString();
+    expectSameFrame(*cpu, *c, *gpu, *g, 5, normals ? "render layout" : "render layout, no normals");
+    Result<RuntimeFrameBuffers> buffers = gpu->frameBuffers(*g);
+    Result<RuntimeOutputBarriers> barriers = gpu->outputBarriers(*g);
+    ASSERT_TRUE(buffers.ok() && barriers.ok());
+    EXPECT_EQ(buffers->instance_stride, VkDeviceSize{asset.renderVertexCount()} * 16);
+    EXPECT_EQ(barriers->barriers[0].buffer, buffers->positions);
+    EXPECT_EQ(barriers->count, normals ? 2u : 1u);
+    if (normals) {
+      EXPECT_EQ(barriers->barriers[1].buffer, buffers->normals);
+    }
+  }
+}
+
 TEST_F(GpuTest, RuntimeRejectsBadInputNamingTheProblem) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
   Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(2));
