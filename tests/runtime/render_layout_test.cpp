@@ -113,6 +113,23 @@ TEST(CpuRuntime, RenderLayoutGathersEachRenderVertexFromItsTopologyVertex) {
   }
 }
 
+// The runtime's render vertices are those `odeskin play` writes for glTF input (outputPositions on
+// the double-precision reference), within float rounding.
+TEST(CpuRuntime, RenderLayoutIsTheLayoutPlayWrites) {
+  const RuntimeAsset asset = makeAsset(withSeams(testing::cylinderAsset()));
+  CpuRuntime rt = makeRuntime(asset, 1, true);
+  ASSERT_TRUE(rt.setInstanceCount(1).ok());
+  ASSERT_TRUE(rt.setInstance(0, InstanceState::atSegment(1, 0.3).withPreset(1)).ok());
+  Result<std::uint64_t> frame = rt.submitFrame();
+  ASSERT_TRUE(frame.ok());
+  const std::vector<Vec3> played =
+      outputPositions(asset.source(), testing::referencePositions(asset, 1, 1, 0.3));
+  const std::span<const gpu::Float4> got = *rt.positions(*frame);
+  ASSERT_EQ(got.size(), played.size());
+  const double box = longestBoxSide(asset.source().rest_positions);
+  EXPECT_LT(testing::worstGap(played, got).gap / box, 1e-5);
+}
+
 // An asset without a render layout (OBJ input) outputs its topology vertices either way.
 TEST(CpuRuntime, RenderLayoutOfAnObjAssetIsItsTopology) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
