@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "compute_pipeline.hpp"
-
 #include "vk_status.hpp"
 
 namespace odeskin::vk {

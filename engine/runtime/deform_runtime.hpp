@@ -3,7 +3,8 @@
 // VulkanRuntime (host/runtime): load a RuntimeAsset once, hold up to `capacity` instances, each with
 // its own time (or segment and local time), bones (the engine's, or interpolated from the asset's
 // key poses) and material preset; submitFrame() deforms every instance into one output array per
-// frame (instance k's vertices at k * V), with recomputed normals and per-instance bounding boxes.
+// frame (instance k's vertices at k * V; with render_layout, a glTF asset's render vertices), with
+// recomputed normals and per-instance bounding boxes.
 //
 // Frames and buffering: submitFrame() returns the frame's number (1, 2, ...). The outputs of the
 // last framesInFlight() frames stay readable: frame k's live in slot (k - 1) % framesInFlight(), so
