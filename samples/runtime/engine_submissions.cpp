@@ -8,10 +8,10 @@
 
 namespace odeskin {
 
-Result<EngineSubmissions> EngineSubmissions::create(const vk::Device& device, std::uint32_t frames) {
-  EngineSubmissions s(device);
+Result<EngineSubmissions> EngineSubmissions::create(const vk::Device& device, VulkanRuntime& runtime) {
+  EngineSubmissions s(device, runtime);
   ODESKIN_ASSIGN_OR_RETURN(s.pool_, device.createCommandPool(VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT));
-  s.slots_.resize(frames);
+  s.slots_.resize(runtime.framesInFlight());
   for (Slot& slot : s.slots_) {
     VkCommandBufferAllocateInfo alloc{};
     alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
@@ -44,7 +44,8 @@ Status EngineSubmissions::waitFor(Slot& slot) const {
 }
 
 // [runtime-snippet]
-Result<std::uint64_t> EngineSubmissions::record(VulkanRuntime& rt) {
+Result<std::uint64_t> EngineSubmissions::record() {
+  VulkanRuntime& rt = *runtime_;
   Slot& slot = slots_[next_];
   next_ = (next_ + 1) % static_cast<std::uint32_t>(slots_.size());
   // The engine's frame pacing: this command buffer's last submission has finished, and with it
@@ -74,11 +75,11 @@ Result<std::uint64_t> EngineSubmissions::record(VulkanRuntime& rt) {
 }
 // [runtime-snippet]
 
-Status EngineSubmissions::complete(VulkanRuntime& rt, std::uint64_t frame) {
+Status EngineSubmissions::complete(std::uint64_t frame) {
   for (Slot& slot : slots_) {
     if (slot.frame != frame) continue;
     ODESKIN_TRY(waitFor(slot));
-    return rt.frameCompleted(frame);
+    return runtime_->frameCompleted(frame);
   }
   return invalidArgument("engine submissions: frame " + std::to_string(frame) + " is in none of them");
 }

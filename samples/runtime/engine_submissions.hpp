@@ -19,8 +19,8 @@ namespace odeskin {
 
 class EngineSubmissions {
  public:
-  // `frames` command buffers and fences on `device`, which must outlive this.
-  static Result<EngineSubmissions> create(const vk::Device& device, std::uint32_t frames);
+  // One command buffer and fence per frame in flight of `runtime`, on `device`; both must outlive this.
+  static Result<EngineSubmissions> create(const vk::Device& device, VulkanRuntime& runtime);
 
   EngineSubmissions(EngineSubmissions&&) noexcept = default;
   EngineSubmissions& operator=(EngineSubmissions&&) = delete;
@@ -29,11 +29,11 @@ class EngineSubmissions {
   // Waits for the submissions in flight: their command buffers must not die under the GPU.
   ~EngineSubmissions();
 
-  // One frame: waits for the oldest submission, tells `rt` its frame is done, records the next
-  // frame into that command buffer and submits it. Returns the frame's number.
-  Result<std::uint64_t> record(VulkanRuntime& rt);
-  // Waits for the submission holding `frame` and tells `rt` so (before reading the frame).
-  Status complete(VulkanRuntime& rt, std::uint64_t frame);
+  // One frame: waits for the oldest submission, tells the runtime its frame is done, records the
+  // next frame into that command buffer and submits it. Returns the frame's number.
+  Result<std::uint64_t> record();
+  // Waits for the submission holding `frame` and tells the runtime so (before reading the frame).
+  Status complete(std::uint64_t frame);
 
  private:
   struct Slot {
@@ -42,10 +42,11 @@ class EngineSubmissions {
     std::uint64_t frame = 0;  // the runtime's frame in the last submission, 0 before any
     bool pending = false;     // submitted and not waited for
   };
-  explicit EngineSubmissions(const vk::Device& device) : device_(&device) {}
+  EngineSubmissions(const vk::Device& device, VulkanRuntime& runtime) : device_(&device), runtime_(&runtime) {}
   Status waitFor(Slot& slot) const;
 
   const vk::Device* device_;
+  VulkanRuntime* runtime_;
   vk::UniqueCommandPool pool_;  // before slots_, so their command buffers go first
   std::vector<Slot> slots_;
   std::uint32_t next_ = 0;

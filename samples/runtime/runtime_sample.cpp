@@ -204,8 +204,8 @@ int run(const SampleOptions& o) {
   }
   // [runtime-snippet]
   std::optional<EngineSubmissions> engine;  // after the runtime, so it goes first and waits for its submissions
-  if (o.record) {
-    Result<EngineSubmissions> created = EngineSubmissions::create(gpu->device, runtime->framesInFlight());
+  if (o.record && vulkan != nullptr) {
+    Result<EngineSubmissions> created = EngineSubmissions::create(gpu->device, *vulkan);
     if (!created.ok()) return fail(created.status());
     engine.emplace(std::move(created).value());
   }
@@ -240,7 +240,7 @@ int run(const SampleOptions& o) {
     // Deforms every instance: one dispatch (after the fold, plus normals) on Vulkan; waits only for the frame
     // that used this slot two frames ago, so the GPU still runs the previous frame meanwhile. With
     // --record, the same commands go into the engine's command buffer, which it submits itself.
-    Result<std::uint64_t> frame = engine ? engine->record(*vulkan) : rt.submitFrame();
+    Result<std::uint64_t> frame = engine ? engine->record() : rt.submitFrame();
     if (!frame.ok()) return fail(frame.status());
     if (vulkan != nullptr) {
       // A renderer binds this frame's buffers as vertex input after recording the barriers:
@@ -253,7 +253,7 @@ int run(const SampleOptions& o) {
     // The previous frame is done or nearly: its bounds cull the next frame's draws, its times are final.
     if (*frame > 1) {
       if (engine) {  // the engine's fence for it, and its word to the runtime
-        if (Status s = engine->complete(*vulkan, *frame - 1); !s.ok()) return fail(s);
+        if (Status s = engine->complete(*frame - 1); !s.ok()) return fail(s);
       }
       if (Status s = rt.readBounds(*frame - 1, bounds); !s.ok()) return fail(s);
       Result<FrameTimes> times = rt.frameTimes(*frame - 1);
@@ -263,7 +263,7 @@ int run(const SampleOptions& o) {
   }
   // [runtime-snippet]
   if (engine && rt.lastFrame() > 0) {
-    if (Status s = engine->complete(*vulkan, rt.lastFrame()); !s.ok()) return fail(s);
+    if (Status s = engine->complete(rt.lastFrame()); !s.ok()) return fail(s);
   }
   if (Status s = rt.wait(); !s.ok()) return fail(s);
   const std::uint64_t last = rt.lastFrame();
