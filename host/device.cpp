@@ -257,6 +257,11 @@ Status Device::submit(const VkSubmitInfo& info, VkFence fence) const {
   return vkStatus(submitted, "vkQueueSubmit");
 }
 
+Status Device::waitQueueIdle() const {
+  const std::lock_guard lock(*queue_mutex_);
+  return vkStatus(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
+}
+
 Result<UniqueCommandPool> Device::createCommandPool(VkCommandPoolCreateFlags flags) const {
   VkCommandPoolCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;

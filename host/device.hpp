@@ -87,6 +87,9 @@ class Device {
   // Command pools are the other object Vulkan wants so guarded; odeskin gives each FrameRing and
   // each submitAndWait its own, so none is shared.
   Status submit(const VkSubmitInfo& info, VkFence fence) const;
+  // vkQueueWaitIdle on queue(), under the same lock: for work odeskin has no fence of (frames an
+  // engine submitted in its own command buffers).
+  Status waitQueueIdle() const;
 
   // Index of a memory type allowed by `type_bits` that has all `required` flags, preferring one
   // that also has all `preferred` flags. kUnavailable when none has the required flags.

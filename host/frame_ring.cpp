@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "frame_ring.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -65,6 +66,10 @@ FrameRing& FrameRing::operator=(FrameRing&& other) noexcept {
 FrameRing::~FrameRing() { waitAllNoThrow(); }
 
 void FrameRing::waitAllNoThrow() noexcept {
+  // Frames recorded into the caller's command buffers and not completed may still run; they were
+  // submitted on the device's queue (VulkanRuntime::recordFrame's contract), so its idle is theirs.
+  const bool recorded = std::any_of(slots_.begin(), slots_.end(), [](const Slot& s) { return s.recorded != 0; });
+  if (recorded) (void)owner_->waitQueueIdle();
   for (Slot& slot : slots_) {
     if (!slot.pending) continue;
     VkFence fence = slot.fence.get();

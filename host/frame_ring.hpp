@@ -35,7 +35,8 @@ class FrameRing {
   FrameRing& operator=(FrameRing&& other) noexcept;
   FrameRing(const FrameRing&) = delete;
   FrameRing& operator=(const FrameRing&) = delete;
-  // Waits for in-flight frames: their command buffers and inputs must not die under the GPU.
+  // Waits for in-flight frames: their command buffers and inputs must not die under the GPU (and
+  // for the queue to idle when a recorded frame is not completed).
   ~FrameRing();
 
   std::uint32_t slotCount() const { return static_cast<std::uint32_t>(slots_.size()); }

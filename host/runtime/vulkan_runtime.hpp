@@ -86,7 +86,8 @@ class VulkanRuntime final : public DeformRuntime {
   // - once that submission has finished (its fence), it calls frameCompleted(frame). Until then the
   //   frame cannot be read, and the frame framesInFlight() later cannot take its slot: both are
   //   kInvalidArgument naming the frame, never a wait that could not end.
-  // On error nothing is recorded into `cmd`.
+  // On error nothing is recorded into `cmd`. A runtime destroyed with recorded frames not completed
+  // waits for the device's queue to idle first, so their submissions never outlive its buffers.
   Result<std::uint64_t> recordFrame(VkCommandBuffer cmd);
   // The engine's word that the submission holding recorded frame `frame` has finished; reads the
   // frame's GPU time. The frame's last command writes its number to host-visible memory, so a call

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -195,6 +196,22 @@ TEST_F(GpuTest, FrameCompletedTooEarlyIsRefused) {
   }
   std::vector<InstanceBounds> bounds(3);
   ASSERT_TRUE(gpu->readBounds(3, bounds).ok());
+}
+
+// An engine that drops the runtime while a recorded frame it submitted may still run (it never
+// waited for its fence): the runtime waits for the queue before its buffers go. The validation
+// layer reports buffers destroyed while a submission that uses them is pending.
+TEST_F(GpuTest, ARuntimeDroppedWithARecordedFrameInFlightWaitsForIt) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  EngineFrames engine(device(), 1);  // outlives the runtime, as an engine's frames do
+  std::optional<VulkanRuntime> gpu;
+  Result<VulkanRuntime> created = VulkanRuntime::create(device(), asset, withCapacity(4));
+  ASSERT_TRUE(created.ok()) << created.status().toString();
+  gpu.emplace(std::move(created).value());
+  ASSERT_TRUE(gpu->setInstanceCount(4).ok());
+  ASSERT_TRUE(gpu->recordFrame(engine.begin(0)).ok());
+  engine.submit(0);
+  gpu.reset();
 }
 
 }  // namespace
