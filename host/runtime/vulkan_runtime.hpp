@@ -6,9 +6,10 @@
 // coefficients, ONE dispatch of instanced_deform.comp over (ceil(V / 64), instances) workgroups that
 // deforms all instances into the slot's output buffer (instance k at k * V) and reduces their
 // boxes, then one dispatch of instance_normals.comp (and, with RuntimeOptions::render_layout on a
-// glTF asset, one of render_gather.comp into the render vertices). framesInFlight() slots (default 2) each own their outputs, so
-// the host prepares frame k+1 and a renderer draws frame k while the GPU deforms. No allocation
-// per frame (readbacks from non-mappable memory stage through a temporary buffer, on request only).
+// glTF asset, one of render_gather.comp into the render vertices). framesInFlight() slots
+// (default 2) each own their outputs, so the host prepares frame k+1 and a renderer draws frame k
+// while the GPU deforms. No allocation per frame (readbacks from non-mappable memory stage through
+// a temporary buffer, on request only).
 // recordFrame() records the same commands into a command buffer of the engine's instead.
 // Reference: CpuRuntime, instance for instance (tests/runtime/vulkan_runtime_test.cpp).
 #pragma once
@@ -59,8 +60,8 @@ class VulkanRuntime final : public DeformRuntime {
   // `device` and `asset` must outlive the runtime and stay where they are. kInvalidArgument for
   // frames_in_flight = 0; kUnavailable, naming the limit, when capacity exceeds
   // maxComputeWorkGroupCount[1], ceil(V / 64) exceeds maxComputeWorkGroupCount[0], or one frame's
-  // outputs (capacity x V x 16 bytes), folded coefficients (capacity x C x (2N + 2) x 16 bytes) or
-  // inputs exceed maxStorageBufferRange (lavapipe: 128 MiB, i.e. about 8.4 million instance
+  // outputs (capacity x V x 16 bytes; with render_layout also capacity x R x 16), folded
+  // coefficients (capacity x C x (2N + 2) x 16 bytes) or inputs exceed maxStorageBufferRange (lavapipe: 128 MiB, i.e. about 8.4 million instance
   // vertices per runtime; use several runtimes beyond);
   // kDeviceError from the driver. `allow_subgroups` = false forces the shared-memory bounds
   // reduction even where subgroup arithmetic exists (tests, benchmarks).
