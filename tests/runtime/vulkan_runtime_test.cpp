@@ -286,6 +286,24 @@ TEST_F(GpuTest, RuntimeRenderLayoutMatchesTheCpuRuntime) {
       EXPECT_EQ(barriers->barriers[1].buffer, buffers->normals);
     }
   }
+  // The render outputs must fit one storage binding too: a capacity whose topology outputs and
+  // folded coefficients fit, but whose render outputs do not.
+  const VkDeviceSize range = device().limits().maxStorageBufferRange;
+  const std::uint32_t capacity = static_cast<std::uint32_t>(range / (VkDeviceSize{asset.renderVertexCount()} * 16) + 1);
+  const PackedDeformData& packed = asset.packed(0);
+  const VkDeviceSize folded = VkDeviceSize{capacity} * packed.curve_count * gpu::coefficientsPerCurve(packed.modes) * 16;
+  // Such a capacity exists on lavapipe (128 MiB); a device with a larger range hits the dispatch's
+  // y extent first, as RuntimeRejectsBadInputNamingTheProblem tests.
+  if (VkDeviceSize{capacity} * asset.vertexCount() * 16 > range || folded > range ||
+      capacity > device().limits().maxComputeWorkGroupCount[1]) {
+    std::printf("render-vertex limit not reachable alone on %s\n", device().name());
+    return;
+  }
+  RuntimeOptions options = withCapacity(capacity);
+  options.render_layout = true;
+  const Status status = VulkanRuntime::create(device(), asset, options).status();
+  EXPECT_EQ(status.code(), StatusCode::kUnavailable);
+  EXPECT_NE(status.message().find("one frame's render-vertex positions"), std::string::npos) << status.message();
 }
 
 TEST_F(GpuTest, RuntimeRejectsBadInputNamingTheProblem) {
