@@ -228,8 +228,7 @@ void Device::destroy() {
   if (owns_device_) {
     vkDeviceWaitIdle(device_);
   } else if (queue_ != VK_NULL_HANDLE) {
-    const std::lock_guard lock(*queue_mutex_);
-    vkQueueWaitIdle(queue_);
+    (void)waitQueueIdle();  // a lost device leaves nothing better to do than to go on destroying
   }
   pipeline_cache_.reset();
   if (owns_device_) vkDestroyDevice(device_, nullptr);

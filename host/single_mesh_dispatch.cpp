@@ -38,7 +38,7 @@ Result<SingleMeshDispatch> SingleMeshDispatch::create(const vk::Device& device, 
     ODESKIN_ASSIGN_OR_RETURN(d.folded_, vk::Buffer::create(device, fold_bytes < 16 ? 16 : fold_bytes, vk::kShaderInputUsage));
     statics.push_back({ODESKIN_BINDING_FOLDED_SERIES, d.folded_.handle()});
     d.fold_push_ = gpu::FoldPushConstants{desc.modes, desc.curve_count, static_cast<std::uint32_t>(desc.basis_count), 0};
-    d.fold_groups_ = (fold_entries + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+    d.fold_groups_ = gpu::workgroupsFor(fold_entries);
   }
 
   // Per-frame buffer: bones, the basis (when read), then the bones' dual quaternions.
@@ -80,8 +80,7 @@ Status SingleMeshDispatch::submit(std::span<const gpu::BoneMatrix> bones, std::s
     const gpu::InstanceRecord record{segment, 0, use_rates ? 0u : gpu::kNoRates, 0};
     vk::writeSlice(inputs, record_offset_, std::span<const gpu::InstanceRecord>(&record, 1));
   }
-  const std::uint32_t groups = (vertex_count_ + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
-  return dispatcher_.submitFrame(push, groups, &fold_push_, fold_groups_);
+  return dispatcher_.submitFrame(push, gpu::workgroupsFor(vertex_count_), &fold_push_, fold_groups_);
 }
 
 Status SingleMeshDispatch::readPositions(std::span<gpu::Float4> out_positions) {

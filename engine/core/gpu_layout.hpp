@@ -20,6 +20,8 @@ static_assert(offsetof(DeformPushConstants, skinning) == 40);
 static_assert(sizeof(FoldPushConstants) == 16);
 
 inline constexpr uint kWorkgroupSize = ODESKIN_WORKGROUP_SIZE;
+// Workgroups of kWorkgroupSize invocations that cover `count` items (a dispatch's x extent).
+constexpr uint workgroupsFor(uint count) { return (count + kWorkgroupSize - 1) / kWorkgroupSize; }
 inline constexpr uint kNoRemainder = ODESKIN_NO_REMAINDER;
 
 // Coefficients per curve for N modes (layout described in gpu_layout.h).

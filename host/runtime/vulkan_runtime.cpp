@@ -71,32 +71,31 @@ void dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, std::uin
   vkCmdDispatch(cmd, x, y, 1);
 }
 
+// kUnavailable when `count` `what` (one invocation each) need more workgroups than a dispatch's x extent.
+Status checkGroupsX(const vk::Device& device, std::uint32_t count, const char* what) {
+  const std::uint32_t groups = gpu::workgroupsFor(count);
+  if (groups <= device.limits().maxComputeWorkGroupCount[0]) return okStatus();
+  return unavailable("vulkan runtime: " + std::to_string(count) + " " + what + " need " + std::to_string(groups) +
+                     " workgroups, more than maxComputeWorkGroupCount[0] of " + device.name());
+}
+
 // kUnavailable, naming the limit, when `options` cannot run on `device` in one dispatch.
 Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, const RuntimeOptions& options) {
   const VkPhysicalDeviceLimits& limits = device.limits();
   const std::uint32_t v = asset.vertexCount();
-  const std::uint32_t groups_x = (v + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
   if (options.capacity > limits.maxComputeWorkGroupCount[1]) {
     return unavailable("vulkan runtime: capacity " + std::to_string(options.capacity) +
                        " exceeds maxComputeWorkGroupCount[1] (" + std::to_string(limits.maxComputeWorkGroupCount[1]) +
                        ") of " + device.name());
   }
-  if (groups_x > limits.maxComputeWorkGroupCount[0]) {
-    return unavailable("vulkan runtime: " + std::to_string(v) + " vertices need " + std::to_string(groups_x) +
-                       " workgroups, more than maxComputeWorkGroupCount[0] of " + device.name());
-  }
+  ODESKIN_TRY(checkGroupsX(device, v, "vertices"));
   const VkDeviceSize out_bytes = VkDeviceSize{options.capacity} * v * sizeof(gpu::Float4);
   if (out_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's positions", out_bytes, device);
   const VkDeviceSize fold_bytes = foldedBytes(asset, options.capacity);
   if (fold_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's folded coefficients", fold_bytes, device);
   if (options.render_layout && !asset.renderTopology().empty()) {
     const std::uint32_t r = asset.renderVertexCount();
-    const std::uint32_t render_groups = (r + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
-    if (render_groups > limits.maxComputeWorkGroupCount[0]) {
-      return unavailable("vulkan runtime: " + std::to_string(r) + " render vertices need " +
-                         std::to_string(render_groups) + " workgroups, more than maxComputeWorkGroupCount[0] of " +
-                         device.name());
-    }
+    ODESKIN_TRY(checkGroupsX(device, r, "render vertices"));
     const VkDeviceSize render_bytes = VkDeviceSize{options.capacity} * r * sizeof(gpu::Float4);
     if (render_bytes > limits.maxStorageBufferRange) {
       return tooLarge("one frame's render-vertex positions", render_bytes, device);
@@ -114,8 +113,8 @@ Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const Runt
   VulkanRuntime rt(asset, options);
   rt.device_ = &device;
   rt.reuse_stages_ = vk::outputReuseStages(device);
-  rt.groups_x_ = (asset.vertexCount() + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
-  rt.render_groups_x_ = (asset.renderVertexCount() + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  rt.groups_x_ = gpu::workgroupsFor(asset.vertexCount());
+  rt.render_groups_x_ = gpu::workgroupsFor(asset.renderVertexCount());
   rt.subgroup_bounds_ = allow_subgroups && subgroupArithmetic(device);
   rt.recorded_frames_.assign(options.frames_in_flight, 0);
   rt.records_.resize(options.capacity);
@@ -267,7 +266,7 @@ Status VulkanRuntime::createFoldPipeline(std::span<const vk::StaticBinding> stat
   const PackedDeformData& d = asset().packed(0);
   fold_push_ = gpu::FoldPushConstants{d.modes, d.curve_count, asset().basisEntries(), 0};
   const std::uint32_t entries = d.curve_count * gpu::coefficientsPerCurve(d.modes);
-  fold_groups_x_ = (entries + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  fold_groups_x_ = gpu::workgroupsFor(entries);
   ODESKIN_ASSIGN_OR_RETURN(fold_,
                            vk::createSortedPipeline(*device_, kFoldSeriesSpirv, vk::kFoldBindings, vk::kFoldTexelBindings,
                                                     sizeof(gpu::FoldPushConstants), framesInFlight()));
