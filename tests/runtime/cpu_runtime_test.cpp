@@ -22,17 +22,12 @@ namespace odeskin {
 namespace {
 
 using testing::cylinderAsset;
+using testing::makeAsset;
 using testing::presetOptions;
 using testing::referencePositions;
 using testing::worstGap;
 
 constexpr double kRelativeTolerance = 1e-5;
-
-RuntimeAsset makeAsset(const DeformAsset& asset) {
-  Result<RuntimeAsset> r = RuntimeAsset::create(asset, presetOptions());
-  EXPECT_TRUE(r.ok()) << r.status().toString();
-  return std::move(r).value();
-}
 
 CpuRuntime makeRuntime(const RuntimeAsset& asset, std::uint32_t capacity, unsigned threads = 0) {
   RuntimeOptions options;

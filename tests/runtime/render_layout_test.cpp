@@ -16,14 +16,8 @@
 namespace odeskin {
 namespace {
 
-using testing::presetOptions;
+using testing::makeAsset;
 using testing::withSeams;
-
-RuntimeAsset makeAsset(const DeformAsset& asset) {
-  Result<RuntimeAsset> r = RuntimeAsset::create(asset, presetOptions());
-  EXPECT_TRUE(r.ok()) << r.status().toString();
-  return std::move(r).value();
-}
 
 CpuRuntime makeRuntime(const RuntimeAsset& asset, std::uint32_t capacity, bool render_layout, bool normals = true) {
   RuntimeOptions options;

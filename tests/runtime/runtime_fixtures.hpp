@@ -31,6 +31,13 @@ inline RuntimeAssetOptions presetOptions() {
   return options;
 }
 
+// `asset` packed for the runtime with presetOptions()' presets.
+inline RuntimeAsset makeAsset(const DeformAsset& asset) {
+  Result<RuntimeAsset> r = RuntimeAsset::create(asset, presetOptions());
+  EXPECT_TRUE(r.ok()) << r.status().toString();
+  return std::move(r).value();
+}
+
 inline DeformAsset fitOrDie(const Result<ExampleSet>& examples, const PipelineOptions& options) {
   EXPECT_TRUE(examples.ok()) << examples.status().toString();
   if (!examples.ok()) return DeformAsset{};

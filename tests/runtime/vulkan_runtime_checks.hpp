@@ -22,12 +22,6 @@ namespace odeskin::testing {
 inline constexpr double kPositionTolerance = 1e-5;  // x the longest box side
 inline constexpr double kNormalTolerance = 1e-3;    // absolute, on unit normals
 
-inline RuntimeAsset makeAsset(const DeformAsset& asset) {
-  Result<RuntimeAsset> r = RuntimeAsset::create(asset, presetOptions());
-  EXPECT_TRUE(r.ok()) << r.status().toString();
-  return std::move(r).value();
-}
-
 inline RuntimeOptions withCapacity(std::uint32_t capacity) {
   RuntimeOptions options;
   options.capacity = capacity;
