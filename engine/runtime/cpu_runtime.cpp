@@ -31,7 +31,7 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
   // The frames' outputs dominate; 1,048,576 instances of a 420-vertex asset asked for 27 GB on a
   // 23 GB machine, and the kernel killed the process while the buffers were zeroed.
   // Render vertices are gathered into arrays of their own, beside the topology's.
-  const std::size_t r = options.render_layout && !asset.renderTopology().empty() ? asset.renderVertexCount() : 0;
+  const std::size_t r = odeskin::gathersRenderVertices(asset, options) ? asset.renderVertexCount() : 0;
   if (r != 0 && std::size_t{options.capacity} * options.frames_in_flight > limit / r) {
     return outOfRange("cpu runtime: capacity " + std::to_string(options.capacity) + " x " + std::to_string(r) +
                       " render vertices does not fit in memory");

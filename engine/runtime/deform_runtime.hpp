@@ -41,6 +41,12 @@ struct RuntimeOptions {
                                        // capped at the machine's (WorkerArena)
 };
 
+// Whether `options` on `asset` gather the outputs into render vertices: a render layout asked for,
+// on an asset whose render vertices differ from its topology's (glTF input).
+inline bool gathersRenderVertices(const RuntimeAsset& asset, const RuntimeOptions& options) {
+  return options.render_layout && !asset.renderTopology().empty();
+}
+
 // Local time of one segment: segment s < segmentCount() from key s to s + 1, tau in [0, 1].
 struct SegmentTime {
   std::uint32_t segment = 0;
@@ -109,7 +115,7 @@ class DeformRuntime {
     return options_.render_layout ? asset_->renderVertexCount() : asset_->vertexCount();
   }
   // Whether the outputs are gathered from the topology's (a render layout that differs from it).
-  bool gathersRenderVertices() const { return options_.render_layout && !asset_->renderTopology().empty(); }
+  bool gathersRenderVertices() const { return odeskin::gathersRenderVertices(*asset_, options_); }
   std::uint64_t lastFrame() const { return last_frame_; }
   virtual std::string_view backendName() const = 0;
 

@@ -93,7 +93,7 @@ Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, co
   if (out_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's positions", out_bytes, device);
   const VkDeviceSize fold_bytes = foldedBytes(asset, options.capacity);
   if (fold_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's folded coefficients", fold_bytes, device);
-  if (options.render_layout && !asset.renderTopology().empty()) {
+  if (gathersRenderVertices(asset, options)) {
     const std::uint32_t r = asset.renderVertexCount();
     ODESKIN_TRY(checkGroupsX(device, r, "render vertices"));
     const VkDeviceSize render_bytes = VkDeviceSize{options.capacity} * r * sizeof(gpu::Float4);
