@@ -34,8 +34,11 @@ Result<std::filesystem::path> followLinks(const std::filesystem::path& path) {
 
 std::string errnoText(int error) { return std::generic_category().message(error); }
 
-// Writes all of `content` to `fd` and closes it; kIoError naming `shown` with the cause.
-Status writeAndClose(int fd, const std::string& content, const std::filesystem::path& shown) {
+// Writes all of `content` to `fd` and closes it; kIoError naming `shown` with the cause. With
+// `durable`, the data reach the disk before the close: a temporary renamed into place before its
+// data are on disk can, after a power cut, leave the target empty on ext4 and XFS, which is the
+// half-written output the rename was there to prevent.
+Status writeAndClose(int fd, const std::string& content, const std::filesystem::path& shown, bool durable) {
   std::size_t done = 0;
   while (done < content.size()) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
@@ -47,6 +50,11 @@ Status writeAndClose(int fd, const std::string& content, const std::filesystem::
     }
     done += static_cast<std::size_t>(n);
   }
+  if (durable && ::fsync(fd) != 0 && errno != EINVAL) {  // EINVAL: a file system without fsync
+    const int error = errno;
+    ::close(fd);
+    return ioError(shown.string() + ": write failed: " + errnoText(error));
+  }
   // close, too, can report a failed write (a full disk on a network file system).
   if (::close(fd) != 0) return ioError(shown.string() + ": write failed: " + errnoText(errno));
   return okStatus();
@@ -56,7 +64,17 @@ Status writeAndClose(int fd, const std::string& content, const std::filesystem::
 Status writeInPlace(const std::filesystem::path& path, const std::string& content) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
   if (fd < 0) return ioError(path.string() + ": cannot open for writing: " + errnoText(errno));
-  return writeAndClose(fd, content, path);
+  return writeAndClose(fd, content, path, /*durable=*/false);
+}
+
+// After a rename, the directory entry itself reaches the disk only when the directory is synced.
+// Best effort: the file is already complete under its name, and some file systems refuse to open
+// or sync a directory.
+void syncDirectory(const std::filesystem::path& directory) {
+  const int fd = ::open(directory.empty() ? "." : directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  static_cast<void>(::fsync(fd));  // nothing to undo if it fails
+  ::close(fd);
 }
 
 }  // namespace
@@ -93,7 +111,7 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
     }
   }
   if (fd < 0) return ioError(path.string() + ": cannot create file: every temporary name beside it is taken");
-  if (Status written = writeAndClose(fd, content, path); !written.ok()) {
+  if (Status written = writeAndClose(fd, content, path, /*durable=*/true); !written.ok()) {
     std::error_code ignored;
     std::filesystem::remove(temp, ignored);
     return written;
@@ -109,6 +127,7 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
     std::filesystem::remove(temp, ignored);
     return ioError(path.string() + ": cannot rename into place: " + ec.message());
   }
+  syncDirectory(target.parent_path());
   return okStatus();
 }
 

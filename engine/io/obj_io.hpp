@@ -23,7 +23,8 @@ Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positio
 // symbolic link is followed: the link stays and its target is replaced, keeping its permission
 // bits (a new file gets the umask's). An existing target that
 // is not a regular file (/dev/null, a FIFO, /dev/stdout) is written in place, and a directory is
-// refused.
+// refused. The data are synced to disk before the rename and the directory after it, so a power
+// cut leaves the old file or the new one, not an empty one.
 Status writeFileAtomically(const std::filesystem::path& path, const std::string& content);
 
 }  // namespace odeskin
