@@ -21,7 +21,7 @@ std::size_t chunkCount(std::size_t vertices) { return (vertices + kVertexChunk -
 }  // namespace
 
 Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOptions& options) {
-  ODESKIN_TRY(checkOptions(options));
+  ODESKIN_TRY(checkOptions(asset, options));
   const std::size_t v = asset.vertexCount();
   const std::size_t limit = std::numeric_limits<std::size_t>::max() / sizeof(gpu::Float4) / 2;
   if (v != 0 && std::size_t{options.capacity} * options.frames_in_flight > limit / v) {
@@ -36,8 +36,10 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
     return outOfRange("cpu runtime: capacity " + std::to_string(options.capacity) + " x " + std::to_string(r) +
                       " render vertices does not fit in memory");
   }
-  const std::uint64_t output_bytes = std::uint64_t{options.frames_in_flight} * options.capacity * (v + r) *
-                                     sizeof(gpu::Float4) * (options.normals ? 2 : 1);
+  const std::uint64_t tangent_bytes = options.tangents ? std::uint64_t{asset.renderVertexCount()} * sizeof(gpu::Float4) : 0;
+  const std::uint64_t output_bytes =
+      std::uint64_t{options.frames_in_flight} * options.capacity *
+      ((v + r) * sizeof(gpu::Float4) * (options.normals ? 2 : 1) + tangent_bytes);
   ODESKIN_TRY(checkFitsInMemory(output_bytes, physicalMemoryBytes(),
                                 "cpu runtime: the output buffers of " + std::to_string(options.frames_in_flight) +
                                     " frames of " + std::to_string(options.capacity) + " instances x " +
@@ -62,6 +64,7 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
       slot.render_positions.resize(std::size_t{options.capacity} * r);
       if (options.normals) slot.render_normals.resize(slot.render_positions.size());
     }
+    if (options.tangents) slot.tangents.resize(std::size_t{options.capacity} * asset.renderVertexCount());
   }
   return rt;
 }
@@ -116,21 +119,25 @@ Status CpuRuntime::deformInstances(Slot& slot, std::uint32_t first, std::uint32_
         computeVertexNormals(asset().cornerOffsets(), asset().corners(), out, std::span(slot.normals).subspan(k * v, v));
       }
       slot.bounds[k] = computeBounds(out);
-      if (gathersRenderVertices()) gatherInstance(slot, k, 0, outputVertexCount());
+      if (finishes()) finishInstance(slot, k, 0, outputVertexCount());
     }
   });
   return first_error;
 }
 
-void CpuRuntime::gatherInstance(Slot& slot, std::size_t k, std::size_t begin, std::size_t end) const {
+void CpuRuntime::finishInstance(Slot& slot, std::size_t k, std::size_t begin, std::size_t end) const {
   const std::size_t v = asset().vertexCount();
   const std::size_t r = outputVertexCount();
-  const std::span<const std::uint32_t> topology = asset().renderTopology();
-  gatherRenderVertices(topology, std::span<const gpu::Float4>(slot.positions).subspan(k * v, v),
-                       std::span(slot.render_positions).subspan(k * r, r), begin, end);
-  if (!slot.render_normals.empty()) {
-    gatherRenderVertices(topology, std::span<const gpu::Float4>(slot.normals).subspan(k * v, v),
-                         std::span(slot.render_normals).subspan(k * r, r), begin, end);
+  const std::span<const gpu::Float4> positions = std::span<const gpu::Float4>(slot.positions).subspan(k * v, v);
+  const std::span<const gpu::Float4> normals =
+      slot.normals.empty() ? std::span<const gpu::Float4>() : std::span<const gpu::Float4>(slot.normals).subspan(k * v, v);
+  if (gathersRenderVertices()) {
+    const std::span<const std::uint32_t> topology = asset().renderTopology();
+    gatherRenderVertices(topology, positions, std::span(slot.render_positions).subspan(k * r, r), begin, end);
+    if (!normals.empty()) gatherRenderVertices(topology, normals, std::span(slot.render_normals).subspan(k * r, r), begin, end);
+  }
+  if (!slot.tangents.empty()) {
+    computeVertexTangents(asset().tangentTables(), positions, normals, std::span(slot.tangents).subspan(k * r, r), begin, end);
   }
 }
 
@@ -158,14 +165,15 @@ Status CpuRuntime::deformSpread(Slot& slot, std::uint32_t first, std::uint32_t e
     for (std::size_t c = 0; c < chunks; ++c) bounds.merge(chunk_bounds_[(k - first) * chunks + c]);
     slot.bounds[k] = bounds;
   }
-  if (!gathersRenderVertices()) return okStatus();
-  // After every normal of the instances: a render vertex may copy any topology vertex.
+  if (!finishes()) return okStatus();
+  // After every normal of the instances: a render vertex may copy any topology vertex, and a
+  // tangent reads its vertex's normal.
   const std::size_t r = outputVertexCount();
   const std::size_t render_chunks = chunkCount(r);
   arena().parallelFor((end - first) * render_chunks, 1, [&](std::size_t begin_job, std::size_t end_job) {
     for (std::size_t job = begin_job; job < end_job; ++job) {
       const std::size_t from = (job % render_chunks) * kVertexChunk;
-      gatherInstance(slot, first + job / render_chunks, from, std::min(from + kVertexChunk, r));
+      finishInstance(slot, first + job / render_chunks, from, std::min(from + kVertexChunk, r));
     }
   });
   return okStatus();
@@ -184,6 +192,12 @@ Result<std::span<const gpu::Float4>> CpuRuntime::normals(std::uint64_t frame) {
       .first(std::size_t{slots_[slot].instance_count} * outputVertexCount());
 }
 
+Result<std::span<const gpu::Float4>> CpuRuntime::tangents(std::uint64_t frame) {
+  ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, heldSlot(frame, "tangents"));
+  return std::span<const gpu::Float4>(slots_[slot].tangents)
+      .first(slots_[slot].tangents.empty() ? 0 : std::size_t{slots_[slot].instance_count} * outputVertexCount());
+}
+
 Status CpuRuntime::copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
   const std::size_t v = outputVertexCount();
   std::copy_n(slots_[slot].outPositions().begin() + static_cast<std::ptrdiff_t>(instance * v), v, out.begin());
@@ -193,6 +207,12 @@ Status CpuRuntime::copyPositions(std::uint32_t slot, std::uint32_t instance, std
 Status CpuRuntime::copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
   const std::size_t v = outputVertexCount();
   std::copy_n(slots_[slot].outNormals().begin() + static_cast<std::ptrdiff_t>(instance * v), v, out.begin());
+  return okStatus();
+}
+
+Status CpuRuntime::copyTangents(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
+  const std::size_t v = outputVertexCount();
+  std::copy_n(slots_[slot].tangents.begin() + static_cast<std::ptrdiff_t>(instance * v), v, out.begin());
   return okStatus();
 }
 

@@ -35,8 +35,17 @@ double seconds(std::chrono::steady_clock::time_point since) {
 
 }  // namespace
 
-Status DeformRuntime::checkOptions(const RuntimeOptions& options) {
+Status DeformRuntime::checkOptions(const RuntimeAsset& asset, const RuntimeOptions& options) {
   if (options.frames_in_flight == 0) return invalidArgument("runtime: frames_in_flight must be at least 1");
+  if (!options.tangents) return okStatus();
+  if (!asset.hasTangents()) {
+    return invalidArgument("runtime: tangents asked for, but the asset has none (RuntimeAssetOptions::render_tangents)");
+  }
+  if (!options.normals) return invalidArgument("runtime: tangents need normals (RuntimeOptions::normals)");
+  if (!options.render_layout && !asset.renderTopology().empty()) {
+    return invalidArgument("runtime: the asset's tangents are its render vertices'; tangents need "
+                           "RuntimeOptions::render_layout on an asset with a render layout");
+  }
   return okStatus();
 }
 
@@ -189,6 +198,12 @@ Status DeformRuntime::readNormals(std::uint64_t frame, std::uint32_t instance, s
   if (!options_.normals) return invalidArgument("runtime: readNormals: the runtime was created with normals off");
   ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, checkRead(frame, instance, out.size(), "readNormals"));
   return copyNormals(slot, instance, out);
+}
+
+Status DeformRuntime::readTangents(std::uint64_t frame, std::uint32_t instance, std::span<gpu::Float4> out) {
+  if (!options_.tangents) return invalidArgument("runtime: readTangents: the runtime was created with tangents off");
+  ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, checkRead(frame, instance, out.size(), "readTangents"));
+  return copyTangents(slot, instance, out);
 }
 
 Status DeformRuntime::readBounds(std::uint64_t frame, std::span<InstanceBounds> out) {

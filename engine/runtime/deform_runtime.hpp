@@ -4,7 +4,7 @@
 // its own time (or segment and local time), bones (the engine's, or interpolated from the asset's
 // key poses) and material preset; submitFrame() deforms every instance into one output array per
 // frame (instance k's vertices at k * V; with render_layout, a glTF asset's render vertices), with
-// recomputed normals and per-instance bounding boxes.
+// recomputed normals (and, on request, tangents) and per-instance bounding boxes.
 //
 // Frames and buffering: submitFrame() returns the frame's number (1, 2, ...). The outputs of the
 // last framesInFlight() frames stay readable: frame k's live in slot (k - 1) % framesInFlight(), so
@@ -37,6 +37,11 @@ struct RuntimeOptions {
   // The deformation, normals and bounds are the topology's, copied to each render vertex; an asset
   // without a render layout (OBJ input) outputs the same either way.
   bool render_layout = false;
+  // Tangents for normal mapping every frame: the asset's bind tangents
+  // (RuntimeAssetOptions::render_tangents) carried through the deformation and made orthogonal to
+  // the recomputed normals (instance_tangents.hpp). Needs normals, and a render layout on an asset
+  // that has one, since tangents belong to render vertices.
+  bool tangents = false;
   unsigned threads = 0;                // host threads for preparing inputs (and the CPU backend's deformation); 0 = all;
                                        // capped at the machine's (WorkerArena)
 };
@@ -141,13 +146,16 @@ class DeformRuntime {
   Status readPositions(std::uint64_t frame, std::uint32_t instance, std::span<gpu::Float4> out);
   // kInvalidArgument when options().normals is false.
   Status readNormals(std::uint64_t frame, std::uint32_t instance, std::span<gpu::Float4> out);
+  // xyz the unit tangent, w its handedness. kInvalidArgument when options().tangents is false.
+  Status readTangents(std::uint64_t frame, std::uint32_t instance, std::span<gpu::Float4> out);
   // One box per instance of the frame: `out` has exactly that frame's instance count.
   Status readBounds(std::uint64_t frame, std::span<InstanceBounds> out);
   Result<FrameTimes> frameTimes(std::uint64_t frame);
 
  protected:
-  // kInvalidArgument for frames_in_flight = 0 (other limits are the backends').
-  static Status checkOptions(const RuntimeOptions& options);
+  // kInvalidArgument for frames_in_flight = 0, or tangents on an asset without them, without
+  // normals, or without the render layout of an asset that has one (other limits are the backends').
+  static Status checkOptions(const RuntimeAsset& asset, const RuntimeOptions& options);
   DeformRuntime(const RuntimeAsset& asset, const RuntimeOptions& options);
   DeformRuntime(DeformRuntime&&) noexcept = default;
   DeformRuntime& operator=(DeformRuntime&&) noexcept = default;
@@ -168,6 +176,7 @@ class DeformRuntime {
   // Copies from the finished slot. Sizes and indices are checked already.
   virtual Status copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) = 0;
   virtual Status copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) = 0;
+  virtual Status copyTangents(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) = 0;
   virtual Status copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) = 0;
   // GPU seconds of the finished slot (Vulkan); the CPU backend's deform time is in its FrameTimes.
   virtual double deviceSeconds(std::uint32_t slot) const = 0;

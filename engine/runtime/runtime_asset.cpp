@@ -85,6 +85,10 @@ Result<RuntimeAsset> RuntimeAsset::create(const DeformAsset& asset, const Runtim
   r.bone_paths_ = boneKeyPaths(asset);
   buildCorners(asset.faces, asset.vertexCount(), r.triangles_, r.corner_offsets_, r.corners_);
   appendFanTriangles(asset.render.faces, r.render_triangles_);
+  if (!options.render_tangents.empty()) {
+    ODESKIN_ASSIGN_OR_RETURN(r.tangents_, buildTangentLayout(asset.rest_positions, r.corner_offsets_, r.corners_,
+                                                             asset.render.topology_of_render, options.render_tangents));
+  }
   return r;
 }
 

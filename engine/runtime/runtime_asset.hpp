@@ -16,6 +16,7 @@
 #include "../core/result.hpp"
 #include "../offline/deform_asset.hpp"
 #include "../offline/deform_player.hpp"
+#include "instance_tangents.hpp"
 #include "runtime_layout.hpp"
 
 namespace odeskin {
@@ -42,11 +43,17 @@ struct RuntimeAssetOptions {
   // gpu_layout.h influence layout: 0 keeps sparse rows; 4 or 8 fixed slots (kInvalidArgument from
   // packDeformAsset when a vertex has more influences).
   std::uint32_t influence_layout = ODESKIN_INFLUENCES_SPARSE;
+  // Bind tangents for normal mapping, one per render vertex (renderVertexCount(): a glTF's vertices
+  // in file order, primitives in order, as its TANGENT accessors hold them; an OBJ asset's
+  // vertices): xyz, and w the handedness (+1 or -1). Empty: the asset has no tangents. Runtimes
+  // created with RuntimeOptions::tangents carry them through every frame (instance_tangents.hpp).
+  std::vector<gpu::Float4> render_tangents;
 };
 
 class RuntimeAsset {
  public:
-  // Validates and packs `asset` (copied; the caller's may go), builds every preset. Errors:
+  // Validates and packs `asset` (copied; the caller's may go), builds every preset and the
+  // tangents' weights. Errors (render tangents: buildTangentLayout's, naming the tangent):
   // validateDeformAsset's and packDeformAsset's (kInvalidArgument), kInvalidArgument for an empty,
   // duplicate or reserved preset name or a bad material count, kOutOfRange for an asset without
   // segments or with more than 2^32 / 16 floats of data, DeformPlayer::create's for a bad material.
@@ -102,6 +109,16 @@ class RuntimeAsset {
     return asset_.render.empty() ? std::span<const std::uint32_t>(triangles_) : render_triangles_;
   }
 
+  // RuntimeAssetOptions::render_tangents as instance_tangents.comp reads them: per render vertex
+  // its handedness and the weights of its topology vertex's corner edges. Empty without tangents.
+  bool hasTangents() const { return !tangents_.frames.empty(); }
+  std::span<const gpu::TangentFrame> tangentFrames() const { return tangents_.frames; }
+  std::span<const gpu::TangentWeights> tangentWeights() const { return tangents_.weights; }
+  // Everything computeVertexTangents reads besides one instance's positions and normals.
+  TangentTables tangentTables() const {
+    return {corner_offsets_, corners_, renderTopology(), tangents_.frames, tangents_.weights};
+  }
+
  private:
   RuntimeAsset() = default;
 
@@ -116,6 +133,7 @@ class RuntimeAsset {
   std::vector<std::uint32_t> render_triangles_;  // fans of the render faces; empty without a render layout
   std::vector<std::uint32_t> corner_offsets_;   // V + 1
   std::vector<gpu::Corner> corners_;            // 3 per triangle
+  TangentLayout tangents_;                       // per render vertex, when render_tangents were given
 };
 
 }  // namespace odeskin

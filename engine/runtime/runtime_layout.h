@@ -12,7 +12,17 @@ namespace odeskin::gpu {
 #endif
 
 // instanced_deform.comp, descriptor set 0. Bindings 0-8 are gpu_layout.h's asset arrays, uploaded
-// once; ODESKIN_BINDING_RATES holds every material preset's rates back to back (preset p's start at
+// once; ODESKIN_BINDING_RATES holds every material preset's rates back to back (preset p's start at// instance_tangents.comp, descriptor set 0 (RuntimeOptions::tangents; outputs in the output vertices:
+// render vertices with a render layout, else the topology's).
+#define ODESKIN_RT_TANGENTS_BINDING_POSITIONS 0      // Float4[capacity * V]: the slot's deformed positions
+#define ODESKIN_RT_TANGENTS_BINDING_NORMALS 1        // Float4[capacity * V]: their normals
+#define ODESKIN_RT_TANGENTS_BINDING_CORNER_OFFSETS 2 // uint[V + 1], as for the normals
+#define ODESKIN_RT_TANGENTS_BINDING_CORNERS 3        // Corner[offsets[V]]
+#define ODESKIN_RT_TANGENTS_BINDING_TOPOLOGY 4       // uint[R]: output vertex o is topology vertex topology[o] (a stand-in without a render layout)
+#define ODESKIN_RT_TANGENTS_BINDING_FRAMES 5         // TangentFrame[O]
+#define ODESKIN_RT_TANGENTS_BINDING_WEIGHTS 6        // TangentWeights[]: frame o's at frames[o].weights, one per corner of its topology vertex
+#define ODESKIN_RT_TANGENTS_BINDING_OUT_TANGENTS 7   // Float4[capacity * O]: unit tangent xyz, w = handedness
+
 // InstanceRecord::rates_offset). Per frame slot, in the slot's mapped input buffer:
 #define ODESKIN_RT_BINDING_BONES 9              // BoneMatrix[instances * bone_count]: instance k's at k * B
 #define ODESKIN_RT_BINDING_MODE_BASIS 10        // ModeBasis[instances * basis_entries]: instance k's at k * E
@@ -52,6 +62,19 @@ struct Corner {
   uint prev;
 };
 
+// Output vertex o's bind tangent as weights on its topology vertex's corner edges: the deformed
+// tangent is sum over corners c of next * (p[c.next] - p[i]) + prev * (p[c.prev] - p[i]), the
+// least-squares deformation gradient of the one-ring applied to the bind tangent (instance_tangents.hpp).
+struct TangentFrame {
+  uint weights;      // first TangentWeights entry; one per corner of the topology vertex
+  float handedness;  // +1 or -1: the bitangent is handedness * cross(normal, tangent) (glTF TANGENT.w)
+};
+
+struct TangentWeights {
+  float next;
+  float prev;
+};
+
 // Per-instance bounding box as order-preserving unsigned keys of floats (orderedKey in
 // runtime_layout.hpp and instanced_deform.comp), so atomicMin orders them as floats. keys[0..2]
 // hold the minimum x, y, z and keys[4..6] the minimum of -x, -y, -z (that is, -max): one fill value
@@ -89,6 +112,13 @@ struct GatherPushConstants {
   uint render_count;    // R
   uint instance_count;
   uint normals;         // 1: gather the normals too
+};
+
+struct TangentsPushConstants {
+  uint vertex_count;    // V
+  uint output_count;    // O: R with a render layout, else V
+  uint instance_count;
+  uint render_layout;   // 1: output vertex o is topology vertex topology[o]; 0: o itself
 };
 
 #ifdef __cplusplus

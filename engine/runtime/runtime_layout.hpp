@@ -18,6 +18,8 @@ static_assert(sizeof(BoundsKeys) == 32);
 static_assert(sizeof(InstancedPushConstants) == 48 && offsetof(InstancedPushConstants, basis_entries) == 36);
 static_assert(sizeof(NormalsPushConstants) == 16);
 static_assert(sizeof(GatherPushConstants) == 16);
+static_assert(sizeof(TangentFrame) == 8 && sizeof(TangentWeights) == 8);
+static_assert(sizeof(TangentsPushConstants) == 16);
 
 inline constexpr uint kNoRates = ODESKIN_RT_NO_RATES;
 

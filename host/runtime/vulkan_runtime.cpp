@@ -11,6 +11,7 @@
 #include "host/texel_bindings.hpp"
 #include "shaders/fold_series.spv.h"
 #include "shaders/instance_normals.spv.h"
+#include "shaders/instance_tangents.spv.h"
 #include "shaders/instanced_deform.spv.h"
 #include "shaders/instanced_deform_shared.spv.h"
 #include "shaders/render_gather.spv.h"
@@ -93,12 +94,13 @@ Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, co
   if (out_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's positions", out_bytes, device);
   const VkDeviceSize fold_bytes = foldedBytes(asset, options.capacity);
   if (fold_bytes > limits.maxStorageBufferRange) return tooLarge("one frame's folded coefficients", fold_bytes, device);
-  if (gathersRenderVertices(asset, options)) {
+  if (gathersRenderVertices(asset, options) || options.tangents) {
     const std::uint32_t r = asset.renderVertexCount();
     ODESKIN_TRY(checkGroupsX(device, r, "render vertices"));
     const VkDeviceSize render_bytes = VkDeviceSize{options.capacity} * r * sizeof(gpu::Float4);
     if (render_bytes > limits.maxStorageBufferRange) {
-      return tooLarge("one frame's render-vertex positions", render_bytes, device);
+      return tooLarge(options.tangents ? "one frame's tangents" : "one frame's render-vertex positions", render_bytes,
+                      device);
     }
   }
   return okStatus();
@@ -108,7 +110,7 @@ Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, co
 
 Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const RuntimeAsset& asset,
                                             const RuntimeOptions& options, bool allow_subgroups) {
-  ODESKIN_TRY(checkOptions(options));
+  ODESKIN_TRY(checkOptions(asset, options));
   ODESKIN_TRY(checkDeviceLimits(device, asset, options));
   VulkanRuntime rt(asset, options);
   rt.device_ = &device;
@@ -162,6 +164,10 @@ Status VulkanRuntime::uploadAsset() {
   if (gathersRenderVertices()) {
     ODESKIN_ASSIGN_OR_RETURN(render_topology_, vk::createStorageBuffer(*device_, bytesOf(a.renderTopology())));
   }
+  if (options().tangents) {
+    ODESKIN_ASSIGN_OR_RETURN(tangent_frames_, vk::createStorageBuffer(*device_, bytesOf(a.tangentFrames())));
+    ODESKIN_ASSIGN_OR_RETURN(tangent_weights_, vk::createStorageBuffer(*device_, bytesOf(a.tangentWeights())));
+  }
   return okStatus();
 }
 
@@ -188,6 +194,11 @@ Status VulkanRuntime::createSlots() {
       if (options().normals) {
         ODESKIN_ASSIGN_OR_RETURN(slot.render_normals, vk::Buffer::create(*device_, render_bytes, vk::kOutputBufferUsage));
       }
+    }
+    if (options().tangents) {
+      const VkDeviceSize tangent_bytes =
+          std::max<VkDeviceSize>(VkDeviceSize{capacity()} * outputVertexCount() * sizeof(gpu::Float4), 16);
+      ODESKIN_ASSIGN_OR_RETURN(slot.tangents, vk::Buffer::create(*device_, tangent_bytes, vk::kOutputBufferUsage));
     }
     slots_.push_back(std::move(slot));
   }
@@ -222,6 +233,7 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
   }
   ODESKIN_TRY(createFoldPipeline(statics, layout));
   if (gathersRenderVertices()) ODESKIN_TRY(createGatherPipeline());
+  if (options().tangents) ODESKIN_TRY(createTangentsPipeline());
   if (!options().normals) return okStatus();
 
   const std::uint32_t normal_bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
@@ -256,6 +268,30 @@ Status VulkanRuntime::createGatherPipeline() {
     ODESKIN_TRY(gather_.bindBuffer(s, ODESKIN_RT_GATHER_BINDING_OUT_POSITIONS, slot.render_positions.handle()));
     ODESKIN_TRY(gather_.bindBuffer(s, ODESKIN_RT_GATHER_BINDING_OUT_NORMALS,
                                    (normals ? slot.render_normals : slot.render_positions).handle()));
+  }
+  return okStatus();
+}
+
+Status VulkanRuntime::createTangentsPipeline() {
+  const std::uint32_t bindings[] = {
+      ODESKIN_RT_TANGENTS_BINDING_POSITIONS, ODESKIN_RT_TANGENTS_BINDING_NORMALS, ODESKIN_RT_TANGENTS_BINDING_CORNER_OFFSETS,
+      ODESKIN_RT_TANGENTS_BINDING_CORNERS,   ODESKIN_RT_TANGENTS_BINDING_TOPOLOGY, ODESKIN_RT_TANGENTS_BINDING_FRAMES,
+      ODESKIN_RT_TANGENTS_BINDING_WEIGHTS,   ODESKIN_RT_TANGENTS_BINDING_OUT_TANGENTS};
+  ODESKIN_ASSIGN_OR_RETURN(tangents_, vk::createSortedPipeline(*device_, kInstanceTangentsSpirv, bindings, {},
+                                                               sizeof(gpu::TangentsPushConstants), framesInFlight()));
+  // Without a render layout the shader reads no topology (TangentsPushConstants::render_layout =
+  // 0), but the binding needs a buffer: the frames stand in.
+  const vk::Buffer& topology = gathersRenderVertices() ? render_topology_ : tangent_frames_;
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    const Slot& slot = slots_[s];
+    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_POSITIONS, slot.positions.handle()));
+    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_NORMALS, slot.normals.handle()));
+    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_CORNER_OFFSETS, corner_offsets_.handle()));
+    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_CORNERS, corners_.handle()));
+    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_TOPOLOGY, topology.handle()));
+    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_FRAMES, tangent_frames_.handle()));
+    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_WEIGHTS, tangent_weights_.handle()));
+    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_OUT_TANGENTS, slot.tangents.handle()));
   }
   return okStatus();
 }
@@ -389,12 +425,19 @@ void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_
       const gpu::NormalsPushConstants npc{v, instance_count, 0, 0};
       dispatch(cmd, normals_, slot, &npc, sizeof(npc), groups_x_, instance_count);
     }
-    if (gathersRenderVertices()) {
-      // A render vertex may copy any topology vertex's position and normal: all of them first.
+    if (gathersRenderVertices() || options().tangents) {
+      // A render vertex may copy any topology vertex's position and normal, and a tangent reads
+      // its one-ring's positions and its normal: all of them first. The two only read them.
       vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    }
+    if (gathersRenderVertices()) {
       const gpu::GatherPushConstants gpc{v, outputVertexCount(), instance_count, options().normals ? 1u : 0u};
       dispatch(cmd, gather_, slot, &gpc, sizeof(gpc), render_groups_x_, instance_count);
+    }
+    if (options().tangents) {
+      const gpu::TangentsPushConstants tpc{v, outputVertexCount(), instance_count, gathersRenderVertices() ? 1u : 0u};
+      dispatch(cmd, tangents_, slot, &tpc, sizeof(tpc), gpu::workgroupsFor(outputVertexCount()), instance_count);
     }
   }
   // A fence alone does not make device writes visible to the host (mapped bounds and outputs).
@@ -407,6 +450,7 @@ Result<RuntimeFrameBuffers> VulkanRuntime::frameBuffers(std::uint64_t frame) con
   RuntimeFrameBuffers b;
   b.positions = outPositions(slot).handle();
   b.normals = options().normals ? outNormals(slot).handle() : VK_NULL_HANDLE;
+  b.tangents = options().tangents ? slots_[slot].tangents.handle() : VK_NULL_HANDLE;
   b.instance_stride = VkDeviceSize{outputVertexCount()} * sizeof(gpu::Float4);
   return b;
 }
@@ -416,6 +460,7 @@ Result<RuntimeOutputBarriers> VulkanRuntime::outputBarriers(std::uint64_t frame)
   RuntimeOutputBarriers b;
   b.barriers[b.count++] = vertexInputBarrier(outPositions(slot).handle());
   if (options().normals) b.barriers[b.count++] = vertexInputBarrier(outNormals(slot).handle());
+  if (options().tangents) b.barriers[b.count++] = vertexInputBarrier(slots_[slot].tangents.handle());
   return b;
 }
 
@@ -435,6 +480,11 @@ Status VulkanRuntime::copyPositions(std::uint32_t slot, std::uint32_t instance, 
 Status VulkanRuntime::copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
   const VkDeviceSize offset = VkDeviceSize{instance} * outputVertexCount() * sizeof(gpu::Float4);
   return vk::downloadSpan(*device_, outNormals(slot), out, offset);
+}
+
+Status VulkanRuntime::copyTangents(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
+  const VkDeviceSize offset = VkDeviceSize{instance} * outputVertexCount() * sizeof(gpu::Float4);
+  return vk::downloadSpan(*device_, slots_[slot].tangents, out, offset);
 }
 
 Status VulkanRuntime::copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) {

@@ -6,7 +6,8 @@
 // coefficients, ONE dispatch of instanced_deform.comp over (ceil(V / 64), instances) workgroups that
 // deforms all instances into the slot's output buffer (instance k at k * V) and reduces their
 // boxes, then one dispatch of instance_normals.comp (and, with RuntimeOptions::render_layout on a
-// glTF asset, one of render_gather.comp into the render vertices). framesInFlight() slots
+// glTF asset, one of render_gather.comp into the render vertices; with RuntimeOptions::tangents,
+// one of instance_tangents.comp). framesInFlight() slots
 // (default 2) each own their outputs, so the host prepares frame k+1 and a renderer draws frame k
 // while the GPU deforms. No allocation per frame (readbacks from non-mappable memory stage through
 // a temporary buffer, on request only).
@@ -39,6 +40,7 @@ namespace odeskin {
 struct RuntimeFrameBuffers {
   VkBuffer positions = VK_NULL_HANDLE;  // Float4 xyz1 per vertex, instance k at k * instance_stride bytes
   VkBuffer normals = VK_NULL_HANDLE;    // Float4 xyz0 per vertex, same layout; null with normals off
+  VkBuffer tangents = VK_NULL_HANDLE;   // Float4 xyz + handedness per vertex, same layout; null with tangents off
   VkDeviceSize instance_stride = 0;     // outputVertexCount() * 16 bytes
 };
 
@@ -47,7 +49,7 @@ struct RuntimeFrameBuffers {
 struct RuntimeOutputBarriers {
   VkPipelineStageFlags src_stage = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   VkPipelineStageFlags dst_stage = VK_PIPELINE_STAGE_VERTEX_INPUT_BIT;
-  std::array<VkBufferMemoryBarrier, 2> barriers{};
+  std::array<VkBufferMemoryBarrier, 3> barriers{};
   std::uint32_t count = 0;
 
   void record(VkCommandBuffer cmd) const {
@@ -60,7 +62,7 @@ class VulkanRuntime final : public DeformRuntime {
   // `device` and `asset` must outlive the runtime and stay where they are. kInvalidArgument for
   // frames_in_flight = 0; kUnavailable, naming the limit, when capacity exceeds
   // maxComputeWorkGroupCount[1], ceil(V / 64) exceeds maxComputeWorkGroupCount[0], or one frame's
-  // outputs (capacity x V x 16 bytes; with render_layout also capacity x R x 16), folded
+  // outputs (capacity x V x 16 bytes; with render_layout, or tangents, also capacity x R x 16), folded
   // coefficients (capacity x C x (2N + 2) x 16 bytes) or inputs exceed maxStorageBufferRange (lavapipe: 128 MiB, i.e. about 8.4 million instance
   // vertices per runtime; use several runtimes beyond);
   // kDeviceError from the driver. `allow_subgroups` = false forces the shared-memory bounds
@@ -111,6 +113,7 @@ class VulkanRuntime final : public DeformRuntime {
   Status checkSlotFree(std::uint32_t slot) const override;
   Status copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) override;
   Status copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) override;
+  Status copyTangents(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) override;
   Status copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) override;
   double deviceSeconds(std::uint32_t slot) const override { return ring_.gpuSeconds(slot); }
 
@@ -123,6 +126,7 @@ class VulkanRuntime final : public DeformRuntime {
   Status createFoldPipeline(std::span<const vk::StaticBinding> statics, const vk::FrameInputLayout& layout);
   void record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const;
   Status createGatherPipeline();
+  Status createTangentsPipeline();
   // What the renderer reads: the render-vertex buffers when gathering, else the topology's.
   const vk::Buffer& outPositions(std::uint32_t slot) const;
   const vk::Buffer& outNormals(std::uint32_t slot) const;
@@ -135,6 +139,7 @@ class VulkanRuntime final : public DeformRuntime {
     vk::Buffer bounds;            // capacity BoundsKeys, host-visible
     vk::Buffer render_positions;  // capacity x R Float4, when gathersRenderVertices()
     vk::Buffer render_normals;    // likewise, when normals are on too
+    vk::Buffer tangents;          // capacity x outputVertexCount() Float4, when tangents are on
   };
   const vk::Device* device_ = nullptr;
   VkPipelineStageFlags reuse_stages_ = 0;
@@ -164,6 +169,9 @@ class VulkanRuntime final : public DeformRuntime {
   vk::ComputePipeline gather_;   // render_gather.comp, when gathersRenderVertices()
   vk::Buffer render_topology_;   // RuntimeAsset::renderTopology, likewise
   std::uint32_t render_groups_x_ = 0;  // ceil(R / 64)
+  vk::ComputePipeline tangents_;  // instance_tangents.comp, when options().tangents
+  vk::Buffer tangent_frames_;     // RuntimeAsset::tangentFrames, likewise
+  vk::Buffer tangent_weights_;    // RuntimeAsset::tangentWeights, likewise
   // Last, so it is destroyed first: it waits for in-flight frames before anything they use goes.
   vk::FrameRing ring_;
 };

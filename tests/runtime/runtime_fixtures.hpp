@@ -90,6 +90,47 @@ inline DeformAsset withSeams(const DeformAsset& asset) {
   return out;
 }
 
+// Bind tangents for every render vertex of `asset`, as an engine's glTF would give them: unit,
+// orthogonal to the bind vertex normal (area-weighted, over the topology's polygon fans), turning
+// round the surface from vertex to vertex, a seam's second copy (withSeams) pointing another way
+// than its first, and every third vertex left-handed (w = -1).
+inline std::vector<gpu::Float4> bindTangents(const DeformAsset& asset) {
+  std::vector<Vec3> normals(asset.vertexCount(), Vec3(0.0));
+  const FaceList& faces = asset.faces;
+  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+    const std::uint32_t a = faces.indices[faces.face_offsets[f]];
+    for (std::uint32_t k = faces.face_offsets[f] + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
+      const std::uint32_t b = faces.indices[k], c = faces.indices[k + 1];
+      const Vec3 n = glm::cross(asset.rest_positions[b] - asset.rest_positions[a], asset.rest_positions[c] - asset.rest_positions[a]);
+      normals[a] += n;
+      normals[b] += n;
+      normals[c] += n;
+    }
+  }
+  const std::size_t count = asset.render.empty() ? asset.vertexCount() : asset.render.topology_of_render.size();
+  std::vector<gpu::Float4> out(count);
+  for (std::size_t r = 0; r < count; ++r) {
+    const std::size_t i = asset.render.empty() ? r : asset.render.topology_of_render[r];
+    const double turn = 0.37 * static_cast<double>(i) + (r >= asset.vertexCount() ? 1.5 : 0.0);
+    const Vec3 n = glm::normalize(normals[i]);
+    const Vec3 axis = glm::normalize(Vec3(std::cos(turn), std::sin(turn), 0.5));
+    Vec3 t = axis - n * glm::dot(n, axis);
+    if (glm::length(t) < 1e-3) t = glm::cross(n, Vec3(0.0, 0.0, 1.0));  // axis along the normal
+    t = glm::normalize(t);
+    out[r] = gpu::Float4{static_cast<float>(t.x), static_cast<float>(t.y), static_cast<float>(t.z), r % 3 == 0 ? -1.0f : 1.0f};
+  }
+  return out;
+}
+
+// `asset` packed with presetOptions()' presets and bindTangents(asset).
+inline RuntimeAsset makeAssetWithTangents(const DeformAsset& asset) {
+  RuntimeAssetOptions options = presetOptions();
+  options.render_tangents = bindTangents(asset);
+  Result<RuntimeAsset> r = RuntimeAsset::create(asset, options);
+  EXPECT_TRUE(r.ok()) << r.status().toString();
+  return std::move(r).value();
+}
+
 // The double-precision reference of one instance: preset `preset` of `runtime_asset` at (segment,
 // tau), with `bones` from the engine (rounded float matrices, as the runtime gets them) or, when
 // empty, the asset's key paths in double.

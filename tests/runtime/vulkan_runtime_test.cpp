@@ -306,6 +306,45 @@ TEST_F(GpuTest, RuntimeRenderLayoutMatchesTheCpuRuntime) {
   EXPECT_NE(status.message().find("one frame's render-vertex positions"), std::string::npos) << status.message();
 }
 
+// instance_tangents.comp against the CPU runtime's tangents, on a topology layout and on a render
+// layout (where the tangents belong to render vertices), and the buffer a renderer binds.
+TEST_F(GpuTest, RuntimeTangentsMatchTheCpuRuntime) {
+  for (const bool seamed : {false, true}) {
+    const DeformAsset& source = testing::cylinderAsset();
+    const RuntimeAsset asset = testing::makeAssetWithTangents(seamed ? testing::withSeams(source) : source);
+    RuntimeOptions options = withCapacity(4);
+    options.render_layout = seamed;
+    options.tangents = true;
+    Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, options);
+    Result<CpuRuntime> cpu = CpuRuntime::create(asset, options);
+    ASSERT_TRUE(gpu.ok() && cpu.ok()) << gpu.status().toString();
+    ASSERT_TRUE(gpu->setInstanceCount(4).ok() && cpu->setInstanceCount(4).ok());
+    for (std::uint32_t k = 0; k < 4; ++k) setBoth(*cpu, *gpu, k, InstanceState::atTime(0.7 * k + 0.2).withPreset(k % 3));
+    Result<std::uint64_t> g = gpu->submitFrame();
+    Result<std::uint64_t> c = cpu->submitFrame();
+    ASSERT_TRUE(g.ok() && c.ok()) << g.status().toString();
+    const std::string what = seamed ? "tangents, render layout" : "tangents";
+    expectSameFrame(*cpu, *c, *gpu, *g, 4, what);
+    double worst = 0.0;
+    for (std::uint32_t k = 0; k < 4; ++k) {
+      std::vector<gpu::Float4> expected(cpu->outputVertexCount()), actual(gpu->outputVertexCount());
+      ASSERT_TRUE(cpu->readTangents(*c, k, expected).ok());
+      const Status read_status = gpu->readTangents(*g, k, actual);
+      ASSERT_TRUE(read_status.ok()) << read_status.toString();
+      const auto gap = testing::worstGap(expected, actual);
+      EXPECT_LT(gap.gap, testing::kNormalTolerance) << what << " instance " << k << ": worst tangent " << gap.vertex;
+      worst = std::max(worst, gap.gap);
+    }
+    std::printf("%s: max |vulkan - cpu| tangents %.2e\n", what.c_str(), worst);
+    Result<RuntimeFrameBuffers> buffers = gpu->frameBuffers(*g);
+    Result<RuntimeOutputBarriers> barriers = gpu->outputBarriers(*g);
+    ASSERT_TRUE(buffers.ok() && barriers.ok());
+    EXPECT_NE(buffers->tangents, VK_NULL_HANDLE);
+    ASSERT_EQ(barriers->count, 3u);
+    EXPECT_EQ(barriers->barriers[2].buffer, buffers->tangents);
+  }
+}
+
 TEST_F(GpuTest, RuntimeRejectsBadInputNamingTheProblem) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
   Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(2));
