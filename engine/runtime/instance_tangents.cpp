@@ -7,10 +7,12 @@
 
 #include <glm/geometric.hpp>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace odeskin {
 namespace {
-
-glm::vec3 xyz(const gpu::Float4& f) { return {f.x, f.y, f.z}; }
 
 // The in-plane coordinates of an edge in the tangent basis (u, v).
 struct PlaneEdge {
@@ -93,6 +95,46 @@ Result<TangentLayout> buildTangentLayout(std::span<const Vec3> rest_positions, s
   return layout;
 }
 
+#if defined(__SSE2__)
+
+// xyz in one register, as computeVertexNormals does: each lane's value rounded as the scalar form
+// below rounds it (products, then sums, in the same order; no fused multiply-adds in a baseline
+// x86-64 build), at about half the scalar form's time.
+void computeVertexTangents(const TangentTables& tables, std::span<const gpu::Float4> positions,
+                           std::span<const gpu::Float4> normals, std::span<gpu::Float4> out, std::size_t begin,
+                           std::size_t end) {
+  static_assert(sizeof(gpu::Float4) == 4 * sizeof(float));
+  for (std::size_t o = begin; o < end && o < out.size(); ++o) {
+    const std::uint32_t i = tables.topology.empty() ? static_cast<std::uint32_t>(o) : tables.topology[o];
+    const gpu::TangentFrame frame = tables.frames[o];
+    const __m128 p = _mm_loadu_ps(&positions[i].x);
+    __m128 t = _mm_setzero_ps();
+    const std::uint32_t first = tables.corner_offsets[i];
+    for (std::uint32_t k = first; k < tables.corner_offsets[i + 1]; ++k) {
+      const gpu::Corner c = tables.corners[k];
+      const gpu::TangentWeights w = tables.weights[frame.weights + (k - first)];
+      const __m128 a = _mm_mul_ps(_mm_set1_ps(w.next), _mm_sub_ps(_mm_loadu_ps(&positions[c.next].x), p));
+      const __m128 b = _mm_mul_ps(_mm_set1_ps(w.prev), _mm_sub_ps(_mm_loadu_ps(&positions[c.prev].x), p));
+      t = _mm_add_ps(t, _mm_add_ps(a, b));
+    }
+    // glm::dot and glm::length: (x x' + y y') + z z'. The w lanes are never read.
+    const __m128 n = _mm_loadu_ps(&normals[i].x);
+    alignas(16) float nt[4];
+    _mm_store_ps(nt, _mm_mul_ps(n, t));
+    t = _mm_sub_ps(t, _mm_mul_ps(n, _mm_set1_ps((nt[0] + nt[1]) + nt[2])));
+    alignas(16) float sq[4];
+    _mm_store_ps(sq, _mm_mul_ps(t, t));
+    const float length = std::sqrt((sq[0] + sq[1]) + sq[2]);
+    alignas(16) float unit[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    if (length > 0.0f) _mm_store_ps(unit, _mm_div_ps(t, _mm_set1_ps(length)));
+    out[o] = gpu::Float4{unit[0], unit[1], unit[2], frame.handedness};
+  }
+}
+
+#else
+
+glm::vec3 xyz(const gpu::Float4& f) { return {f.x, f.y, f.z}; }
+
 void computeVertexTangents(const TangentTables& tables, std::span<const gpu::Float4> positions,
                            std::span<const gpu::Float4> normals, std::span<gpu::Float4> out, std::size_t begin,
                            std::size_t end) {
@@ -114,5 +156,7 @@ void computeVertexTangents(const TangentTables& tables, std::span<const gpu::Flo
     out[o] = gpu::Float4{t.x, t.y, t.z, frame.handedness};
   }
 }
+
+#endif
 
 }  // namespace odeskin

@@ -3,7 +3,7 @@
 // bindTangents) carried through each frame equal, within float rounding, an independent
 // double-precision least-squares fit of each one-ring's deformation (Eigen, from the frame's own
 // positions); they turn with a rigid placement; both of the runtime's work paths give the same
-// bits; and bad tangents and options are refused naming the problem.
+// bits, which are the scalar formula's; and bad tangents and options are refused naming the problem.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -168,6 +168,42 @@ TEST(CpuRuntime, TangentsAreTheSameOnBothWorkPaths) {
   Result<std::span<const gpu::Float4>> view = five.tangents(*b);
   ASSERT_TRUE(view.ok());
   EXPECT_EQ(view->size(), 5u * asset.renderVertexCount());
+}
+
+// computeVertexTangents (one register per vertex on x86-64) against the scalar glm form it stands
+// for, bit for bit, on a frame of the cat with a few zero bind tangents.
+TEST(ComputeVertexTangents, IsTheScalarFormToTheBit) {
+  const DeformAsset& source = testing::catAsset();
+  RuntimeAssetOptions options;
+  options.render_tangents = bindTangents(source);
+  for (std::size_t o = 0; o < options.render_tangents.size(); o += 97) options.render_tangents[o] = {0.0f, 0.0f, 0.0f, -1.0f};
+  Result<RuntimeAsset> asset = RuntimeAsset::create(source, options);
+  ASSERT_TRUE(asset.ok()) << asset.status().toString();
+  CpuRuntime rt = makeRuntime(*asset, 1, false);
+  ASSERT_TRUE(rt.setInstanceCount(1).ok() && rt.setInstance(0, InstanceState::atTime(4.4)).ok());
+  Result<std::uint64_t> frame = rt.submitFrame();
+  ASSERT_TRUE(frame.ok());
+  const auto positions = read(rt, *frame, 0, 0), normals = read(rt, *frame, 0, 1), tangents = read(rt, *frame, 0, 2);
+  const TangentTables tables = asset->tangentTables();
+  auto vec = [](const gpu::Float4& f) { return glm::vec3(f.x, f.y, f.z); };
+  for (std::size_t i = 0; i < tangents.size(); ++i) {
+    const glm::vec3 p = vec(positions[i]);
+    glm::vec3 t(0.0f);
+    const std::uint32_t first = tables.corner_offsets[i];
+    for (std::uint32_t k = first; k < tables.corner_offsets[i + 1]; ++k) {
+      const gpu::Corner c = tables.corners[k];
+      const gpu::TangentWeights w = tables.weights[tables.frames[i].weights + (k - first)];
+      t += w.next * (vec(positions[c.next]) - p) + w.prev * (vec(positions[c.prev]) - p);
+    }
+    const glm::vec3 n = vec(normals[i]);
+    t -= n * glm::dot(n, t);
+    const float length = glm::length(t);
+    t = length > 0.0f ? t / length : glm::vec3(0.0f);
+    const gpu::Float4 expected{t.x, t.y, t.z, tables.frames[i].handedness};
+    ASSERT_EQ(0, std::memcmp(&expected, &tangents[i], sizeof(expected))) << "vertex " << i;
+  }
+  EXPECT_EQ(vec(tangents[97]), glm::vec3(0.0f));
+  EXPECT_EQ(tangents[97].w, -1.0f);
 }
 
 TEST(RuntimeAsset, RefusesBadRenderTangentsNamingThem) {
