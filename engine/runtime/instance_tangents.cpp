@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "instance_tangents.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -90,7 +91,12 @@ Result<TangentLayout> buildTangentLayout(std::span<const Vec3> rest_positions, s
       return outOfRange("runtime asset: render tangents: more than 2^32 corner weights");
     }
     layout.frames.push_back(gpu::TangentFrame{static_cast<std::uint32_t>(layout.weights.size()), t.w < 0.0f ? -1.0f : 1.0f});
-    appendWeights(rest_positions, corner_offsets, corners, i, Vec3(t.x, t.y, t.z), layout.weights);
+    // Only the direction counts; a unit tangent keeps the weights near 1 / edge length, so a
+    // tangent given as 1e30 long cannot overflow the frame's float sum into a zero tangent.
+    Vec3 direction(t.x, t.y, t.z);
+    const double scale = std::max({std::fabs(direction.x), std::fabs(direction.y), std::fabs(direction.z)});
+    if (scale > 0.0) direction = glm::normalize(direction / scale);
+    appendWeights(rest_positions, corner_offsets, corners, i, direction, layout.weights);
   }
   return layout;
 }

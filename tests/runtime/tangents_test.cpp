@@ -229,9 +229,15 @@ TEST(RuntimeAsset, RefusesBadRenderTangentsNamingThem) {
   status = refused(bad);
   EXPECT_NE(status.message().find("tangent 9 has w = 0"), std::string::npos) << status.message();
   EXPECT_NE(status.message().find("+1 or -1"), std::string::npos) << status.message();
-  // A zero tangent is allowed (a glTF's degenerate UVs give them) and stays zero.
+  // A zero tangent is allowed (a glTF's degenerate UVs give them) and stays zero; only a
+  // tangent's direction counts, however long or short it is given.
   bad = tangents;
   bad[4] = gpu::Float4{0.0f, 0.0f, 0.0f, 1.0f};
+  const std::size_t huge = 5, tiny = 6;
+  for (const std::size_t o : {huge, tiny}) {
+    const float scale = o == huge ? 1e30f : 1e-30f;
+    bad[o] = gpu::Float4{tangents[o].x * scale, tangents[o].y * scale, tangents[o].z * scale, tangents[o].w};
+  }
   RuntimeAssetOptions options;
   options.render_tangents = bad;
   Result<RuntimeAsset> asset = RuntimeAsset::create(source, options);
@@ -243,6 +249,18 @@ TEST(RuntimeAsset, RefusesBadRenderTangentsNamingThem) {
   const auto out = read(rt, *frame, 0, 2);
   EXPECT_EQ(xyz(out[4]), Vec3(0.0));
   EXPECT_EQ(out[4].w, 1.0f);
+  options.render_tangents = tangents;
+  Result<RuntimeAsset> unit = RuntimeAsset::create(source, options);
+  ASSERT_TRUE(unit.ok());
+  CpuRuntime unit_rt = makeRuntime(*unit, 1, true);
+  ASSERT_TRUE(unit_rt.setInstanceCount(1).ok());
+  Result<std::uint64_t> unit_frame = unit_rt.submitFrame();
+  ASSERT_TRUE(unit_frame.ok());
+  const auto expected = read(unit_rt, *unit_frame, 0, 2);
+  for (const std::size_t o : {huge, tiny}) {
+    EXPECT_LT(glm::length(xyz(out[o]) - xyz(expected[o])), 1e-6) << "tangent " << o;
+    EXPECT_NEAR(glm::length(xyz(out[o])), 1.0, 1e-6) << "tangent " << o;
+  }
 }
 
 TEST(CpuRuntime, TangentOptionsAreChecked) {
