@@ -60,6 +60,7 @@ inline constexpr TexelBinding kNormalsTexelBindings[] = {
     {ODESKIN_RT_NORMALS_BINDING_POSITIONS, VK_FORMAT_R32G32B32A32_SFLOAT},  // Float4
     {ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, VK_FORMAT_R32_UINT},        // uint
     {ODESKIN_RT_NORMALS_BINDING_CORNERS, VK_FORMAT_R32G32_UINT},            // Corner
+    {ODESKIN_RT_NORMALS_BINDING_TOPOLOGY, VK_FORMAT_R32_UINT},              // uint
 };
 
 // A pipeline's bindings sorted into ComputePipelineDesc's two lists: those `table` names are texel

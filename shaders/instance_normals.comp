@@ -2,9 +2,11 @@
 // Vertex normals of every instance, recomputed from the deformed triangles after
 // instanced_deform.comp: n_i = normalize(sum over i's corners of cross(p[next] - p[i], p[prev] - p[i])),
 // the area-weighted sum of the incident triangles' normals, (0, 0, 0) where it vanishes. A gather
-// per vertex (RuntimeAsset's corner lists), so no float atomics and a fixed summation order.
-// Reference: computeVertexNormals in engine/runtime/instance_outputs.cpp (same float operations,
-// same order), which the CPU runtime backend runs per instance.
+// per vertex (RuntimeAsset's corner lists), so no float atomics and a fixed summation order. Across
+// hard edges the same over render vertices (RuntimeAsset::renderCorners), each render vertex's own
+// position its topology vertex's (render_layout = 1).
+// Reference: computeVertexNormals (computeRenderNormals) in engine/runtime/instance_outputs.cpp
+// (same float operations, same order), which the CPU runtime backend runs per instance.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "../engine/runtime/runtime_layout.h"
@@ -15,6 +17,7 @@ layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
 layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_POSITIONS) uniform samplerBuffer positions;       // Float4
 layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS) uniform usamplerBuffer corner_offsets; // uint
 layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNERS) uniform usamplerBuffer corners;         // Corner
+layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_TOPOLOGY) uniform usamplerBuffer topology;       // uint
 layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS) writeonly buffer OutNormals { Float4 out_normals[]; };
 
 layout(push_constant) uniform Push { NormalsPushConstants pc; };
@@ -24,8 +27,9 @@ vec3 position(uint k) { return texelFetch(positions, int(k)).xyz; }
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.vertex_count) return;
-  uint base = gl_WorkGroupID.y * pc.vertex_count;  // instance y's vertices
-  vec3 p = position(base + i);
+  uint base = gl_WorkGroupID.y * pc.position_count;  // instance y's positions
+  uint self = pc.render_layout != 0u ? texelFetch(topology, int(i)).x : i;
+  vec3 p = position(base + self);
   vec3 n = vec3(0.0);
   uint end = texelFetch(corner_offsets, int(i + 1u)).x;
   for (uint k = texelFetch(corner_offsets, int(i)).x; k < end; ++k) {
@@ -34,5 +38,5 @@ void main() {
   }
   float len = length(n);
   n = len > 0.0 ? n / len : vec3(0.0);
-  out_normals[base + i] = Float4(n.x, n.y, n.z, 0.0);
+  out_normals[gl_WorkGroupID.y * pc.vertex_count + i] = Float4(n.x, n.y, n.z, 0.0);
 }

@@ -3,8 +3,8 @@
 // instance_normals.comp: output vertex o (a render vertex with a render layout) of topology vertex
 // i carries its bind tangent through the frame's deformation as a weighted sum of i's deformed
 // corner edges (the least-squares deformation gradient of the one-ring; TangentFrame and
-// TangentWeights in runtime_layout.h), made orthogonal to i's normal and normalised; w is the
-// bind handedness. A gather per output vertex, like the normals.
+// TangentWeights in runtime_layout.h), made orthogonal to o's output normal and normalised; w is
+// the bind handedness. A gather per output vertex, like the normals.
 // Reference: computeVertexTangents in engine/runtime/instance_tangents.cpp (same float
 // operations, same order), which the CPU runtime backend runs per instance.
 #version 450
@@ -41,9 +41,10 @@ void main() {
     TangentWeights w = weights[frame.weights + (k - first)];
     t += w.next * (position(base + c.next) - p) + w.prev * (position(base + c.prev) - p);
   }
-  vec3 n = vec3(normals[base + i].x, normals[base + i].y, normals[base + i].z);
+  uint out_index = gl_WorkGroupID.y * pc.output_count + o;
+  vec3 n = vec3(normals[out_index].x, normals[out_index].y, normals[out_index].z);
   t -= n * dot(n, t);
   float len = length(t);
   t = len > 0.0 ? t / len : vec3(0.0);
-  out_tangents[gl_WorkGroupID.y * pc.output_count + o] = Float4(t.x, t.y, t.z, frame.handedness);
+  out_tangents[out_index] = Float4(t.x, t.y, t.z, frame.handedness);
 }

@@ -58,7 +58,8 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
   rt.chunk_bounds_.resize(std::size_t{std::min(options.capacity, rt.arena().threads())} * chunkCount(v));
   for (Slot& slot : rt.slots_) {
     slot.positions.resize(std::size_t{options.capacity} * v);
-    if (options.normals) slot.normals.resize(slot.positions.size());
+    // Across hard edges the render vertices' normals are computed directly, from the positions.
+    if (options.normals && !rt.computesRenderNormals()) slot.normals.resize(slot.positions.size());
     slot.bounds.resize(options.capacity);
     if (r != 0) {
       slot.render_positions.resize(std::size_t{options.capacity} * r);
@@ -133,11 +134,21 @@ void CpuRuntime::finishInstance(Slot& slot, std::size_t k, std::size_t begin, st
       slot.normals.empty() ? std::span<const gpu::Float4>() : std::span<const gpu::Float4>(slot.normals).subspan(k * v, v);
   if (gathersRenderVertices()) {
     const std::span<const std::uint32_t> topology = asset().renderTopology();
+    const std::span<gpu::Float4> render_normals =
+        slot.render_normals.empty() ? std::span<gpu::Float4>() : std::span(slot.render_normals).subspan(k * r, r);
     gatherRenderVertices(topology, positions, std::span(slot.render_positions).subspan(k * r, r), begin, end);
-    if (!normals.empty()) gatherRenderVertices(topology, normals, std::span(slot.render_normals).subspan(k * r, r), begin, end);
+    if (!normals.empty()) gatherRenderVertices(topology, normals, render_normals, begin, end);
+    if (computesRenderNormals()) {
+      computeRenderNormals(asset().renderCornerOffsets(), asset().renderCorners(), topology, positions, render_normals,
+                           begin, end);
+    }
   }
   if (!slot.tangents.empty()) {
-    computeVertexTangents(asset().tangentTables(), positions, normals, std::span(slot.tangents).subspan(k * r, r), begin, end);
+    // Each tangent is made orthogonal to its own output vertex's normal (a hard edge's side's).
+    const std::span<const gpu::Float4> out_normals =
+        gathersRenderVertices() ? std::span<const gpu::Float4>(slot.render_normals).subspan(k * r, r) : normals;
+    computeVertexTangents(asset().tangentTables(), positions, out_normals, std::span(slot.tangents).subspan(k * r, r),
+                          begin, end);
   }
 }
 
@@ -187,7 +198,7 @@ Result<std::span<const gpu::Float4>> CpuRuntime::positions(std::uint64_t frame) 
 
 Result<std::span<const gpu::Float4>> CpuRuntime::normals(std::uint64_t frame) {
   ODESKIN_ASSIGN_OR_RETURN(const std::uint32_t slot, heldSlot(frame, "normals"));
-  if (slots_[slot].normals.empty()) return std::span<const gpu::Float4>();
+  if (!options().normals) return std::span<const gpu::Float4>();
   return std::span<const gpu::Float4>(slots_[slot].outNormals())
       .first(std::size_t{slots_[slot].instance_count} * outputVertexCount());
 }

@@ -34,8 +34,9 @@ struct RuntimeOptions {
   bool normals = true;                 // recompute vertex normals every frame
   // Outputs in the asset's render vertices (RuntimeAsset::renderTopology: glTF input split at UV
   // and normal seams) instead of its topology vertices, so they bind beside the glTF's own UVs.
-  // The deformation, normals and bounds are the topology's, copied to each render vertex; an asset
-  // without a render layout (OBJ input) outputs the same either way.
+  // The deformation, normals and bounds are the topology's, copied to each render vertex, except
+  // the normals across an asset's hard edges (RuntimeAssetOptions::render_normals), which are
+  // each side's own; an asset without a render layout (OBJ input) outputs the same either way.
   bool render_layout = false;
   // Tangents for normal mapping every frame: the asset's bind tangents
   // (RuntimeAssetOptions::render_tangents) carried through the deformation and made orthogonal to
@@ -121,6 +122,9 @@ class DeformRuntime {
   }
   // Whether the outputs are gathered from the topology's (a render layout that differs from it).
   bool gathersRenderVertices() const { return odeskin::gathersRenderVertices(*asset_, options_); }
+  // Whether the normals are computed per render vertex (hard edges: RuntimeAsset::hasHardEdges)
+  // rather than per topology vertex and gathered.
+  bool computesRenderNormals() const { return gathersRenderVertices() && options_.normals && asset_->hasHardEdges(); }
   std::uint64_t lastFrame() const { return last_frame_; }
   virtual std::string_view backendName() const = 0;
 

@@ -27,19 +27,18 @@ inline __m128 cross(__m128 a, __m128 b) {
   return _mm_sub_ps(_mm_mul_ps(a_yzx, b_zxy), _mm_mul_ps(b_yzx, a_zxy));
 }
 
-}  // namespace
-
+// Normals [begin, count) from their corner lists; normal i's own position is positions[self(i)].
 // The vertex's xyz in one register: a corner takes a third of the scalar arithmetic instructions
 // (the normals were twice the deformation's time in the CPU runtime), with every lane's value
 // rounded as the scalar form below rounds it (no fused multiply-adds in a baseline x86-64 build).
-void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
-                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals,
-                          std::size_t begin, std::size_t end) {
+template <typename Self>
+void normalsOf(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
+               std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals, std::size_t begin,
+               std::size_t count, Self self) {
   static_assert(sizeof(gpu::Float4) == 4 * sizeof(float));
-  const std::size_t count = std::min({positions.size(), normals.size(), end});
   const __m128 xyz_mask = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
   for (std::size_t i = begin; i < count && i + 1 < corner_offsets.size(); ++i) {
-    const __m128 p = _mm_loadu_ps(&positions[i].x);
+    const __m128 p = _mm_loadu_ps(&positions[self(i)].x);
     __m128 n = _mm_setzero_ps();
     for (std::uint32_t k = corner_offsets[i]; k < corner_offsets[i + 1]; ++k) {
       const gpu::Corner c = corners[k];
@@ -58,14 +57,12 @@ void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::sp
 
 #else
 
-}  // namespace
-
-void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
-                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals,
-                          std::size_t begin, std::size_t end) {
-  const std::size_t count = std::min({positions.size(), normals.size(), end});
+template <typename Self>
+void normalsOf(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
+               std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals, std::size_t begin,
+               std::size_t count, Self self) {
   for (std::size_t i = begin; i < count && i + 1 < corner_offsets.size(); ++i) {
-    const glm::vec3 p = xyz(positions[i]);
+    const glm::vec3 p = xyz(positions[self(i)]);
     glm::vec3 n(0.0f);
     for (std::uint32_t k = corner_offsets[i]; k < corner_offsets[i + 1]; ++k) {
       const gpu::Corner c = corners[k];
@@ -78,6 +75,22 @@ void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::sp
 }
 
 #endif
+
+}  // namespace
+
+void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
+                          std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals,
+                          std::size_t begin, std::size_t end) {
+  normalsOf(corner_offsets, corners, positions, normals, begin, std::min({positions.size(), normals.size(), end}),
+            [](std::size_t i) { return i; });
+}
+
+void computeRenderNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
+                          std::span<const std::uint32_t> topology, std::span<const gpu::Float4> positions,
+                          std::span<gpu::Float4> normals, std::size_t begin, std::size_t end) {
+  normalsOf(corner_offsets, corners, positions, normals, begin, std::min({topology.size(), normals.size(), end}),
+            [topology](std::size_t r) { return topology[r]; });
+}
 
 void appendFanTriangles(const FaceList& faces, std::vector<std::uint32_t>& triangles) {
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The per-instance outputs besides positions: vertex normals recomputed from the deformed
-// triangles (with the corner lists they gather from), the axis-aligned bounding box, and the
-// outputs gathered into a glTF asset's render vertices. CPU references of
+// triangles (with the corner lists they gather from; per render vertex across hard edges), the
+// axis-aligned bounding box, and the outputs gathered into a glTF asset's render vertices. CPU references of
 // shaders/instance_normals.comp, of the bounds reduction in shaders/instanced_deform.comp and of
 // shaders/render_gather.comp (same float operations, same order).
 #pragma once
@@ -49,6 +49,15 @@ void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::sp
 void computeVertexNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
                           std::span<const gpu::Float4> positions, std::span<gpu::Float4> normals,
                           std::size_t begin, std::size_t end);
+
+// Normals of render vertices [begin, end) of one instance on an asset with hard edges, from
+// their own corner lists (RuntimeAsset::renderCornerOffsets / renderCorners): computeVertexNormals'
+// sum, with render vertex r's own position positions[topology[r]]. A render vertex off the hard
+// edges has its topology vertex's corners, so its normal equals the gathered one to the bit.
+//   corner_offsets: R + 1; topology, normals: R; positions: V (the instance's topology vertices).
+void computeRenderNormals(std::span<const std::uint32_t> corner_offsets, std::span<const gpu::Corner> corners,
+                          std::span<const std::uint32_t> topology, std::span<const gpu::Float4> positions,
+                          std::span<gpu::Float4> normals, std::size_t begin, std::size_t end);
 
 // Axis-aligned box of one instance's deformed vertices; empty (min = +inf, max = -inf) without any.
 struct InstanceBounds {

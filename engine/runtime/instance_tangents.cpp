@@ -124,7 +124,7 @@ void computeVertexTangents(const TangentTables& tables, std::span<const gpu::Flo
       t = _mm_add_ps(t, _mm_add_ps(a, b));
     }
     // glm::dot and glm::length: (x x' + y y') + z z'. The w lanes are never read.
-    const __m128 n = _mm_loadu_ps(&normals[i].x);
+    const __m128 n = _mm_loadu_ps(&normals[o].x);
     alignas(16) float nt[4];
     _mm_store_ps(nt, _mm_mul_ps(n, t));
     t = _mm_sub_ps(t, _mm_mul_ps(n, _mm_set1_ps((nt[0] + nt[1]) + nt[2])));
@@ -155,7 +155,7 @@ void computeVertexTangents(const TangentTables& tables, std::span<const gpu::Flo
       const gpu::TangentWeights w = tables.weights[frame.weights + (k - first)];
       t += w.next * (xyz(positions[c.next]) - p) + w.prev * (xyz(positions[c.prev]) - p);
     }
-    const glm::vec3 n = xyz(normals[i]);
+    const glm::vec3 n = xyz(normals[o]);
     t -= n * glm::dot(n, t);
     const float length = glm::length(t);
     t = length > 0.0f ? t / length : glm::vec3(0.0f);

@@ -8,8 +8,8 @@
 // own rules). Carried how: around each vertex the deformation is, to first order, a linear map F
 // of the bind tangent plane; the least-squares F that takes the one-ring's bind edges to its
 // deformed edges is linear in the deformed edges, so F t is a fixed weighted sum of them, the
-// weights computed once from the bind mesh. F t is then made orthogonal to the frame's recomputed
-// normal and normalised. A rigid motion of the one-ring turns the tangent with it; at the bind
+// weights computed once from the bind mesh. F t is then made orthogonal to the output vertex's
+// recomputed normal (across a hard edge, its own side's) and normalised. A rigid motion of the one-ring turns the tangent with it; at the bind
 // pose the tangent is the bind tangent, less its component along the normal.
 #pragma once
 
@@ -48,9 +48,9 @@ Result<TangentLayout> buildTangentLayout(std::span<const Vec3> rest_positions, s
                                          std::span<const gpu::Corner> corners, std::span<const std::uint32_t> topology,
                                          std::span<const gpu::Float4> tangents);
 
-// Tangents of output vertices [begin, end) of one instance: positions and normals are the
-// instance's topology vertices (V each), `out` its output vertices (O; xyz unit or zero, w the
-// handedness).
+// Tangents of output vertices [begin, end) of one instance: `positions` are the instance's
+// topology vertices (V), `normals` its output vertices' normals and `out` its tangents (O each;
+// xyz unit or zero, w the handedness).
 void computeVertexTangents(const TangentTables& tables, std::span<const gpu::Float4> positions,
                            std::span<const gpu::Float4> normals, std::span<gpu::Float4> out, std::size_t begin,
                            std::size_t end);

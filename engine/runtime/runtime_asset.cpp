@@ -89,6 +89,11 @@ Result<RuntimeAsset> RuntimeAsset::create(const DeformAsset& asset, const Runtim
     ODESKIN_ASSIGN_OR_RETURN(r.tangents_, buildTangentLayout(asset.rest_positions, r.corner_offsets_, r.corners_,
                                                              asset.render.topology_of_render, options.render_tangents));
   }
+  if (!options.render_normals.empty()) {
+    ODESKIN_ASSIGN_OR_RETURN(r.render_corners_,
+                             buildRenderCorners(asset.render.topology_of_render, asset.vertexCount(), r.render_triangles_,
+                                                r.corner_offsets_, r.corners_, options.render_normals));
+  }
   return r;
 }
 

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -16,6 +17,7 @@
 #include "../core/result.hpp"
 #include "../offline/deform_asset.hpp"
 #include "../offline/deform_player.hpp"
+#include "hard_edges.hpp"
 #include "instance_tangents.hpp"
 #include "runtime_layout.hpp"
 
@@ -48,12 +50,17 @@ struct RuntimeAssetOptions {
   // vertices): xyz, and w the handedness (+1 or -1). Empty: the asset has no tangents. Runtimes
   // created with RuntimeOptions::tangents carry them through every frame (instance_tangents.hpp).
   std::vector<gpu::Float4> render_tangents;
+  // Bind normals, one per render vertex as for render_tangents (a glTF's NORMAL), xyz non-zero.
+  // Empty: none. They only mark hard edges (hard_edges.hpp): copies of a vertex whose normals
+  // differ then each take the normal of their own triangles, so creases stay creased.
+  std::vector<gpu::Float4> render_normals;
 };
 
 class RuntimeAsset {
  public:
-  // Validates and packs `asset` (copied; the caller's may go), builds every preset and the
-  // tangents' weights. Errors (render tangents: buildTangentLayout's, naming the tangent):
+  // Validates and packs `asset` (copied; the caller's may go), builds every preset, the
+  // tangents' weights and the hard edges' corners. Errors (render tangents and normals:
+  // buildTangentLayout's and buildRenderCorners', naming the entry):
   // validateDeformAsset's and packDeformAsset's (kInvalidArgument), kInvalidArgument for an empty,
   // duplicate or reserved preset name or a bad material count, kOutOfRange for an asset without
   // segments or with more than 2^32 / 16 floats of data, DeformPlayer::create's for a bad material.
@@ -114,6 +121,18 @@ class RuntimeAsset {
   bool hasTangents() const { return !tangents_.frames.empty(); }
   std::span<const gpu::TangentFrame> tangentFrames() const { return tangents_.frames; }
   std::span<const gpu::TangentWeights> tangentWeights() const { return tangents_.weights; }
+  // With RuntimeAssetOptions::render_normals that mark hard edges: per render vertex the corners
+  // its normal sums (over topology vertices); the runtime's render layout then computes normals
+  // per render vertex instead of gathering the welded ones. Empty spans without hard edges.
+  bool hasHardEdges() const { return render_corners_.has_value(); }
+  std::uint32_t hardEdgeVertices() const { return render_corners_ ? render_corners_->hard_vertices : 0; }
+  std::span<const std::uint32_t> renderCornerOffsets() const {
+    return render_corners_ ? std::span<const std::uint32_t>(render_corners_->offsets) : std::span<const std::uint32_t>();
+  }
+  std::span<const gpu::Corner> renderCorners() const {
+    return render_corners_ ? std::span<const gpu::Corner>(render_corners_->corners) : std::span<const gpu::Corner>();
+  }
+
   // Everything computeVertexTangents reads besides one instance's positions and normals.
   TangentTables tangentTables() const {
     return {corner_offsets_, corners_, renderTopology(), tangents_.frames, tangents_.weights};
@@ -134,6 +153,7 @@ class RuntimeAsset {
   std::vector<std::uint32_t> corner_offsets_;   // V + 1
   std::vector<gpu::Corner> corners_;            // 3 per triangle
   TangentLayout tangents_;                       // per render vertex, when render_tangents were given
+  std::optional<RenderCorners> render_corners_;  // when render_normals mark hard edges
 };
 
 }  // namespace odeskin

@@ -15,7 +15,7 @@ namespace odeskin::gpu {
 // once; ODESKIN_BINDING_RATES holds every material preset's rates back to back (preset p's start at// instance_tangents.comp, descriptor set 0 (RuntimeOptions::tangents; outputs in the output vertices:
 // render vertices with a render layout, else the topology's).
 #define ODESKIN_RT_TANGENTS_BINDING_POSITIONS 0      // Float4[capacity * V]: the slot's deformed positions
-#define ODESKIN_RT_TANGENTS_BINDING_NORMALS 1        // Float4[capacity * V]: their normals
+#define ODESKIN_RT_TANGENTS_BINDING_NORMALS 1        // Float4[capacity * O]: the output vertices' normals
 #define ODESKIN_RT_TANGENTS_BINDING_CORNER_OFFSETS 2 // uint[V + 1], as for the normals
 #define ODESKIN_RT_TANGENTS_BINDING_CORNERS 3        // Corner[offsets[V]]
 #define ODESKIN_RT_TANGENTS_BINDING_TOPOLOGY 4       // uint[R]: output vertex o is topology vertex topology[o] (a stand-in without a render layout)
@@ -32,11 +32,13 @@ namespace odeskin::gpu {
 #define ODESKIN_RT_BINDING_OUT_POSITIONS 11     // Float4[capacity * V]: instance k's vertex i at k * V + i, w = 1
 #define ODESKIN_RT_BINDING_BOUNDS 14            // BoundsKeys[capacity]
 
-// instance_normals.comp, descriptor set 0.
+// instance_normals.comp, descriptor set 0: over the topology's vertices, or (RenderCorners, hard
+// edges) over the render vertices, whose corner lists then are per render vertex.
 #define ODESKIN_RT_NORMALS_BINDING_POSITIONS 0      // Float4[capacity * V]: the slot's deformed positions
 #define ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS 1 // uint[V + 1]: vertex i's corners are [offsets[i], offsets[i+1])
 #define ODESKIN_RT_NORMALS_BINDING_CORNERS 2        // Corner[offsets[V]]
 #define ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS 3    // Float4[capacity * V]: unit normal xyz, w = 0
+#define ODESKIN_RT_NORMALS_BINDING_TOPOLOGY 4       // uint[R]: with render_layout = 1, vertex r's own position is topology[r]
 // render_gather.comp, descriptor set 0 (RuntimeOptions::render_layout with a glTF asset's render vertices).
 #define ODESKIN_RT_GATHER_BINDING_POSITIONS 0       // Float4[capacity * V]: the slot's deformed positions
 #define ODESKIN_RT_GATHER_BINDING_NORMALS 1         // Float4[capacity * V]: its normals (the positions again without)
@@ -101,10 +103,10 @@ struct InstancedPushConstants {
 };
 
 struct NormalsPushConstants {
-  uint vertex_count;
+  uint vertex_count;    // normals per instance (the corner lists' vertices)
   uint instance_count;
-  uint pad0;
-  uint pad1;
+  uint position_count;  // V: positions per instance
+  uint render_layout;   // 1: normal r's own position is topology[r]; 0: position r
 };
 
 struct GatherPushConstants {

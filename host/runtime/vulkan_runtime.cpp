@@ -164,6 +164,10 @@ Status VulkanRuntime::uploadAsset() {
   if (gathersRenderVertices()) {
     ODESKIN_ASSIGN_OR_RETURN(render_topology_, vk::createStorageBuffer(*device_, bytesOf(a.renderTopology())));
   }
+  if (computesRenderNormals()) {
+    ODESKIN_ASSIGN_OR_RETURN(render_corner_offsets_, vk::createStorageBuffer(*device_, bytesOf(a.renderCornerOffsets())));
+    ODESKIN_ASSIGN_OR_RETURN(render_corners_, vk::createStorageBuffer(*device_, bytesOf(a.renderCorners())));
+  }
   if (options().tangents) {
     ODESKIN_ASSIGN_OR_RETURN(tangent_frames_, vk::createStorageBuffer(*device_, bytesOf(a.tangentFrames())));
     ODESKIN_ASSIGN_OR_RETURN(tangent_weights_, vk::createStorageBuffer(*device_, bytesOf(a.tangentWeights())));
@@ -181,7 +185,7 @@ Status VulkanRuntime::createSlots() {
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
     Slot slot;
     ODESKIN_ASSIGN_OR_RETURN(slot.positions, vk::Buffer::create(*device_, bytes, vk::kOutputBufferUsage));
-    if (options().normals) {
+    if (options().normals && !computesRenderNormals()) {
       ODESKIN_ASSIGN_OR_RETURN(slot.normals, vk::Buffer::create(*device_, bytes, vk::kOutputBufferUsage));
     }
     ODESKIN_ASSIGN_OR_RETURN(slot.bounds, vk::Buffer::create(*device_, bounds_bytes,
@@ -235,19 +239,35 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
   if (gathersRenderVertices()) ODESKIN_TRY(createGatherPipeline());
   if (options().tangents) ODESKIN_TRY(createTangentsPipeline());
   if (!options().normals) return okStatus();
-
-  const std::uint32_t normal_bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
-                                           ODESKIN_RT_NORMALS_BINDING_CORNERS, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS};
-  ODESKIN_ASSIGN_OR_RETURN(normals_,
-                           vk::createSortedPipeline(*device_, kInstanceNormalsSpirv, normal_bindings, vk::kNormalsTexelBindings,
-                                                    sizeof(gpu::NormalsPushConstants), framesInFlight()));
-  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
-    ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_POSITIONS, slots_[s].positions.handle()));
-    ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, corner_offsets_.handle()));
-    ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNERS, corners_.handle()));
-    ODESKIN_TRY(normals_.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS, slots_[s].normals.handle()));
+  if (computesRenderNormals()) {
+    ODESKIN_ASSIGN_OR_RETURN(render_normals_, createNormalsPipeline(true));
+  } else {
+    ODESKIN_ASSIGN_OR_RETURN(normals_, createNormalsPipeline(false));
   }
   return okStatus();
+}
+
+Result<vk::ComputePipeline> VulkanRuntime::createNormalsPipeline(bool render_vertices) const {
+  const std::uint32_t bindings[] = {ODESKIN_RT_NORMALS_BINDING_POSITIONS, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS,
+                                    ODESKIN_RT_NORMALS_BINDING_CORNERS, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS,
+                                    ODESKIN_RT_NORMALS_BINDING_TOPOLOGY};
+  ODESKIN_ASSIGN_OR_RETURN(vk::ComputePipeline pipeline,
+                           vk::createSortedPipeline(*device_, kInstanceNormalsSpirv, bindings, vk::kNormalsTexelBindings,
+                                                    sizeof(gpu::NormalsPushConstants), framesInFlight()));
+  // Over the topology the shader reads no topology map (NormalsPushConstants::render_layout = 0),
+  // but the binding needs a buffer: the corner offsets (uint, like the map) stand in.
+  const vk::Buffer& offsets = render_vertices ? render_corner_offsets_ : corner_offsets_;
+  const vk::Buffer& corners = render_vertices ? render_corners_ : corners_;
+  const vk::Buffer& topology = render_vertices ? render_topology_ : corner_offsets_;
+  for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
+    const vk::Buffer& out = render_vertices ? slots_[s].render_normals : slots_[s].normals;
+    ODESKIN_TRY(pipeline.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_POSITIONS, slots_[s].positions.handle()));
+    ODESKIN_TRY(pipeline.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS, offsets.handle()));
+    ODESKIN_TRY(pipeline.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_CORNERS, corners.handle()));
+    ODESKIN_TRY(pipeline.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS, out.handle()));
+    ODESKIN_TRY(pipeline.bindBuffer(s, ODESKIN_RT_NORMALS_BINDING_TOPOLOGY, topology.handle()));
+  }
+  return pipeline;
 }
 
 Status VulkanRuntime::createGatherPipeline() {
@@ -258,9 +278,10 @@ Status VulkanRuntime::createGatherPipeline() {
                                                              sizeof(gpu::GatherPushConstants), framesInFlight()));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
     const Slot& slot = slots_[s];
-    // Without normals the shader reads and writes no normal (GatherPushConstants::normals = 0),
-    // but every declared binding needs a buffer: the positions stand in.
-    const bool normals = options().normals;
+    // Without normals to gather (none, or computed per render vertex across hard edges) the
+    // shader reads and writes no normal (GatherPushConstants::normals = 0), but every declared
+    // binding needs a buffer: the positions stand in.
+    const bool normals = options().normals && !computesRenderNormals();
     ODESKIN_TRY(gather_.bindBuffer(s, ODESKIN_RT_GATHER_BINDING_POSITIONS, slot.positions.handle()));
     ODESKIN_TRY(gather_.bindBuffer(s, ODESKIN_RT_GATHER_BINDING_NORMALS,
                                    (normals ? slot.normals : slot.positions).handle()));
@@ -285,7 +306,7 @@ Status VulkanRuntime::createTangentsPipeline() {
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
     const Slot& slot = slots_[s];
     ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_POSITIONS, slot.positions.handle()));
-    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_NORMALS, slot.normals.handle()));
+    ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_NORMALS, outNormals(s).handle()));
     ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_CORNER_OFFSETS, corner_offsets_.handle()));
     ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_CORNERS, corners_.handle()));
     ODESKIN_TRY(tangents_.bindBuffer(s, ODESKIN_RT_TANGENTS_BINDING_TOPOLOGY, topology.handle()));
@@ -418,24 +439,31 @@ void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_
     vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     dispatch(cmd, deform_, slot, &pc, sizeof(pc), groups_x_, instance_count);
-    if (options().normals) {
+    const bool topology_normals = options().normals && !computesRenderNormals();
+    if (topology_normals) {
       // Normals read neighbours' positions: every position of the frame first.
       vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-      const gpu::NormalsPushConstants npc{v, instance_count, 0, 0};
+      const gpu::NormalsPushConstants npc{v, instance_count, v, 0};
       dispatch(cmd, normals_, slot, &npc, sizeof(npc), groups_x_, instance_count);
     }
-    if (gathersRenderVertices() || options().tangents) {
-      // A render vertex may copy any topology vertex's position and normal, and a tangent reads
-      // its one-ring's positions and its normal: all of them first. The two only read them.
+    if (gathersRenderVertices()) {
+      // A render vertex may copy (or, across hard edges, take the normal of) any topology vertex's
+      // positions and normal: all of them first. These dispatches only read them.
       vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    }
-    if (gathersRenderVertices()) {
-      const gpu::GatherPushConstants gpc{v, outputVertexCount(), instance_count, options().normals ? 1u : 0u};
+      const gpu::GatherPushConstants gpc{v, outputVertexCount(), instance_count, topology_normals ? 1u : 0u};
       dispatch(cmd, gather_, slot, &gpc, sizeof(gpc), render_groups_x_, instance_count);
+      if (computesRenderNormals()) {
+        const gpu::NormalsPushConstants npc{outputVertexCount(), instance_count, v, 1};
+        dispatch(cmd, render_normals_, slot, &npc, sizeof(npc), render_groups_x_, instance_count);
+      }
     }
     if (options().tangents) {
+      // A tangent reads its one-ring's positions and its output vertex's normal (gathered or
+      // computed just above): all of them first.
+      vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
       const gpu::TangentsPushConstants tpc{v, outputVertexCount(), instance_count, gathersRenderVertices() ? 1u : 0u};
       dispatch(cmd, tangents_, slot, &tpc, sizeof(tpc), gpu::workgroupsFor(outputVertexCount()), instance_count);
     }

@@ -127,6 +127,9 @@ class VulkanRuntime final : public DeformRuntime {
   void record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t instance_count) const;
   Status createGatherPipeline();
   Status createTangentsPipeline();
+  // instance_normals.comp over the topology's corners into `out` (slots' topology normals), or over
+  // the render vertices' (hard edges) into the slots' render normals; one set per slot.
+  Result<vk::ComputePipeline> createNormalsPipeline(bool render_vertices) const;
   // What the renderer reads: the render-vertex buffers when gathering, else the topology's.
   const vk::Buffer& outPositions(std::uint32_t slot) const;
   const vk::Buffer& outNormals(std::uint32_t slot) const;
@@ -135,7 +138,7 @@ class VulkanRuntime final : public DeformRuntime {
 
   struct Slot {
     vk::Buffer positions;         // capacity x V Float4
-    vk::Buffer normals;           // likewise, when normals are on
+    vk::Buffer normals;           // likewise, when normals are on (and not computesRenderNormals())
     vk::Buffer bounds;            // capacity BoundsKeys, host-visible
     vk::Buffer render_positions;  // capacity x R Float4, when gathersRenderVertices()
     vk::Buffer render_normals;    // likewise, when normals are on too
@@ -165,7 +168,10 @@ class VulkanRuntime final : public DeformRuntime {
   vk::Buffer folded_;  // capacity x C x (2N + 2) Float4: fold_series.comp's output, shared by the slots
   vk::ComputePipeline fold_;
   vk::ComputePipeline deform_;
-  vk::ComputePipeline normals_;
+  vk::ComputePipeline normals_;         // over the topology, when normals are on and not computesRenderNormals()
+  vk::ComputePipeline render_normals_;  // over the render vertices, when computesRenderNormals()
+  vk::Buffer render_corner_offsets_;    // RuntimeAsset::renderCornerOffsets, likewise
+  vk::Buffer render_corners_;           // RuntimeAsset::renderCorners, likewise
   vk::ComputePipeline gather_;   // render_gather.comp, when gathersRenderVertices()
   vk::Buffer render_topology_;   // RuntimeAsset::renderTopology, likewise
   std::uint32_t render_groups_x_ = 0;  // ceil(R / 64)

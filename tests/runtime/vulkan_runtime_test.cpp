@@ -345,6 +345,41 @@ TEST_F(GpuTest, RuntimeTangentsMatchTheCpuRuntime) {
   }
 }
 
+// Hard edges (render normals): instance_normals.comp over the render vertices against the CPU
+// runtime's computeRenderNormals, with tangents made orthogonal to each side's normal.
+TEST_F(GpuTest, RuntimeHardEdgesMatchTheCpuRuntime) {
+  const DeformAsset source = testing::withSeams(testing::cylinderAsset());
+  RuntimeAssetOptions asset_options = testing::presetOptions();
+  asset_options.render_normals = testing::hardEdgeNormals(source);
+  asset_options.render_tangents = testing::bindTangents(source);
+  Result<RuntimeAsset> asset = RuntimeAsset::create(source, asset_options);
+  ASSERT_TRUE(asset.ok() && asset->hasHardEdges()) << asset.status().toString();
+  for (const bool tangents : {false, true}) {
+    RuntimeOptions options = withCapacity(3);
+    options.render_layout = true;
+    options.tangents = tangents;
+    Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), *asset, options);
+    Result<CpuRuntime> cpu = CpuRuntime::create(*asset, options);
+    ASSERT_TRUE(gpu.ok() && cpu.ok()) << gpu.status().toString();
+    ASSERT_TRUE(gpu->setInstanceCount(3).ok() && cpu->setInstanceCount(3).ok());
+    for (std::uint32_t k = 0; k < 3; ++k) setBoth(*cpu, *gpu, k, InstanceState::atTime(0.9 * k + 0.4));
+    Result<std::uint64_t> g = gpu->submitFrame();
+    Result<std::uint64_t> c = cpu->submitFrame();
+    ASSERT_TRUE(g.ok() && c.ok()) << g.status().toString();
+    expectSameFrame(*cpu, *c, *gpu, *g, 3, tangents ? "hard edges, tangents" : "hard edges");
+    if (!tangents) continue;
+    double worst = 0.0;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      std::vector<gpu::Float4> expected(cpu->outputVertexCount()), actual(gpu->outputVertexCount());
+      ASSERT_TRUE(cpu->readTangents(*c, k, expected).ok() && gpu->readTangents(*g, k, actual).ok());
+      const auto gap = testing::worstGap(expected, actual);
+      EXPECT_LT(gap.gap, testing::kNormalTolerance) << "instance " << k << ": worst tangent " << gap.vertex;
+      worst = std::max(worst, gap.gap);
+    }
+    std::printf("hard edges: max |vulkan - cpu| tangents %.2e\n", worst);
+  }
+}
+
 TEST_F(GpuTest, RuntimeRejectsBadInputNamingTheProblem) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
   Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(2));
