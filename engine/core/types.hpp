@@ -55,6 +55,9 @@ struct FaceList {
 struct RenderLayout {
   std::vector<std::uint32_t> topology_of_render;  // render vertex -> topology vertex
   FaceList faces;                                 // faces over render vertices
+  // The input's bind normals per render vertex (a glTF's NORMAL), or empty: they tell hard edges
+  // from UV seams (smoothing_groups.hpp), so outputs keep the input's creases.
+  std::vector<Vec3> normals;
   bool empty() const { return topology_of_render.empty(); }
 };
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The vertex data of a glTF export in its output layout: the asset's render vertices when it came
 // from glTF (as `play` writes them), else its topology vertices; triangles, smooth normals of the
-// base shape, and at most 4 skin influences per vertex (glTF's JOINTS_0/WEIGHTS_0, ECOSYSTEM.md 2.2).
+// base shape (each side of the input's hard edges its own, when the asset kept the input's
+// normals), and at most 4 skin influences per vertex (glTF's JOINTS_0/WEIGHTS_0, ECOSYSTEM.md 2.2).
 #pragma once
 
 #include <array>

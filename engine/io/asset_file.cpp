@@ -40,6 +40,10 @@ constexpr std::uint32_t kSegments = fourcc("SEGM");
 constexpr std::array<std::uint32_t, 12> kRequired{kMeta,  kRest,           kFaces,     kRender,
                                                    kBindings, kCurves,     kCurveMaterials, kMaterials,
                                                    kInfluences, kBones,    kKeyPoses,  kSegments};
+// Optional sections, written only when the asset has their data; a version 1 reader that predates
+// one skips it as a later version's (the asset then plays as before, without what it adds).
+constexpr std::uint32_t kRenderNormals = fourcc("RNRM");  // the render layout's bind normals (hard edges)
+constexpr std::array<std::uint32_t, 1> kOptional{kRenderNormals};
 
 std::string tagName(std::uint32_t tag) {
   std::string name;
@@ -128,6 +132,12 @@ void writeSections(const DeformAsset& a, Writer& w) {
   w.u32s(a.render.topology_of_render);
   w.faces(a.render.faces);
   w.endSection();
+
+  if (!a.render.normals.empty()) {
+    w.beginSection(kRenderNormals);
+    w.vec3s(a.render.normals);
+    w.endSection();
+  }
 
   w.beginSection(kBindings);
   w.count(a.bindings.size());
@@ -311,6 +321,8 @@ void readSection(std::uint32_t tag, Reader& r, DeformAsset& a) {
   } else if (tag == kRender) {
     a.render.topology_of_render = r.u32s();
     a.render.faces = r.faces();
+  } else if (tag == kRenderNormals) {
+    a.render.normals = r.vec3s();
   } else if (tag == kBindings) {
     a.bindings.resize(r.count(24));
     for (CurveBinding& b : a.bindings) {
@@ -464,7 +476,10 @@ Result<DeformAsset> decodeAsset(const std::string& bytes, const std::string& sou
     }
     const std::string_view data = payload.substr(pos, static_cast<std::size_t>(size));
     pos += static_cast<std::size_t>(size);
-    if (std::find(kRequired.begin(), kRequired.end(), tag) == kRequired.end()) continue;  // a later version's
+    if (std::find(kRequired.begin(), kRequired.end(), tag) == kRequired.end() &&
+        std::find(kOptional.begin(), kOptional.end(), tag) == kOptional.end()) {
+      continue;  // a later version's
+    }
     if (seen[tag]) return parseError(source + ": section " + tagName(tag) + " appears twice");
     seen[tag] = true;
     Reader reader(data, tagName(tag));

@@ -4,7 +4,8 @@
 //                      u64 FNV-1a 64 checksum of the payload
 //   payload: tagged sections (u32 tag, u64 bytes, data) so later versions can add sections;
 //            readers skip tags they do not know. Version 1 writes (and requires) META REST FACE
-//            RNDR BIND CURV CMAT MATL INFL BONE KEYS SEGM, tags being the four ASCII letters.
+//            RNDR BIND CURV CMAT MATL INFL BONE KEYS SEGM, tags being the four ASCII letters,
+//            and RNRM (the render layout's bind normals) when the asset has them.
 // Doubles are stored bit-exactly: save -> load reproduces the asset exactly.
 #pragma once
 

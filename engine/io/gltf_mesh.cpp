@@ -15,6 +15,7 @@ constexpr std::array kFloatOnly{kFloat};
 constexpr std::array kQuantizedPositions{kFloat, kByte, kByteNorm, kUByte, kUByteNorm,
                                          kShort, kShortNorm, kUShort, kUShortNorm};
 constexpr std::array kQuantizedDeltas{kFloat, kByte, kByteNorm, kShort, kShortNorm};
+constexpr std::array kQuantizedNormals{kFloat, kByteNorm, kShortNorm};
 constexpr std::array kIndexFormats{kUByte, kUShort, kUInt};
 constexpr std::array kJointFormats{kUByte, kUShort};
 constexpr std::array kWeightFormats{kFloat, kUByteNorm, kUShortNorm};
@@ -116,6 +117,10 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
   const std::string mesh_name = "mesh " + std::to_string(mesh_index);
   if (mesh.primitives.empty()) return parseError(mesh_name + " has no primitives");
   MeshData out;
+  // NORMAL only tells hard edges from UV seams (RenderLayout::normals): kept when every primitive
+  // has it, since a primitive without it has no normals to compare.
+  bool normals = true;
+  for (const tinygltf::Primitive& prim : mesh.primitives) normals = normals && has(prim.attributes, "NORMAL");
   const std::size_t target_count = mesh.primitives.front().targets.size();
   out.target_deltas.resize(target_count);
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -138,6 +143,17 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
     const auto first = static_cast<std::uint32_t>(out.positions.size());
     for (std::size_t i = 0; i < n; ++i) out.positions.emplace_back(positions.at(i, 0), positions.at(i, 1), positions.at(i, 2));
     ODESKIN_TRY(readTriangles(model, prim, where, n, first, out.triangles, budget));
+    if (normals) {
+      const std::span<const AccessorFormat> normal_formats =
+          quantized ? std::span<const AccessorFormat>(kQuantizedNormals) : std::span<const AccessorFormat>(kFloatOnly);
+      ODESKIN_ASSIGN_OR_RETURN(AccessorData read, readAccessor(model, prim.attributes.at("NORMAL"),
+                                                               {where + " NORMAL", TINYGLTF_TYPE_VEC3, normal_formats},
+                                                               budget));
+      if (read.count != n) {
+        return parseError(where + ": NORMAL has " + std::to_string(read.count) + " entries, POSITION " + std::to_string(n));
+      }
+      for (std::size_t i = 0; i < n; ++i) out.normals.emplace_back(read.at(i, 0), read.at(i, 1), read.at(i, 2));
+    }
 
     Status status;
     const std::size_t sets = influenceSets(prim, where, status);

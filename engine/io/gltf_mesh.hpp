@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// One glTF mesh as render vertices (internal to odeskin_gltf): every primitive's POSITION,
+// One glTF mesh as render vertices (internal to odeskin_gltf): every primitive's POSITION, NORMAL,
 // JOINTS_n / WEIGHTS_n and morph-target POSITION deltas, primitives concatenated in file order,
 // triangles (indexed or not) re-indexed into the concatenation.
 #pragma once
@@ -22,6 +22,7 @@ struct MeshData {
   std::vector<std::uint32_t> joints;             // R x (4 influence_sets): skin joint indices, as stored
   std::vector<double> weights;                   // R x (4 influence_sets): decoded, not yet normalised
   std::vector<std::vector<Vec3>> target_deltas;  // T x R morph-target POSITION deltas (zeros if absent)
+  std::vector<Vec3> normals;                     // R NORMAL, as stored, when every primitive has it; else empty
 };
 
 // Reads mesh `mesh_index`. `quantized`: the file uses KHR_mesh_quantization, so POSITION and its

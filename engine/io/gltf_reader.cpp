@@ -247,6 +247,16 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
   out.render.topology_of_render = welded.topology_of_render;
   out.render.faces = triangleFaces(mesh.triangles);
   out.rest_positions = morph(welded.positions, deltas, default_weights);
+  // A file whose normals break the rules loses only its hard edges, with a word why.
+  const auto unusable = std::find_if(mesh.normals.begin(), mesh.normals.end(), [](const Vec3& n) {
+    return !std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z) || n == Vec3(0.0);
+  });
+  if (unusable == mesh.normals.end()) {
+    out.render.normals = std::move(mesh.normals);
+  } else {
+    out.warnings.push_back("NORMAL of vertex " + std::to_string(unusable - mesh.normals.begin()) +
+                           " is zero or not finite, so the mesh's hard edges (normal seams) are not kept");
+  }
 
   std::optional<Skinned> skinned;
   if (node.skin >= 0) {

@@ -32,7 +32,8 @@ struct GltfPoseRequest {
 // render vertices; render vertices with exactly equal POSITION are welded into topology vertices
 // (see gltf_weld.hpp for why exact): rest_positions / faces are over topology vertices (triangles
 // that weld to a segment are left out), render = {render vertex -> topology vertex, all triangles
-// over render vertices}. The mesh node's own transform is ignored (glTF: a skinned mesh is placed
+// over render vertices, and every render vertex's NORMAL when all primitives have it, as stored:
+// it tells hard edges from UV seams}. The mesh node's own transform is ignored (glTF: a skinned mesh is placed
 // by its joints only; an unskinned one is read in mesh space). Bind space is mesh space with the
 // default morph weights applied (node.weights, else mesh.weights, else zeros): rest_positions.
 //
@@ -47,7 +48,7 @@ struct GltfPoseRequest {
 //
 // Warnings (ExampleSet::warnings, naming the file): a time outside the animation's keyframes
 // (glTF holds the end keyframe there, so the pose repeats it), an animation that moves nothing
-// odeskin reads.
+// odeskin reads, a zero or non-finite NORMAL (the normals are then dropped).
 //
 // Errors name the file. kInvalidArgument: fewer than max(min_poses, 1) poses, a non-finite time, times without a
 // skin, an unknown animation (the message lists the available ones), a morph target out of range,

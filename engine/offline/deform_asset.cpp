@@ -130,6 +130,18 @@ Status validateDeformAsset(const DeformAsset& a) {
   for (std::uint32_t index : a.faces.indices) {
     if (index >= v_count) return invalidArgument("deform asset: a face uses vertex " + std::to_string(index));
   }
+  if (!a.render.normals.empty()) {
+    if (a.render.normals.size() != a.render.topology_of_render.size()) {
+      return invalidArgument("deform asset: " + std::to_string(a.render.normals.size()) + " render normals for " +
+                             std::to_string(a.render.topology_of_render.size()) + " render vertices");
+    }
+    for (std::size_t r = 0; r < a.render.normals.size(); ++r) {
+      const Vec3& n = a.render.normals[r];
+      if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z) || n == Vec3(0.0)) {
+        return invalidArgument("deform asset: render normal " + std::to_string(r) + " is zero or not finite");
+      }
+    }
+  }
   return validateInfluences(a.influences, v_count, a.bone_count);
 }
 

@@ -1,12 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Hard edges of a glTF asset's render layout (RuntimeAssetOptions::render_normals). glTF splits a
-// vertex for two reasons: a UV seam (the copies share a normal) and a hard edge (each copy has the
-// normal of its own faces). The runtime's normals are the welded surface's, which is right across
-// a UV seam and wrong across a hard edge, where it would smooth the crease away. Given the bind
-// normals, the copies of a topology vertex whose normals point the same way form one smoothing
-// group; a vertex with more than one group is on a hard edge, and each of its groups takes the
-// normal of the triangles its own copies belong to. Every other render vertex keeps its topology
-// vertex's corners, so its normal is the gathered one to the bit.
+// Hard edges of a glTF asset's render layout (RuntimeAssetOptions::render_normals). The runtime's
+// normals are the welded surface's, which is right across a UV seam and wrong across a hard edge,
+// where it would smooth the crease away. Given the bind normals, a vertex with more than one
+// smoothing group (engine/core/smoothing_groups.hpp) is on a hard edge, and each of its groups
+// takes the normal of the triangles its own copies belong to. Every other render vertex keeps its
+// topology vertex's corners, so its normal is the gathered one to the bit.
 #pragma once
 
 #include <cstdint>
@@ -19,11 +17,6 @@
 #include "runtime_layout.hpp"
 
 namespace odeskin {
-
-// Two bind normals are one smoothing group when they are within this angle (radians): wide enough
-// for a normal stored as normalized bytes (KHR_mesh_quantization, about 0.5 degree apart), far
-// below any crease an artist marks.
-inline constexpr double kSmoothingGroupAngle = 0.02;  // about 1.1 degrees
 
 // Per render vertex r, the corners its normal sums, over topology vertices (positions are the
 // topology's): instance_normals.comp's lists in render vertices, r's own position topology[r].

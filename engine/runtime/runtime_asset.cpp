@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "runtime_asset.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+
+#include <glm/geometric.hpp>
 
 #include "../io/asset_file.hpp"
 #include "../offline/residual_fit.hpp"
@@ -89,10 +93,19 @@ Result<RuntimeAsset> RuntimeAsset::create(const DeformAsset& asset, const Runtim
     ODESKIN_ASSIGN_OR_RETURN(r.tangents_, buildTangentLayout(asset.rest_positions, r.corner_offsets_, r.corners_,
                                                              asset.render.topology_of_render, options.render_tangents));
   }
-  if (!options.render_normals.empty()) {
+  std::vector<gpu::Float4> asset_normals;
+  if (options.render_normals.empty()) {
+    for (const Vec3& n : asset.render.normals) {
+      // Unit in double first: a valid normal 1e-300 long must not round to a float zero.
+      const Vec3 u = glm::normalize(n / std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)}));
+      asset_normals.push_back(gpu::Float4{static_cast<float>(u.x), static_cast<float>(u.y), static_cast<float>(u.z), 0.0f});
+    }
+  }
+  const std::span<const gpu::Float4> normals = options.render_normals.empty() ? asset_normals : options.render_normals;
+  if (!normals.empty()) {
     ODESKIN_ASSIGN_OR_RETURN(r.render_corners_,
                              buildRenderCorners(asset.render.topology_of_render, asset.vertexCount(), r.render_triangles_,
-                                                r.corner_offsets_, r.corners_, options.render_normals));
+                                                r.corner_offsets_, r.corners_, normals));
   }
   return r;
 }

@@ -51,7 +51,8 @@ struct RuntimeAssetOptions {
   // created with RuntimeOptions::tangents carry them through every frame (instance_tangents.hpp).
   std::vector<gpu::Float4> render_tangents;
   // Bind normals, one per render vertex as for render_tangents (a glTF's NORMAL), xyz non-zero.
-  // Empty: none. They only mark hard edges (hard_edges.hpp): copies of a vertex whose normals
+  // Empty: the asset's own (RenderLayout::normals: an asset fitted from a glTF with NORMAL keeps
+  // them), if any. They only mark hard edges (hard_edges.hpp): copies of a vertex whose normals
   // differ then each take the normal of their own triangles, so creases stay creased.
   std::vector<gpu::Float4> render_normals;
 };

@@ -8,6 +8,7 @@
 #include <string>
 #include <system_error>
 
+#include "engine/core/smoothing_groups.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/kernels/fourier_deform_job.hpp"
 
@@ -41,6 +42,9 @@ AssetStats assetStats(const DeformAsset& asset, std::uintmax_t file_bytes) {
   s.vertices = asset.vertexCount();
   s.render_vertices = asset.render.empty() ? s.vertices : asset.render.topology_of_render.size();
   s.faces = asset.render.empty() ? asset.faces.faceCount() : asset.render.faces.faceCount();
+  if (!asset.render.normals.empty()) {
+    s.hard_edge_vertices = smoothingGroups(asset.render.topology_of_render, asset.vertexCount(), asset.render.normals).hard_vertices;
+  }
   s.curves = asset.curveCount();
   std::set<std::uint32_t> parts;
   for (const IsoCurve& curve : asset.curves) parts.insert(curve.part);
@@ -67,7 +71,11 @@ AssetStats assetStats(const DeformAsset& asset, std::uintmax_t file_bytes) {
 void printAssetStats(std::ostream& out, const std::filesystem::path& path, const AssetStats& s) {
   out << "asset:          " << path.string() << "\n";
   out << "vertices:       " << s.vertices;
-  if (s.render_vertices != s.vertices) out << " (" << s.render_vertices << " render vertices)";
+  if (s.render_vertices != s.vertices) {
+    out << " (" << s.render_vertices << " render vertices";
+    if (s.hard_edge_vertices > 0) out << ", " << s.hard_edge_vertices << " on hard edges";
+    out << ")";
+  }
   out << "\nfaces:          " << s.faces << "\n";
   out << "curves:         " << s.curves << "\n";
   out << "parts:          " << s.parts << (s.curves > 0 && s.parts == 0 ? " (curves not stored)" : "") << "\n";

@@ -17,6 +17,7 @@ inline constexpr double kBakedFps = 30.0;
 struct AssetStats {
   std::size_t vertices = 0;           // V topology vertices
   std::size_t render_vertices = 0;    // glTF render vertices (== V without a render layout)
+  std::size_t hard_edge_vertices = 0; // topology vertices the input's normals put on a hard edge
   std::size_t faces = 0;
   std::size_t curves = 0;             // C
   std::size_t parts = 0;              // distinct IsoCurve::part values (0 when curves are not stored)

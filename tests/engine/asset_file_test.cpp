@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "engine/io/asset_file.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <filesystem>
 #include <fstream>
@@ -76,6 +77,7 @@ void expectSameAsset(const DeformAsset& a, const DeformAsset& b) {
   expectSameFaces(a.faces, b.faces);
   EXPECT_EQ(a.render.topology_of_render, b.render.topology_of_render);
   expectSameFaces(a.render.faces, b.render.faces);
+  expectSameVec3s(a.render.normals, b.render.normals, "render normal");
   ASSERT_EQ(a.bindings.size(), b.bindings.size());
   for (std::size_t i = 0; i < a.bindings.size(); ++i) {
     EXPECT_EQ(a.bindings[i].curve_a, b.bindings[i].curve_a) << i;
@@ -273,6 +275,37 @@ TEST_F(AssetFile, UnknownSectionsAreSkipped) {
   Result<DeformAsset> r = decodeAsset(withPayload(*bytes_, extra + payload + extra), "newer.odsk");
   ASSERT_TRUE(r.ok()) << r.status().toString();
   expectSameAsset(*asset_, *r);
+}
+
+// A render layout's bind normals (hard edges) go in the optional RNRM section, written only when
+// there are some: files without it load as before, and a reader that predates it skips it.
+TEST_F(AssetFile, RenderNormalsAreAnOptionalSection) {
+  DeformAsset asset = *asset_;
+  for (std::size_t r = 0; r < asset.render.topology_of_render.size(); ++r) {
+    asset.render.normals.emplace_back(0.0, 1.0, r == 0 ? 0.5 : std::nextafter(0.0, 1.0));
+  }
+  Result<std::string> bytes = encodeAsset(asset);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().toString();
+  const auto parts = sections(*bytes);
+  ASSERT_EQ(parts.size(), 13u);
+  EXPECT_EQ(std::count_if(parts.begin(), parts.end(), [](const auto& p) { return p.first == "RNRM"; }), 1);
+  Result<DeformAsset> decoded = decodeAsset(*bytes, "normals.odsk");
+  ASSERT_TRUE(decoded.ok()) << decoded.status().toString();
+  expectSameAsset(asset, *decoded);
+  std::string without;
+  for (const auto& [tag, section] : parts) {
+    if (tag != "RNRM") without += section;
+  }
+  decoded = decodeAsset(withPayload(*bytes, without), "older.odsk");
+  ASSERT_TRUE(decoded.ok()) << decoded.status().toString();
+  EXPECT_TRUE(decoded->render.normals.empty());
+
+  asset.render.normals.pop_back();
+  EXPECT_NE(encodeAsset(asset).status().message().find("render normals for"), std::string::npos);
+  asset.render.normals.emplace_back(0.0, 0.0, 0.0);
+  EXPECT_NE(encodeAsset(asset).status().message().find("render normal " + std::to_string(asset.render.normals.size() - 1) +
+                                                       " is zero or not finite"),
+            std::string::npos);
 }
 
 TEST_F(AssetFile, MissingDuplicateOrOverrunningSectionsAreErrors) {

@@ -509,6 +509,84 @@ TEST_F(GltfExportTest, RenderLayoutOfAGltfInputIsWritten) {
   EXPECT_EQ(report.vertices, asset.render.topology_of_render.size());
 }
 
+// The input's hard edges (RenderLayout::normals that disagree) stay creased in the export: each
+// side's NORMAL is the normal of its own faces, while a copy with the same normal as its vertex's
+// first (a UV seam) keeps the welded one.
+TEST_F(GltfExportTest, HardEdgesOfTheInputStayCreased) {
+  DeformAsset asset = armAsset({skinMaterial()}, false);
+  const std::uint32_t v = static_cast<std::uint32_t>(asset.vertexCount());
+  std::vector<Vec3> area(v, Vec3(0.0));
+  for (std::size_t f = 0; f < asset.faces.faceCount(); ++f) {
+    const std::uint32_t b = asset.faces.face_offsets[f], e = asset.faces.face_offsets[f + 1];
+    for (std::uint32_t k = b + 1; k + 1 < e; ++k) {
+      const Vec3& a = asset.rest_positions[asset.faces.indices[b]];
+      const Vec3 n = glm::cross(asset.rest_positions[asset.faces.indices[k]] - a, asset.rest_positions[asset.faces.indices[k + 1]] - a);
+      for (std::uint32_t c = b; c < e; ++c) area[asset.faces.indices[c]] += n;
+    }
+  }
+  for (std::uint32_t i = 0; i < v; ++i) {
+    asset.render.topology_of_render.push_back(i);
+    asset.render.normals.push_back(glm::normalize(area[i]));
+  }
+  asset.render.faces = asset.faces;
+  std::vector<bool> turned(v, false);  // the render copy turned 40 degrees: a hard edge
+  for (std::size_t f = 0; f < asset.faces.faceCount(); f += 7) {
+    std::uint32_t& corner = asset.render.faces.indices[asset.faces.face_offsets[f]];
+    const std::uint32_t i = corner;
+    Vec3 n = glm::normalize(area[i]);
+    if (f % 14 == 7) {
+      n = std::cos(0.7) * n + std::sin(0.7) * glm::normalize(glm::cross(n, std::fabs(n.z) < 0.9 ? Vec3(0, 0, 1) : Vec3(1, 0, 0)));
+      turned.push_back(true);
+    } else {
+      turned.push_back(false);
+    }
+    asset.render.topology_of_render.push_back(i);
+    asset.render.normals.push_back(n);
+    corner = static_cast<std::uint32_t>(asset.render.topology_of_render.size() - 1);
+  }
+  std::vector<bool> hard(v, false);
+  for (std::size_t r = v; r < turned.size(); ++r) {
+    if (turned[r]) hard[asset.render.topology_of_render[r]] = true;
+  }
+  const fs::path path = dir_ / "arm_hard_edges.glb";
+  ASSERT_TRUE(exportGltf(asset, path, GltfExportOptions{}).ok());
+  GltfPlayback gltf(path);
+  ASSERT_TRUE(gltf.ok());
+  const tinygltf::Primitive& prim = gltf.model().meshes.at(0).primitives.at(0);
+  const std::vector<double> positions = readAccessor(gltf.model(), prim.attributes.at("POSITION"));
+  const std::vector<double> normals = readAccessor(gltf.model(), prim.attributes.at("NORMAL"));
+  ASSERT_EQ(normals.size(), 3 * asset.render.topology_of_render.size());
+  auto at = [](const std::vector<double>& xs, std::size_t r) { return Vec3(xs[3 * r], xs[3 * r + 1], xs[3 * r + 2]); };
+  // Each render face's fan normal goes to its corners' groups: a hard vertex's turned and
+  // unturned copies apart, every other vertex's copies together.
+  auto group = [&](std::uint32_t r) {
+    const std::uint32_t i = asset.render.topology_of_render[r];
+    return 2 * std::size_t{i} + (hard[i] && turned[r] ? 1 : 0);
+  };
+  std::vector<Vec3> sums(2 * std::size_t{v}, Vec3(0.0));
+  const FaceList& faces = asset.render.faces;
+  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+    const std::uint32_t b = faces.face_offsets[f], e = faces.face_offsets[f + 1];
+    Vec3 n(0.0);
+    for (std::uint32_t k = b + 1; k + 1 < e; ++k) {
+      const Vec3 a = at(positions, faces.indices[b]);
+      n += glm::cross(at(positions, faces.indices[k]) - a, at(positions, faces.indices[k + 1]) - a);
+    }
+    for (std::uint32_t c = b; c < e; ++c) sums[group(faces.indices[c])] += n;
+  }
+  double worst = 0.0, crease = 0.0;
+  for (std::uint32_t r = 0; r < asset.render.topology_of_render.size(); ++r) {
+    const Vec3 expected = glm::normalize(sums[group(r)]);
+    worst = std::max(worst, glm::length(at(normals, r) - expected));
+    const std::uint32_t i = asset.render.topology_of_render[r];
+    if (hard[i]) crease = std::max(crease, std::acos(std::min(1.0, glm::dot(at(normals, r), at(normals, i)))));
+  }
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_GT(crease, 0.1);  // the sides of a crease differ
+  std::printf("hard edges: max |NORMAL - own faces' normal| %.2e, creases up to %.1f degrees\n", worst,
+              crease * 180.0 / 3.141592653589793);
+}
+
 TEST_F(GltfExportTest, CylinderWithItsRigStaticAndSkin) {
   const DeformAsset skin = fitted(testing::cylinderWithRig(true, true), skinMaterial());
   ASSERT_EQ(skin.segments.size(), 3u);

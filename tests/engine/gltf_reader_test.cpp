@@ -21,9 +21,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/io/asset_file.hpp"
 #include "engine/io/text_tokens.hpp"
 #include "engine/offline/deform_player.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
+#include "engine/runtime/runtime_asset.hpp"
 #include <tiny_gltf.h>
 
 namespace odeskin {
@@ -173,6 +175,8 @@ struct TubeOptions {
   int position_type = kFloatType;
   bool position_normalized = false;
   double position_scale = 1.0;    // stored = position x scale (for quantized positions)
+  std::function<Vec3(int ring, int column)> normal;  // NORMAL of each vertex; none when empty
+  int normal_type = kFloatType;   // float, or byte stored normalized (x 127)
   std::function<void(Prim&)> tweak;
 };
 
@@ -250,6 +254,15 @@ tinygltf::Primitive emit(Builder& b, const Prim& p, const TubeOptions& o, bool s
   }
   prim.attributes["POSITION"] = b.accessor(positions, o.position_type, TINYGLTF_TYPE_VEC3, o.position_normalized);
   prim.attributes["TEXCOORD_0"] = b.accessor(uvs, kFloatType, TINYGLTF_TYPE_VEC2);
+  if (o.normal) {
+    std::vector<double> normals;
+    const double scale = o.normal_type == kByteType ? 127.0 : 1.0;
+    for (std::size_t i = 0; i < p.positions.size(); ++i) {
+      const Vec3 n = o.normal(p.ring[i], p.column[i]);
+      for (int k = 0; k < 3; ++k) normals.push_back(std::round(n[k] * scale * 1e6) / 1e6);
+    }
+    prim.attributes["NORMAL"] = b.accessor(normals, o.normal_type, TINYGLTF_TYPE_VEC3, o.normal_type != kFloatType);
+  }
   const bool normalized = o.weight_type != kFloatType;
   prim.attributes["JOINTS_0"] = b.accessor(flat(p.joints0), o.joint_type, TINYGLTF_TYPE_VEC4);
   prim.attributes["WEIGHTS_0"] = b.accessor(flat(p.weights0), o.weight_type, TINYGLTF_TYPE_VEC4, normalized);
@@ -532,6 +545,50 @@ TEST(GltfReader, TriangleCollapsedByWeldingStaysOnlyInRenderFaces) {
   EXPECT_EQ(examples->faces.faceCount(), 16u);
 }
 
+// The tube's square corners, outward; the seam column's copy (column 4) of column 0 either the same
+// (a UV seam) or turned 53 degrees (a hard edge).
+Vec3 cornerNormal(int column, bool hard_seam) {
+  if (column == 4 && hard_seam) return Vec3(0.6, 0.0, 0.8);
+  const auto& c = kSquare[static_cast<std::size_t>(column)];
+  return Vec3(c[0], 0.0, c[1]);
+}
+
+TEST(GltfReader, NormalsAreKeptPerRenderVertex) {
+  TubeOptions o;
+  o.normal = [](int, int column) { return cornerNormal(column, true); };
+  auto examples = read(write(makeTube(o).model, "normals.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  ASSERT_EQ(examples->render.normals.size(), 15u);
+  for (std::size_t r = 0; r < 15; ++r) {
+    const Vec3 n = cornerNormal(static_cast<int>(r % kColumns), true);  // as float32 stores it
+    EXPECT_EQ(examples->render.normals[r], Vec3(static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z)))
+        << "render vertex " << r;
+  }
+  EXPECT_TRUE(examples->warnings.empty());
+
+  // KHR_mesh_quantization's normalized bytes decode to within 1/127.
+  o.normal_type = kByteType;
+  o.position_type = kFloatType;
+  tinygltf::Model quantized = makeTube(o).model;
+  quantized.extensionsRequired = quantized.extensionsUsed = {"KHR_mesh_quantization"};
+  examples = read(write(quantized, "normals-q.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  ASSERT_EQ(examples->render.normals.size(), 15u);
+  for (std::size_t r = 0; r < 15; ++r) {
+    EXPECT_LT(glm::length(examples->render.normals[r] - cornerNormal(static_cast<int>(r % kColumns), true)), 1.0 / 127.0);
+  }
+
+  // A zero normal drops them all, with a warning naming the file and the vertex.
+  o.normal_type = kFloatType;
+  o.normal = [](int ring, int column) { return ring == 1 && column == 2 ? Vec3(0.0) : cornerNormal(column, true); };
+  examples = read(write(makeTube(o).model, "zero-normal.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  EXPECT_TRUE(examples->render.normals.empty());
+  ASSERT_EQ(examples->warnings.size(), 1u);
+  EXPECT_NE(examples->warnings[0].find("zero-normal.glb: NORMAL of vertex 7 is zero or not finite"), std::string::npos)
+      << examples->warnings[0];
+}
+
 TEST(GltfReader, SkeletonFromSkin) {
   const auto examples = read(write(makeTube().model, "tube.glb", true), {1.0});
   ASSERT_TRUE(examples.ok()) << examples.status().toString();
@@ -564,6 +621,29 @@ TEST(GltfPipeline, FittedAssetReproducesAnimatedPosesInRenderLayout) {
     for (std::size_t i = 0; i < out.size(); ++i) {
       EXPECT_LT(glm::length(out[i] - examples->poses[k][i]), 1e-4 * longestBoxSide(examples->poses[k])) << k;
     }
+  }
+}
+
+// The bind normals travel from the glTF through the fit and the .odsk file to the runtime, which
+// finds the hard edge of the seam (one per ring) and none where the seam is only a UV seam.
+TEST(GltfPipeline, HardEdgesSurviveTheFitAndTheAssetFile) {
+  for (const bool hard_seam : {true, false}) {
+    TubeOptions o;
+    o.normal = [hard_seam](int, int column) { return cornerNormal(column, hard_seam); };
+    const auto examples = read(write(makeTube(o).model, "hard.glb", true), {0.5, 1.0});
+    ASSERT_TRUE(examples.ok()) << examples.status().toString();
+    Result<PipelineResult> fit = runFitPipeline(*examples, PipelineOptions{});
+    ASSERT_TRUE(fit.ok()) << fit.status().toString();
+    ASSERT_EQ(fit->asset.render.normals, examples->render.normals);
+    Result<std::string> bytes = encodeAsset(fit->asset);
+    ASSERT_TRUE(bytes.ok());
+    Result<DeformAsset> loaded = decodeAsset(*bytes, "hard.odsk");
+    ASSERT_TRUE(loaded.ok()) << loaded.status().toString();
+    EXPECT_EQ(loaded->render.normals, fit->asset.render.normals);
+    Result<RuntimeAsset> runtime_asset = RuntimeAsset::create(*loaded);
+    ASSERT_TRUE(runtime_asset.ok()) << runtime_asset.status().toString();
+    EXPECT_EQ(runtime_asset->hasHardEdges(), hard_seam);
+    EXPECT_EQ(runtime_asset->hardEdgeVertices(), hard_seam ? 3u : 0u);
   }
 }
 

@@ -288,6 +288,22 @@ TEST_F(Cli, InfoNumbers) {
   EXPECT_NE(text.find("coefficients:   1260 floats"), std::string::npos) << text;
   EXPECT_NE(text.find("31 frames x V x 3 float32"), std::string::npos) << text;
   EXPECT_NE(text.find("file bytes:     " + std::to_string(bytes) + " B"), std::string::npos) << text;
+
+  // A render layout whose bind normals split vertex 0 into the two sides of a hard edge.
+  DeformAsset seamed = *asset_;
+  for (std::uint32_t i = 0; i < v; ++i) seamed.render.topology_of_render.push_back(i);
+  seamed.render.topology_of_render.push_back(0);
+  seamed.render.faces = seamed.faces;
+  seamed.render.faces.indices[0] = static_cast<std::uint32_t>(v);
+  seamed.render.normals.assign(v + 1, Vec3(0.0, 0.0, 1.0));
+  seamed.render.normals.back() = Vec3(1.0, 0.0, 0.0);
+  const AssetStats h = assetStats(seamed, bytes);
+  EXPECT_EQ(h.render_vertices, v + 1);
+  EXPECT_EQ(h.hard_edge_vertices, 1u);
+  std::ostringstream hard_text;
+  printAssetStats(hard_text, "seamed.odsk", h);
+  EXPECT_NE(hard_text.str().find("(" + std::to_string(v + 1) + " render vertices, 1 on hard edges)"), std::string::npos)
+      << hard_text.str();
 }
 
 class CliOnGpu : public testing::GpuTest {};
