@@ -12,6 +12,29 @@
 namespace odeskin {
 namespace {
 
+// Face rows that hold together: offsets from 0, never decreasing, ending at the index count, and
+// every index a vertex of the `vertex_count`. A .odsk file's rows are read as stored, and the
+// runtime and the export walk them.
+Status checkFaces(const std::string& what, const FaceList& faces, std::size_t vertex_count) {
+  const std::vector<std::uint32_t>& offsets = faces.face_offsets;
+  if (offsets.empty() || offsets.front() != 0 || offsets.back() != faces.indices.size()) {
+    return invalidArgument("deform asset: the " + what + " rows do not span the " +
+                           std::to_string(faces.indices.size()) + " " + what + " indices");
+  }
+  for (std::size_t f = 0; f + 1 < offsets.size(); ++f) {
+    if (offsets[f + 1] < offsets[f]) {
+      return invalidArgument("deform asset: " + what + " " + std::to_string(f) + " ends before it starts");
+    }
+  }
+  for (std::uint32_t index : faces.indices) {
+    if (index >= vertex_count) {
+      return invalidArgument("deform asset: a " + what + " uses vertex " + std::to_string(index) + " of " +
+                             std::to_string(vertex_count));
+    }
+  }
+  return okStatus();
+}
+
 Status fieldSize(const std::string& field, std::size_t got, std::size_t expected) {
   if (got == expected) return okStatus();
   return invalidArgument("deform asset: " + field + " has " + std::to_string(got) + " entries, expected " +
@@ -121,15 +144,8 @@ Status validateDeformAsset(const DeformAsset& a) {
   for (std::uint32_t t : a.render.topology_of_render) {
     if (t >= v_count) return invalidArgument("deform asset: render vertex maps to topology vertex " + std::to_string(t));
   }
-  for (std::uint32_t index : a.render.faces.indices) {
-    if (index >= a.render.topology_of_render.size()) {
-      return invalidArgument("deform asset: a render face uses vertex " + std::to_string(index) + " of " +
-                             std::to_string(a.render.topology_of_render.size()));
-    }
-  }
-  for (std::uint32_t index : a.faces.indices) {
-    if (index >= v_count) return invalidArgument("deform asset: a face uses vertex " + std::to_string(index));
-  }
+  ODESKIN_TRY(checkFaces("render face", a.render.faces, a.render.topology_of_render.size()));
+  ODESKIN_TRY(checkFaces("face", a.faces, v_count));
   if (!a.render.normals.empty()) {
     if (a.render.normals.size() != a.render.topology_of_render.size()) {
       return invalidArgument("deform asset: " + std::to_string(a.render.normals.size()) + " render normals for " +

@@ -308,6 +308,22 @@ TEST_F(AssetFile, RenderNormalsAreAnOptionalSection) {
             std::string::npos);
 }
 
+// Face rows are checked as a whole, not only their indices: the runtime and the export walk them
+// (fuzz_odsk, tests/fuzz/regressions/odsk/face-rows-past-the-indices.odsk: a row past the indices
+// read out of bounds in RuntimeAsset::create).
+TEST_F(AssetFile, FaceRowsMustSpanTheirIndices) {
+  DeformAsset asset = *asset_;
+  asset.faces.face_offsets.back() += 3;
+  EXPECT_NE(encodeAsset(asset).status().message().find("the face rows do not span the"), std::string::npos);
+  asset = *asset_;
+  std::swap(asset.render.faces.face_offsets[1], asset.render.faces.face_offsets[2]);
+  EXPECT_NE(encodeAsset(asset).status().message().find("render face 1 ends before it starts"), std::string::npos)
+      << encodeAsset(asset).status().message();
+  asset = *asset_;
+  asset.faces.face_offsets.front() = 1;
+  EXPECT_EQ(validateDeformAsset(asset).code(), StatusCode::kInvalidArgument);
+}
+
 TEST_F(AssetFile, MissingDuplicateOrOverrunningSectionsAreErrors) {
   const auto parts = sections(*bytes_);
   ASSERT_EQ(parts.size(), 12u);

@@ -3,7 +3,8 @@
 // input is decoded as it is, then again with the header's payload size and checksum made to match
 // (else nearly every mutation of the payload would stop at the checksum and the section parsers
 // behind it would never be reached). An accepted asset must encode back to a file that decodes to
-// the same bytes, and must play: validateDeformAsset is what keeps the player in bounds.
+// the same bytes, and must play: validateDeformAsset is what keeps the player in bounds. The
+// runtime must build its asset (packing, corners, hard edges) from it or refuse it.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -13,6 +14,7 @@
 
 #include "engine/io/asset_file.hpp"
 #include "engine/offline/deform_player.hpp"
+#include "engine/runtime/runtime_asset.hpp"
 #include "fuzz_checks.hpp"
 
 namespace {
@@ -31,6 +33,10 @@ void check(const std::string& bytes) {
   fuzz::require(again.ok(), "an encoded asset does not decode: " + again.status().toString());
   const Result<std::string> reencoded = encodeAsset(*again);
   fuzz::require(reencoded.ok() && *reencoded == *encoded, "encode(decode(encode(asset))) differs");
+
+  // The runtime's packing, time bases and render corners (hard edges from the asset's normals)
+  // must accept or refuse it, never crash.
+  (void)RuntimeAsset::create(*asset);
 
   const Result<DeformPlayer> player = DeformPlayer::create(*asset);
   if (!player.ok()) return;  // e.g. a material whose time basis has no solution: refused, not played

@@ -47,6 +47,16 @@ int main(int argc, char** argv) {
   Result<DeformAsset> asset = fitDeformAsset(arm->fit_input, fit);
   if (!asset.ok()) return fail(asset.status().toString());
   if (Status s = saveAsset(folder / "odsk" / "arm.odsk", *asset); !s.ok()) return fail(s.toString());
+  // The same with a render layout whose bind normals put vertex 0 on a hard edge (the optional
+  // RNRM section): its first face takes a second copy of it, with another normal.
+  DeformAsset hard = *asset;
+  for (std::uint32_t i = 0; i < hard.vertexCount(); ++i) hard.render.topology_of_render.push_back(i);
+  hard.render.topology_of_render.push_back(hard.faces.indices[0]);
+  hard.render.faces = hard.faces;
+  hard.render.faces.indices[0] = static_cast<std::uint32_t>(hard.vertexCount());
+  hard.render.normals.assign(hard.render.topology_of_render.size(), Vec3(0.0, 0.0, 1.0));
+  hard.render.normals.back() = Vec3(1.0, 0.0, 0.0);
+  if (Status s = saveAsset(folder / "odsk" / "arm-hard-edges.odsk", hard); !s.ok()) return fail(s.toString());
 
   GltfExportOptions compact;
   const fs::path glb = folder / "gltf" / "arm-compact.glb";
