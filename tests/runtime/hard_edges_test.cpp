@@ -115,7 +115,7 @@ TEST(CpuRuntime, HardEdgeNormalsAreEachSidesOwn) {
     const auto welded = read(gathered, *gathered_frame, k, 1);
     for (std::size_t r = 0; r < normals.size(); ++r) {
       if (topology[r] >= kHardCopies) {
-        ASSERT_EQ(0, std::memcmp(&normals[r], &welded[r], sizeof(gpu::Float4))) << "render vertex " << r;
+        ASSERT_EQ(testing::bitsOf(normals[r]), testing::bitsOf(welded[r])) << "render vertex " << r;
         continue;
       }
       // This side's own triangles, in double, from the frame's positions.

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -198,6 +200,12 @@ inline std::vector<Vec3> referencePositions(const RuntimeAsset& runtime_asset, s
   }
   EXPECT_TRUE(referenceJob(played, segment, basis, matrices, out).run().ok());
   return out;
+}
+
+// The bits of one output entry, for exact comparisons (-0 and +0, NaNs told apart).
+inline std::array<std::uint32_t, 4> bitsOf(const gpu::Float4& f) {
+  return {std::bit_cast<std::uint32_t>(f.x), std::bit_cast<std::uint32_t>(f.y), std::bit_cast<std::uint32_t>(f.z),
+          std::bit_cast<std::uint32_t>(f.w)};
 }
 
 // Max |a - b| over the vertices, and the vertex where it occurs.

@@ -200,7 +200,7 @@ TEST(ComputeVertexTangents, IsTheScalarFormToTheBit) {
     const float length = glm::length(t);
     t = length > 0.0f ? t / length : glm::vec3(0.0f);
     const gpu::Float4 expected{t.x, t.y, t.z, tables.frames[i].handedness};
-    ASSERT_EQ(0, std::memcmp(&expected, &tangents[i], sizeof(expected))) << "vertex " << i;
+    ASSERT_EQ(testing::bitsOf(expected), testing::bitsOf(tangents[i])) << "vertex " << i;
   }
   EXPECT_EQ(vec(tangents[97]), glm::vec3(0.0f));
   EXPECT_EQ(tangents[97].w, -1.0f);
