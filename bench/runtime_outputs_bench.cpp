@@ -17,36 +17,29 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "engine/runtime/cpu_runtime.hpp"
+#include "engine/runtime/instance_outputs.hpp"
 
 namespace odeskin::bench {
 namespace {
 
 constexpr std::uint32_t kInstances = 16;
 
-// Unit tangents orthogonal to each vertex's area-weighted normal, turning across the surface.
-std::vector<gpu::Float4> tangentField(const DeformAsset& asset) {
-  std::vector<Vec3> normals(asset.vertexCount(), Vec3(0.0));
-  const FaceList& faces = asset.faces;
-  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
-    const std::uint32_t a = faces.indices[faces.face_offsets[f]];
-    for (std::uint32_t k = faces.face_offsets[f] + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
-      const std::uint32_t b = faces.indices[k], c = faces.indices[k + 1];
-      const Vec3 n = glm::cross(asset.rest_positions[b] - asset.rest_positions[a],
-                                asset.rest_positions[c] - asset.rest_positions[a]);
-      for (const std::uint32_t i : {a, b, c}) normals[i] += n;
-    }
-  }
-  std::vector<gpu::Float4> out(asset.vertexCount());
+// Unit tangents orthogonal to each vertex's normal (the runtime's own, of the rest mesh), turning
+// across the surface.
+std::vector<gpu::Float4> tangentField(const RuntimeAsset& plain) {
+  const std::vector<gpu::Float4>& rest = plain.packed().rest_positions;
+  std::vector<gpu::Float4> normals(rest.size());
+  computeVertexNormals(plain.cornerOffsets(), plain.corners(), rest, normals);
+  std::vector<gpu::Float4> out(rest.size());
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double turn = 0.01 * static_cast<double>(i);
     const Vec3 axis = glm::normalize(Vec3(std::cos(turn), std::sin(turn), 0.5));
-    const double length = glm::length(normals[i]);
-    const Vec3 n = length > 0.0 ? normals[i] / length : Vec3(0.0);
+    const Vec3 n(normals[i].x, normals[i].y, normals[i].z);
     const Vec3 t = axis - n * glm::dot(n, axis);
-    const double t_length = glm::length(t);
-    out[i] = t_length > 1e-6 ? gpu::Float4{static_cast<float>(t.x / t_length), static_cast<float>(t.y / t_length),
-                                           static_cast<float>(t.z / t_length), 1.0f}
-                             : gpu::Float4{0.0f, 0.0f, 0.0f, 1.0f};
+    const double length = glm::length(t);
+    out[i] = length > 1e-6 ? gpu::Float4{static_cast<float>(t.x / length), static_cast<float>(t.y / length),
+                                         static_cast<float>(t.z / length), 1.0f}
+                           : gpu::Float4{0.0f, 0.0f, 0.0f, 1.0f};
   }
   return out;
 }
@@ -64,9 +57,10 @@ const RuntimeAsset& catAsset() {
     std::fprintf(stderr, "odeskin_runtime_outputs_bench: %s\n", fitted.status().toString().c_str());
     std::_Exit(1);  // not exit(), which is not thread-safe
   }
+  Result<RuntimeAsset> plain = RuntimeAsset::create(fitted->asset);
   RuntimeAssetOptions options;
-  options.render_tangents = tangentField(fitted->asset);
-  Result<RuntimeAsset> made = RuntimeAsset::create(fitted->asset, options);
+  if (plain.ok()) options.render_tangents = tangentField(*plain);
+  Result<RuntimeAsset> made = plain.ok() ? RuntimeAsset::create(fitted->asset, options) : std::move(plain);
   if (!made.ok()) {
     std::fprintf(stderr, "odeskin_runtime_outputs_bench: %s\n", made.status().toString().c_str());
     std::_Exit(1);  // not exit(), which is not thread-safe

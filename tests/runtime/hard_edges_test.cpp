@@ -21,6 +21,8 @@ namespace odeskin {
 namespace {
 
 using testing::bindTangents;
+using testing::Output;
+using testing::readOutput;
 using testing::withSeams;
 
 using testing::hardEdgeNormals;
@@ -45,14 +47,6 @@ CpuRuntime makeRuntime(const RuntimeAsset& asset, std::uint32_t capacity, bool t
   return std::move(r).value();
 }
 
-std::vector<gpu::Float4> read(DeformRuntime& rt, std::uint64_t frame, std::uint32_t instance, int what) {
-  std::vector<gpu::Float4> out(rt.outputVertexCount());
-  const Status status = what == 0   ? rt.readPositions(frame, instance, out)
-                        : what == 1 ? rt.readNormals(frame, instance, out)
-                                    : rt.readTangents(frame, instance, out);
-  EXPECT_TRUE(status.ok()) << status.toString();
-  return out;
-}
 
 Vec3 xyz(const gpu::Float4& f) { return {f.x, f.y, f.z}; }
 
@@ -111,8 +105,10 @@ TEST(CpuRuntime, HardEdgeNormalsAreEachSidesOwn) {
   const std::span<const std::uint32_t> triangles = hard.renderTriangleIndices();
   double worst = 0.0, turn = 0.0;
   for (std::uint32_t k = 0; k < 5; ++k) {
-    const auto positions = read(rt, *frame, k, 0), normals = read(rt, *frame, k, 1), tangents = read(rt, *frame, k, 2);
-    const auto welded = read(gathered, *gathered_frame, k, 1);
+    const auto positions = readOutput(rt, *frame, k, Output::kPositions);
+    const auto normals = readOutput(rt, *frame, k, Output::kNormals);
+    const auto tangents = readOutput(rt, *frame, k, Output::kTangents);
+    const auto welded = readOutput(gathered, *gathered_frame, k, Output::kNormals);
     for (std::size_t r = 0; r < normals.size(); ++r) {
       if (topology[r] >= kHardCopies) {
         ASSERT_EQ(testing::bitsOf(normals[r]), testing::bitsOf(welded[r])) << "render vertex " << r;
@@ -141,9 +137,10 @@ TEST(CpuRuntime, HardEdgeNormalsAreEachSidesOwn) {
               worst, turn * 180.0 / M_PI);
   EXPECT_EQ(v + 20, hard.renderVertexCount());
 
-  for (const int what : {1, 2}) {
-    const auto rounds = read(rt, *frame, 0, what), alone = read(spread, *spread_frame, 0, what);
-    EXPECT_EQ(0, std::memcmp(rounds.data(), alone.data(), rounds.size() * sizeof(gpu::Float4))) << (what == 1 ? "normals" : "tangents");
+  for (const Output what : {Output::kNormals, Output::kTangents}) {
+    const auto rounds = readOutput(rt, *frame, 0, what), alone = readOutput(spread, *spread_frame, 0, what);
+    EXPECT_EQ(0, std::memcmp(rounds.data(), alone.data(), rounds.size() * sizeof(gpu::Float4)))
+        << (what == Output::kNormals ? "normals" : "tangents");
   }
 }
 

@@ -20,6 +20,7 @@
 #include "engine/offline/deform_player.hpp"
 #include "engine/offline/residual_fit.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
+#include "engine/runtime/deform_runtime.hpp"
 #include "engine/runtime/runtime_asset.hpp"
 
 namespace odeskin::testing {
@@ -92,11 +93,8 @@ inline DeformAsset withSeams(const DeformAsset& asset) {
   return out;
 }
 
-// Bind tangents for every render vertex of `asset`, as an engine's glTF would give them: unit,
-// orthogonal to the bind vertex normal (area-weighted, over the topology's polygon fans), turning
-// round the surface from vertex to vertex, a seam's second copy (withSeams) pointing another way
-// than its first, and every third vertex left-handed (w = -1).
-inline std::vector<gpu::Float4> bindTangents(const DeformAsset& asset) {
+// The bind mesh's vertex normals, area-weighted over the topology's polygon fans (not normalised).
+inline std::vector<Vec3> bindVertexNormals(const DeformAsset& asset) {
   std::vector<Vec3> normals(asset.vertexCount(), Vec3(0.0));
   const FaceList& faces = asset.faces;
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {
@@ -104,11 +102,30 @@ inline std::vector<gpu::Float4> bindTangents(const DeformAsset& asset) {
     for (std::uint32_t k = faces.face_offsets[f] + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
       const std::uint32_t b = faces.indices[k], c = faces.indices[k + 1];
       const Vec3 n = glm::cross(asset.rest_positions[b] - asset.rest_positions[a], asset.rest_positions[c] - asset.rest_positions[a]);
-      normals[a] += n;
-      normals[b] += n;
-      normals[c] += n;
+      for (const std::uint32_t i : {a, b, c}) normals[i] += n;
     }
   }
+  return normals;
+}
+
+// What a runtime test reads of an instance.
+enum class Output { kPositions, kNormals, kTangents };
+
+inline std::vector<gpu::Float4> readOutput(DeformRuntime& rt, std::uint64_t frame, std::uint32_t instance, Output what) {
+  std::vector<gpu::Float4> out(rt.outputVertexCount());
+  const Status status = what == Output::kPositions ? rt.readPositions(frame, instance, out)
+                        : what == Output::kNormals ? rt.readNormals(frame, instance, out)
+                                                   : rt.readTangents(frame, instance, out);
+  EXPECT_TRUE(status.ok()) << status.toString();
+  return out;
+}
+
+// Bind tangents for every render vertex of `asset`, as an engine's glTF would give them: unit,
+// orthogonal to the bind vertex normal (area-weighted, over the topology's polygon fans), turning
+// round the surface from vertex to vertex, a seam's second copy (withSeams) pointing another way
+// than its first, and every third vertex left-handed (w = -1).
+inline std::vector<gpu::Float4> bindTangents(const DeformAsset& asset) {
+  const std::vector<Vec3> normals = bindVertexNormals(asset);
   const std::size_t count = asset.render.empty() ? asset.vertexCount() : asset.render.topology_of_render.size();
   std::vector<gpu::Float4> out(count);
   for (std::size_t r = 0; r < count; ++r) {
@@ -131,16 +148,7 @@ inline constexpr std::uint32_t kHardCopies = 10;  // topology vertices 0-9
 // edge there; a UV seam only at 10-19).
 inline std::vector<gpu::Float4> hardEdgeNormals(const DeformAsset& asset) {
   const std::vector<gpu::Float4> tangents = bindTangents(asset);
-  std::vector<Vec3> normals(asset.vertexCount(), Vec3(0.0));
-  const FaceList& faces = asset.faces;
-  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
-    const std::uint32_t a = faces.indices[faces.face_offsets[f]];
-    for (std::uint32_t k = faces.face_offsets[f] + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
-      const std::uint32_t b = faces.indices[k], c = faces.indices[k + 1];
-      const Vec3 n = glm::cross(asset.rest_positions[b] - asset.rest_positions[a], asset.rest_positions[c] - asset.rest_positions[a]);
-      for (const std::uint32_t i : {a, b, c}) normals[i] += n;
-    }
-  }
+  const std::vector<Vec3> normals = bindVertexNormals(asset);
   const std::uint32_t v = static_cast<std::uint32_t>(asset.vertexCount());
   std::vector<gpu::Float4> out(asset.render.topology_of_render.size());
   for (std::size_t r = 0; r < out.size(); ++r) {

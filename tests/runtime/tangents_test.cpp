@@ -22,6 +22,8 @@ namespace {
 
 using testing::bindTangents;
 using testing::makeAssetWithTangents;
+using testing::Output;
+using testing::readOutput;
 using testing::withSeams;
 
 CpuRuntime makeRuntime(const RuntimeAsset& asset, std::uint32_t capacity, bool render_layout) {
@@ -34,14 +36,6 @@ CpuRuntime makeRuntime(const RuntimeAsset& asset, std::uint32_t capacity, bool r
   return std::move(r).value();
 }
 
-std::vector<gpu::Float4> read(DeformRuntime& rt, std::uint64_t frame, std::uint32_t instance, int what) {
-  std::vector<gpu::Float4> out(rt.outputVertexCount());
-  const Status status = what == 0   ? rt.readPositions(frame, instance, out)
-                        : what == 1 ? rt.readNormals(frame, instance, out)
-                                    : rt.readTangents(frame, instance, out);
-  EXPECT_TRUE(status.ok()) << status.toString();
-  return out;
-}
 
 Vec3 xyz(const gpu::Float4& f) { return {f.x, f.y, f.z}; }
 
@@ -98,7 +92,9 @@ TEST(CpuRuntime, TangentsCarryTheBindTangentsThroughEachOneRingsDeformation) {
     const std::span<const std::uint32_t> topology = asset.renderTopology();
     double worst = 0.0;
     for (std::uint32_t k = 0; k < 3; ++k) {
-      const auto positions = read(rt, *frame, k, 0), normals = read(rt, *frame, k, 1), tangents = read(rt, *frame, k, 2);
+      const auto positions = readOutput(rt, *frame, k, Output::kPositions);
+      const auto normals = readOutput(rt, *frame, k, Output::kNormals);
+      const auto tangents = readOutput(rt, *frame, k, Output::kTangents);
       // Every topology vertex has an output vertex (withSeams' first V are a permutation).
       std::vector<Vec3> topology_positions(v), topology_normals(v);
       for (std::size_t o = 0; o < positions.size(); ++o) {
@@ -134,7 +130,7 @@ TEST(CpuRuntime, TangentsTurnWithARigidPlacement) {
   ASSERT_TRUE(rt.setInstance(1, InstanceState::atSegment(1, 0.4).withBones(moved)).ok());
   Result<std::uint64_t> frame = rt.submitFrame();
   ASSERT_TRUE(frame.ok());
-  const auto still = read(rt, *frame, 0, 2), turned = read(rt, *frame, 1, 2);
+  const auto still = readOutput(rt, *frame, 0, Output::kTangents), turned = readOutput(rt, *frame, 1, Output::kTangents);
   const glm::dmat3 rotation(std::cos(angle), 0.0, -std::sin(angle), 0.0, 1.0, 0.0, std::sin(angle), 0.0, std::cos(angle));
   double worst = 0.0;
   for (std::size_t o = 0; o < still.size(); ++o) {
@@ -160,9 +156,9 @@ TEST(CpuRuntime, TangentsAreTheSameOnBothWorkPaths) {
   Result<std::uint64_t> a = one.submitFrame();
   Result<std::uint64_t> b = five.submitFrame();
   ASSERT_TRUE(a.ok() && b.ok());
-  const auto spread = read(one, *a, 0, 2);
+  const auto spread = readOutput(one, *a, 0, Output::kTangents);
   for (std::uint32_t k = 0; k < 5; ++k) {
-    const auto rounds = read(five, *b, k, 2);
+    const auto rounds = readOutput(five, *b, k, Output::kTangents);
     ASSERT_EQ(0, std::memcmp(spread.data(), rounds.data(), spread.size() * sizeof(gpu::Float4))) << "instance " << k;
   }
   Result<std::span<const gpu::Float4>> view = five.tangents(*b);
@@ -183,7 +179,9 @@ TEST(ComputeVertexTangents, IsTheScalarFormToTheBit) {
   ASSERT_TRUE(rt.setInstanceCount(1).ok() && rt.setInstance(0, InstanceState::atTime(4.4)).ok());
   Result<std::uint64_t> frame = rt.submitFrame();
   ASSERT_TRUE(frame.ok());
-  const auto positions = read(rt, *frame, 0, 0), normals = read(rt, *frame, 0, 1), tangents = read(rt, *frame, 0, 2);
+  const auto positions = readOutput(rt, *frame, 0, Output::kPositions);
+  const auto normals = readOutput(rt, *frame, 0, Output::kNormals);
+  const auto tangents = readOutput(rt, *frame, 0, Output::kTangents);
   const TangentTables tables = asset->tangentTables();
   auto vec = [](const gpu::Float4& f) { return glm::vec3(f.x, f.y, f.z); };
   for (std::size_t i = 0; i < tangents.size(); ++i) {
@@ -246,7 +244,7 @@ TEST(RuntimeAsset, RefusesBadRenderTangentsNamingThem) {
   ASSERT_TRUE(rt.setInstanceCount(1).ok());
   Result<std::uint64_t> frame = rt.submitFrame();
   ASSERT_TRUE(frame.ok());
-  const auto out = read(rt, *frame, 0, 2);
+  const auto out = readOutput(rt, *frame, 0, Output::kTangents);
   EXPECT_EQ(xyz(out[4]), Vec3(0.0));
   EXPECT_EQ(out[4].w, 1.0f);
   options.render_tangents = tangents;
@@ -256,7 +254,7 @@ TEST(RuntimeAsset, RefusesBadRenderTangentsNamingThem) {
   ASSERT_TRUE(unit_rt.setInstanceCount(1).ok());
   Result<std::uint64_t> unit_frame = unit_rt.submitFrame();
   ASSERT_TRUE(unit_frame.ok());
-  const auto expected = read(unit_rt, *unit_frame, 0, 2);
+  const auto expected = readOutput(unit_rt, *unit_frame, 0, Output::kTangents);
   for (const std::size_t o : {huge, tiny}) {
     EXPECT_LT(glm::length(xyz(out[o]) - xyz(expected[o])), 1e-6) << "tangent " << o;
     EXPECT_NEAR(glm::length(xyz(out[o])), 1.0, 1e-6) << "tangent " << o;
