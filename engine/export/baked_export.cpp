@@ -23,25 +23,28 @@ Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlaye
   if (static_cast<float>(end_seconds) > static_cast<float>(seconds.back())) seconds.push_back(end_seconds);
 
   const std::size_t out_vertices = asset.render.empty() ? asset.vertexCount() : asset.render.topology_of_render.size();
-  const double bytes = static_cast<double>(seconds.size()) * static_cast<double>(out_vertices) * 12.0;
+  // A position and a normal per vertex and frame, 12 bytes each.
+  const double bytes = static_cast<double>(seconds.size()) * static_cast<double>(out_vertices) * 24.0;
   if (bytes >= 2147483648.0) {
     return invalidArgument("export: baking " + std::to_string(seconds.size()) + " frames of " +
                            std::to_string(out_vertices) + " vertices needs 2 GiB or more; lower --fps");
   }
   std::vector<Vec3> positions(asset.vertexCount());
-  std::vector<std::vector<Vec3>> frames;
+  std::vector<std::vector<Vec3>> frames, normals;
   frames.reserve(seconds.size());
+  normals.reserve(seconds.size());
   for (std::size_t f = 0; f < seconds.size(); ++f) {
     const auto [segment, tau] = player.locate(seconds[f] / asset.segment_seconds);
     ODESKIN_TRY(player.play(asset, segment, tau, positions));
     frames.push_back(outputPositions(asset, positions));
+    normals.push_back(outputNormals(asset, positions));
     if (progress) progress("bake", static_cast<double>(f + 1) / static_cast<double>(seconds.size()));
   }
   BakedGlbOptions options;
   options.linear = true;
   options.generator = generator;
   options.animation = "odeskin";
-  ODESKIN_TRY(writeBakedGlb(path, outputFaces(asset), frames, seconds, options));
+  ODESKIN_TRY(writeBakedGlb(path, outputFaces(asset), frames, seconds, options, normals));
   return BakedExport{frames.size(), out_vertices};
 }
 

@@ -5,8 +5,6 @@
 #include <cmath>
 #include <string>
 
-#include "../core/smoothing_groups.hpp"
-
 namespace odeskin {
 namespace {
 
@@ -74,51 +72,10 @@ Result<ExportMesh> buildExportMesh(const DeformAsset& asset, std::span<const Vec
     if (index >= mesh.source_vertex.size()) return invalidArgument("export: a face uses vertex " + std::to_string(index));
   }
 
-  // Normals on the welded topology, so UV seams of a glTF input do not show as creases.
-  std::vector<Vec3> topology_normals(v_count, Vec3(0.0));
-  for (std::size_t f = 0; f < asset.faces.faceCount(); ++f) {
-    const std::uint32_t begin = asset.faces.face_offsets[f];
-    const std::uint32_t end = asset.faces.face_offsets[f + 1];
-    Vec3 normal(0.0);  // twice the polygon's vector area (fan sum)
-    for (std::uint32_t k = begin + 1; k + 1 < end; ++k) {
-      const Vec3& a = base_positions[asset.faces.indices[begin]];
-      normal += glm::cross(base_positions[asset.faces.indices[k]] - a, base_positions[asset.faces.indices[k + 1]] - a);
-    }
-    for (std::uint32_t k = begin; k < end; ++k) topology_normals[asset.faces.indices[k]] += normal;
-  }
-  // Across the input's hard edges (its bind normals disagree, smoothing_groups.hpp) each side
-  // takes the normal of its own faces, so creases stay creased.
-  SmoothingGroups groups;
-  std::vector<Vec3> group_normals;
-  if (!asset.render.normals.empty()) {
-    groups = smoothingGroups(asset.render.topology_of_render, v_count, asset.render.normals);
-    group_normals.assign(groups.group_count, Vec3(0.0));
-    for (std::size_t f = 0; f < faces.faceCount() && groups.hard_vertices > 0; ++f) {
-      const std::uint32_t begin = faces.face_offsets[f];
-      const std::uint32_t end = faces.face_offsets[f + 1];
-      Vec3 normal(0.0);
-      for (std::uint32_t k = begin + 1; k + 1 < end; ++k) {
-        const Vec3& a = base_positions[mesh.source_vertex[faces.indices[begin]]];
-        normal += glm::cross(base_positions[mesh.source_vertex[faces.indices[k]]] - a,
-                             base_positions[mesh.source_vertex[faces.indices[k + 1]]] - a);
-      }
-      for (std::uint32_t k = begin; k < end; ++k) {
-        const std::uint32_t r = faces.indices[k];
-        if (groups.hard[mesh.source_vertex[r]]) group_normals[groups.group_of_render[r]] += normal;
-      }
-    }
-  }
+  // Welded, so UV seams of a glTF input do not show as creases; across its hard edges, each side's own.
+  mesh.normals = outputNormals(asset, base_positions);
   mesh.positions.reserve(mesh.source_vertex.size());
-  mesh.normals.reserve(mesh.source_vertex.size());
-  for (std::size_t r = 0; r < mesh.source_vertex.size(); ++r) {
-    const std::uint32_t t = mesh.source_vertex[r];
-    mesh.positions.push_back(base_positions[t]);
-    const Vec3& sum = groups.hard_vertices > 0 && groups.hard[t] ? group_normals[groups.group_of_render[r]]
-                                                                 : topology_normals[t];
-    const double length = glm::length(sum);
-    // A vertex on degenerate faces only has no direction; glTF still requires a unit normal there.
-    mesh.normals.push_back(length > 0.0 ? sum / length : Vec3(0.0, 0.0, 1.0));
-  }
+  for (const std::uint32_t t : mesh.source_vertex) mesh.positions.push_back(base_positions[t]);
 
   const Influences merged = mergeDuplicateBones(asset.influences);
   mesh.max_influences = merged.maxInfluences();

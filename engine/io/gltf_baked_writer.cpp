@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -14,9 +15,21 @@
 namespace odeskin {
 namespace {
 
-Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds) {
+Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
+                  const std::vector<std::vector<Vec3>>& normals) {
   if (frames.empty()) return invalidArgument("baked glTF: no frames");
   if (seconds.size() != frames.size()) return invalidArgument("baked glTF: one time per frame is needed");
+  if (!normals.empty() && normals.size() != frames.size()) return invalidArgument("baked glTF: normals for some frames only");
+  for (std::size_t f = 0; f < normals.size(); ++f) {
+    if (normals[f].size() != frames[f].size()) {
+      return invalidArgument("baked glTF: frame " + std::to_string(f) + " has another normal count");
+    }
+    for (const Vec3& n : normals[f]) {
+      if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) {
+        return invalidArgument("baked glTF: frame " + std::to_string(f) + " has a non-finite normal");
+      }
+    }
+  }
   const std::size_t v_count = frames[0].size();
   for (std::size_t f = 0; f < frames.size(); ++f) {
     if (frames[f].size() != v_count) return invalidArgument("baked glTF: frame " + std::to_string(f) + " has another vertex count");
@@ -40,8 +53,8 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
 
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                     const BakedGlbOptions& options) {
-  if (Status s = checkInput(faces, frames, seconds); !s.ok()) return Status(s.code(), path.string() + ": " + s.message());
+                     const BakedGlbOptions& options, const std::vector<std::vector<Vec3>>& normals) {
+  if (Status s = checkInput(faces, frames, seconds, normals); !s.ok()) return Status(s.code(), path.string() + ": " + s.message());
   tinygltf::Model m = gltf::newModel(options.generator);
 
   const std::vector<std::uint32_t> triangles = gltf::fanTriangles(faces);
@@ -49,16 +62,22 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.indices = gltf::appendTriangleIndices(m, triangles);
   std::vector<float> xyz;
-  auto flatten = [&](std::size_t frame) {
+  // Frame 0 as it is, every later frame as its difference from frame 0 (a morph target's delta).
+  auto flatten = [&](const std::vector<std::vector<Vec3>>& values, std::size_t frame, bool bounds) {
     xyz.clear();
-    for (std::size_t i = 0; i < frames[frame].size(); ++i) {
-      const Vec3 d = frame == 0 ? frames[0][i] : frames[frame][i] - frames[0][i];
+    for (std::size_t i = 0; i < values[frame].size(); ++i) {
+      const Vec3 d = frame == 0 ? values[0][i] : values[frame][i] - values[0][i];
       xyz.insert(xyz.end(), {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)});
     }
-    return gltf::appendFloatAccessor(m, xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    return gltf::appendFloatAccessor(m, xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, bounds);
   };
-  primitive.attributes["POSITION"] = flatten(0);
-  for (std::size_t f = 1; f < frames.size(); ++f) primitive.targets.push_back({{"POSITION", flatten(f)}});
+  primitive.attributes["POSITION"] = flatten(frames, 0, true);
+  if (!normals.empty()) primitive.attributes["NORMAL"] = flatten(normals, 0, false);
+  for (std::size_t f = 1; f < frames.size(); ++f) {
+    std::map<std::string, int> target{{"POSITION", flatten(frames, f, true)}};
+    if (!normals.empty()) target["NORMAL"] = flatten(normals, f, false);
+    primitive.targets.push_back(target);
+  }
   tinygltf::Mesh mesh;
   mesh.name = "odeskin";
   mesh.primitives.push_back(primitive);

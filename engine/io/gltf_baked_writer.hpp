@@ -27,13 +27,15 @@ struct BakedGlbOptions {
   std::string animation = "odeskin play";  // the animation's name
 };
 
-// frames: F >= 1 vertex arrays of one mesh; seconds: F increasing times (seconds[0] >= 0).
+// frames: F >= 1 vertex arrays of one mesh; seconds: F increasing times (seconds[0] >= 0);
+// normals: empty, or one unit normal per vertex of every frame, written as the mesh's NORMAL and
+// each target's NORMAL delta (without them a viewer shades the mesh flat, as glTF requires).
 // Polygons are triangulated as fans. Written through a temporary file and rename. Errors:
 // kInvalidArgument naming the path (sizes, indices, non-finite values, positions beyond glTF's
 // float32 range: gltf::checkFloat32Positions, times not increasing), kIoError naming the path.
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                     const BakedGlbOptions& options = {});
+                     const BakedGlbOptions& options = {}, const std::vector<std::vector<Vec3>>& normals = {});
 
 // Writes `model` as one binary glTF through "<path>.partial" and a rename, so a failure never leaves
 // a half-written file at `path` (the partial file is removed). kIoError naming the path.

@@ -5,8 +5,11 @@
 #include <span>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "../core/float32_range.hpp"
 #include "../core/number_text.hpp"
+#include "../core/smoothing_groups.hpp"
 #include "../kernels/fourier_deform_job.hpp"
 
 namespace odeskin {
@@ -74,6 +77,52 @@ std::vector<Vec3> outputPositions(const DeformAsset& asset, std::span<const Vec3
 }
 
 const FaceList& outputFaces(const DeformAsset& asset) { return asset.render.empty() ? asset.faces : asset.render.faces; }
+
+std::vector<Vec3> outputNormals(const DeformAsset& asset, std::span<const Vec3> topology_positions) {
+  // Twice each polygon's vector area (its fan's cross products), added to each of its corners.
+  auto faceNormal = [&](const FaceList& faces, std::size_t f, auto position) {
+    const std::uint32_t begin = faces.face_offsets[f];
+    Vec3 normal(0.0);
+    for (std::uint32_t k = begin + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
+      const Vec3& a = position(faces.indices[begin]);
+      normal += glm::cross(position(faces.indices[k]) - a, position(faces.indices[k + 1]) - a);
+    }
+    return normal;
+  };
+  const auto topology_position = [&](std::uint32_t i) -> const Vec3& { return topology_positions[i]; };
+  std::vector<Vec3> topology_normals(asset.vertexCount(), Vec3(0.0));
+  for (std::size_t f = 0; f < asset.faces.faceCount(); ++f) {
+    const Vec3 normal = faceNormal(asset.faces, f, topology_position);
+    for (std::uint32_t k = asset.faces.face_offsets[f]; k < asset.faces.face_offsets[f + 1]; ++k) {
+      topology_normals[asset.faces.indices[k]] += normal;
+    }
+  }
+  const std::span<const std::uint32_t> topology = asset.render.topology_of_render;
+  SmoothingGroups groups;
+  std::vector<Vec3> group_normals;
+  if (!asset.render.normals.empty()) {
+    groups = smoothingGroups(topology, asset.vertexCount(), asset.render.normals);
+    group_normals.assign(groups.group_count, Vec3(0.0));
+    const FaceList& faces = asset.render.faces;
+    const auto render_position = [&](std::uint32_t r) -> const Vec3& { return topology_positions[topology[r]]; };
+    for (std::size_t f = 0; f < faces.faceCount() && groups.hard_vertices > 0; ++f) {
+      const Vec3 normal = faceNormal(faces, f, render_position);
+      for (std::uint32_t k = faces.face_offsets[f]; k < faces.face_offsets[f + 1]; ++k) {
+        const std::uint32_t r = faces.indices[k];
+        if (groups.hard[topology[r]]) group_normals[groups.group_of_render[r]] += normal;
+      }
+    }
+  }
+  const std::size_t count = asset.render.empty() ? asset.vertexCount() : topology.size();
+  std::vector<Vec3> out(count);
+  for (std::size_t o = 0; o < count; ++o) {
+    const std::uint32_t i = asset.render.empty() ? static_cast<std::uint32_t>(o) : topology[o];
+    const Vec3& sum = groups.hard_vertices > 0 && groups.hard[i] ? group_normals[groups.group_of_render[o]] : topology_normals[i];
+    const double length = glm::length(sum);
+    out[o] = length > 0.0 ? sum / length : Vec3(0.0, 0.0, 1.0);
+  }
+  return out;
+}
 
 Status validateDeformAsset(const DeformAsset& a) {
   if (a.modes < 1 || a.modes > 64) return outOfRange("deform asset: modes N = " + std::to_string(a.modes));

@@ -56,6 +56,12 @@ struct DeformAsset {
 std::vector<Vec3> outputPositions(const DeformAsset& asset, std::span<const Vec3> topology_positions);
 // The faces of that layout.
 const FaceList& outputFaces(const DeformAsset& asset);
+// Unit vertex normals of the shape `topology_positions` (V) in that layout: the area-weighted
+// normals of the welded topology (polygon fans), so UV seams do not show, except across the
+// input's hard edges (RenderLayout::normals, engine/core/smoothing_groups.hpp), where each side
+// takes its own faces'. (0, 0, 1) where a vertex has no direction (degenerate faces only): glTF
+// still requires a unit normal there.
+std::vector<Vec3> outputNormals(const DeformAsset& asset, std::span<const Vec3> topology_positions);
 
 // Checks every size and index of `asset` (kInvalidArgument naming the field and element).
 Status validateDeformAsset(const DeformAsset& asset);

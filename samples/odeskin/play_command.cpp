@@ -234,7 +234,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   }
   // .glb: every frame goes into one file (morph target per frame, STEP weights animation).
   const bool glb = lowerExtension(o.output) == ".glb";
-  std::vector<std::vector<Vec3>> baked;
+  std::vector<std::vector<Vec3>> baked, baked_normals;
 
   // --png: the device is opened before anything is written, so a missing one fails early (and
   // before the playback, which would otherwise note a CPU fallback just before this error).
@@ -272,6 +272,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     if (Status s = ensureParentDirectory(files[f], last_directory); !s.ok()) return reportFailure(console, s);
     if (glb) {
       baked.push_back(outputPositions(asset, positions));
+      baked_normals.push_back(outputNormals(asset, positions));
       bar.step(f + 1);
       continue;
     }
@@ -288,14 +289,15 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     seconds.reserve(times.size());
     for (double t : times) seconds.push_back(t * asset.segment_seconds);
     // --t, or clamped times at the end of a sequence, may repeat a time: keep strictly increasing keys.
-    std::vector<std::vector<Vec3>> kept;
+    std::vector<std::vector<Vec3>> kept, kept_normals;
     std::vector<double> kept_seconds;
     for (std::size_t f = 0; f < baked.size(); ++f) {
       if (!kept_seconds.empty() && !(seconds[f] > kept_seconds.back())) continue;
       kept.push_back(std::move(baked[f]));
+      kept_normals.push_back(std::move(baked_normals[f]));
       kept_seconds.push_back(seconds[f]);
     }
-    if (Status s = writeBakedGlb(o.output, outputFaces(asset), kept, kept_seconds); !s.ok()) {
+    if (Status s = writeBakedGlb(o.output, outputFaces(asset), kept, kept_seconds, BakedGlbOptions{}, kept_normals); !s.ok()) {
       return reportFailure(console, s);
     }
   }

@@ -632,6 +632,25 @@ TEST_F(GltfExportTest, PosedResidualAndDualQuaternionAssetsAreBaked) {
     const std::vector<Vec3> a = playerPositions(asset, 0.5 / 0.75), b = playerPositions(asset, 0.625 / 0.75);
     const std::vector<Vec3> mid = gltf.positionsAt(0.5625);
     for (std::size_t i = 0; i < mid.size(); ++i) ASSERT_LT(glm::length(mid[i] - 0.5 * (a[i] + b[i])), 1e-6);
+    // Each frame's NORMAL (the mesh's, plus the frame's target delta) is that frame's shape's,
+    // so viewers shade it smooth and following the corrective deformation.
+    const tinygltf::Primitive& prim = gltf.model().meshes.at(0).primitives.at(0);
+    const std::vector<double> base = readAccessor(gltf.model(), prim.attributes.at("NORMAL"));
+    for (const std::size_t frame : {std::size_t{0}, std::size_t{4}, std::size_t{12}}) {
+      const double seconds = frame == 12 ? 1.5 : static_cast<double>(frame) / 8.0;
+      const std::vector<Vec3> expected = outputNormals(asset, playerPositions(asset, seconds / asset.segment_seconds));
+      std::vector<double> normals = base;
+      if (frame > 0) {
+        const std::vector<double> delta = readAccessor(gltf.model(), prim.targets.at(frame - 1).at("NORMAL"));
+        for (std::size_t k = 0; k < normals.size(); ++k) normals[k] += delta[k];
+      }
+      ASSERT_EQ(normals.size(), 3 * expected.size());
+      double worst = 0.0;
+      for (std::size_t i = 0; i < expected.size(); ++i) {
+        worst = std::max(worst, glm::length(Vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]) - expected[i]));
+      }
+      EXPECT_LT(worst, 1e-6) << "frame " << frame;
+    }
   }
 }
 

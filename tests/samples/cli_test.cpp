@@ -161,6 +161,8 @@ TEST_F(Cli, PlaySequenceToGlbHoldsEveryFrameAsAMorphTarget) {
     // float32 storage of positions and of the displacements from frame 0
     EXPECT_LE(maxDistance(read->poses[k], readPositions(frames.files[k])), 1e-6 * box()) << "frame " << k;
   }
+  // With NORMALs, so viewers shade it smooth (glTF has them compute flat normals otherwise).
+  EXPECT_EQ(read->render.normals.size(), read->render.topology_of_render.size());
 }
 
 TEST_F(Cli, PlayUsesTheSegmentLengthAndTheRenderLayout) {
