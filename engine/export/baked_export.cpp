@@ -23,11 +23,8 @@ Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlaye
   if (static_cast<float>(end_seconds) > static_cast<float>(seconds.back())) seconds.push_back(end_seconds);
 
   const std::size_t out_vertices = asset.render.empty() ? asset.vertexCount() : asset.render.topology_of_render.size();
-  // A position and a normal per vertex and frame, 12 bytes each.
-  const double bytes = static_cast<double>(seconds.size()) * static_cast<double>(out_vertices) * 24.0;
-  if (bytes >= 2147483648.0) {
-    return invalidArgument("export: baking " + std::to_string(seconds.size()) + " frames of " +
-                           std::to_string(out_vertices) + " vertices needs 2 GiB or more; lower --fps");
+  if (Status s = checkBakedSize(seconds.size(), out_vertices); !s.ok()) {
+    return Status(s.code(), "export: " + s.message() + "; lower --fps");
   }
   std::vector<Vec3> positions(asset.vertexCount());
   std::vector<std::vector<Vec3>> frames, normals;

@@ -110,6 +110,13 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   return writeGlbAtomically(path, m);
 }
 
+Status checkBakedSize(std::size_t frames, std::size_t vertices) {
+  const double bytes = static_cast<double>(frames) * static_cast<double>(vertices) * 24.0;
+  if (bytes < 2147483648.0) return okStatus();
+  return invalidArgument("baking " + std::to_string(frames) + " frames of " + std::to_string(vertices) +
+                         " vertices needs 2 GiB or more");
+}
+
 Status writeGlbAtomically(const std::filesystem::path& path, const tinygltf::Model& model) {
   // Serialised in memory, then written by the one temp-file-and-rename path: tinygltf's own file
   // writer does not report a failed write (a full disk), so it could leave half a .glb.

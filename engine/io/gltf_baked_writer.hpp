@@ -37,6 +37,12 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
                      const BakedGlbOptions& options = {}, const std::vector<std::vector<Vec3>>& normals = {});
 
+// kInvalidArgument "baking F frames of V vertices needs 2 GiB or more" when a baked GLB of `frames`
+// x `vertices` (a float32 position and normal each) would reach 2 GiB: tinygltf reads no larger
+// buffer, and the frames are held in memory (in double) before the file is written. Callers check
+// before playing any frame and add how to lower the count.
+Status checkBakedSize(std::size_t frames, std::size_t vertices);
+
 // Writes `model` as one binary glTF through "<path>.partial" and a rename, so a failure never leaves
 // a half-written file at `path` (the partial file is removed). kIoError naming the path.
 Status writeGlbAtomically(const std::filesystem::path& path, const tinygltf::Model& model);

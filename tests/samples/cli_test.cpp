@@ -222,6 +222,12 @@ TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   cases.push_back({fps, "needs a frame number"});
   fps.output = (dir / "x%d_%d.obj").string();
   cases.push_back({fps, "more than one % conversion"});
+  // One .glb holds every frame (positions and normals): refused before any frame is played.
+  fps.fps = 1000.0;
+  fps.seconds = 100.0;
+  fps.output = (dir / "x.glb").string();
+  cases.push_back({fps, "x.glb: baking 100001 frames of " + std::to_string(arm_->start_positions.size()) +
+                            " vertices needs 2 GiB or more; lower --fps or --seconds, or write .obj frames"});
   testing::expectRejected(cases, [](const PlayOptions& o, Captured& io) { return play(o, io); }, kExitUsage, "play");
   EXPECT_TRUE(fs::is_empty(dir)) << "a rejected command wrote something";
 }
