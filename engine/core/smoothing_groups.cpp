@@ -7,15 +7,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "unit_vector.hpp"
+
 namespace odeskin {
-namespace {
-
-Vec3 unit(const Vec3& v) {
-  const double scale = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-  return glm::normalize(v / scale);  // scaled first: a normal given as 1e-200 long does not underflow
-}
-
-}  // namespace
 
 SmoothingGroups smoothingGroups(std::span<const std::uint32_t> topology, std::size_t vertex_count,
                                 std::span<const Vec3> normals) {
@@ -36,7 +30,7 @@ SmoothingGroups smoothingGroups(std::span<const std::uint32_t> topology, std::si
     firsts.clear();
     for (std::uint32_t c = copy_offsets[i]; c < copy_offsets[i + 1]; ++c) {
       const std::uint32_t r = copies[c];
-      const Vec3 n = unit(normals[r]);
+      const Vec3 n = unitVector(normals[r]);
       // Only a group's first copy stands for it, so membership cannot drift along a fan of copies.
       const auto joined = std::find_if(firsts.begin(), firsts.end(),
                                        [&](const auto& group) { return glm::dot(group.second, n) >= same; });

@@ -7,6 +7,7 @@
 // then give each group the normal of its own faces.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -27,8 +28,13 @@ struct SmoothingGroups {
   std::uint32_t hard_vertices = 0;
 };
 
+// Whether a bind normal can stand for a direction: finite and not zero (any length).
+inline bool isUsableNormal(const Vec3& n) {
+  return std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z) && n != Vec3(0.0);
+}
+
 // `topology`: render vertex -> topology vertex (each < vertex_count); `normals`: one per render
-// vertex, finite and non-zero (callers check; any length). A copy joins the first group of its
+// vertex, each isUsableNormal (callers check). A copy joins the first group of its
 // vertex, in render order, whose first copy's normal is within kSmoothingGroupAngle of its own.
 SmoothingGroups smoothingGroups(std::span<const std::uint32_t> topology, std::size_t vertex_count,
                                 std::span<const Vec3> normals);

@@ -22,7 +22,7 @@ Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlaye
   // The end is a frame too, unless the grid already stops within float32 reach of it.
   if (static_cast<float>(end_seconds) > static_cast<float>(seconds.back())) seconds.push_back(end_seconds);
 
-  const std::size_t out_vertices = asset.render.empty() ? asset.vertexCount() : asset.render.topology_of_render.size();
+  const std::size_t out_vertices = outputVertexCount(asset);
   if (Status s = checkBakedSize(seconds.size(), out_vertices); !s.ok()) {
     return Status(s.code(), "export: " + s.message() + "; lower --fps");
   }

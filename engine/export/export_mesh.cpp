@@ -55,7 +55,7 @@ Result<ExportMesh> buildExportMesh(const DeformAsset& asset, std::span<const Vec
                            std::to_string(v_count) + " vertices");
   }
   ExportMesh mesh;
-  const FaceList& faces = asset.render.empty() ? asset.faces : asset.render.faces;
+  const FaceList& faces = outputFaces(asset);
   if (asset.render.empty()) {
     mesh.source_vertex.resize(v_count);
     for (std::size_t i = 0; i < v_count; ++i) mesh.source_vertex[i] = static_cast<std::uint32_t>(i);

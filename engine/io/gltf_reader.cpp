@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "../core/number_text.hpp"
+#include "../core/smoothing_groups.hpp"
 #include "../kernels/lbs_job.hpp"
 #include "gltf_animation.hpp"
 #include "gltf_load.hpp"
@@ -248,9 +249,7 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
   out.render.faces = triangleFaces(mesh.triangles);
   out.rest_positions = morph(welded.positions, deltas, default_weights);
   // A file whose normals break the rules loses only its hard edges, with a word why.
-  const auto unusable = std::find_if(mesh.normals.begin(), mesh.normals.end(), [](const Vec3& n) {
-    return !std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z) || n == Vec3(0.0);
-  });
+  const auto unusable = std::find_if_not(mesh.normals.begin(), mesh.normals.end(), isUsableNormal);
   if (unusable == mesh.normals.end()) {
     out.render.normals = std::move(mesh.normals);
   } else {

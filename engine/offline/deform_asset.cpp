@@ -78,6 +78,10 @@ std::vector<Vec3> outputPositions(const DeformAsset& asset, std::span<const Vec3
 
 const FaceList& outputFaces(const DeformAsset& asset) { return asset.render.empty() ? asset.faces : asset.render.faces; }
 
+std::size_t outputVertexCount(const DeformAsset& asset) {
+  return asset.render.empty() ? asset.vertexCount() : asset.render.topology_of_render.size();
+}
+
 std::vector<Vec3> outputNormals(const DeformAsset& asset, std::span<const Vec3> topology_positions) {
   // Twice each polygon's vector area (its fan's cross products), added to each of its corners.
   auto faceNormal = [&](const FaceList& faces, std::size_t f, auto position) {
@@ -113,7 +117,7 @@ std::vector<Vec3> outputNormals(const DeformAsset& asset, std::span<const Vec3> 
       }
     }
   }
-  const std::size_t count = asset.render.empty() ? asset.vertexCount() : topology.size();
+  const std::size_t count = outputVertexCount(asset);
   std::vector<Vec3> out(count);
   for (std::size_t o = 0; o < count; ++o) {
     const std::uint32_t i = asset.render.empty() ? static_cast<std::uint32_t>(o) : topology[o];
@@ -201,8 +205,7 @@ Status validateDeformAsset(const DeformAsset& a) {
                              std::to_string(a.render.topology_of_render.size()) + " render vertices");
     }
     for (std::size_t r = 0; r < a.render.normals.size(); ++r) {
-      const Vec3& n = a.render.normals[r];
-      if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z) || n == Vec3(0.0)) {
+      if (!isUsableNormal(a.render.normals[r])) {
         return invalidArgument("deform asset: render normal " + std::to_string(r) + " is zero or not finite");
       }
     }

@@ -54,8 +54,9 @@ struct DeformAsset {
 // Positions in the asset's output layout: the render vertices (topology positions gathered through
 // topology_of_render) when the asset has a render layout, else the topology positions themselves.
 std::vector<Vec3> outputPositions(const DeformAsset& asset, std::span<const Vec3> topology_positions);
-// The faces of that layout.
+// The faces of that layout, and its vertex count.
 const FaceList& outputFaces(const DeformAsset& asset);
+std::size_t outputVertexCount(const DeformAsset& asset);
 // Unit vertex normals of the shape `topology_positions` (V) in that layout: the area-weighted
 // normals of the welded topology (polygon fans), so UV seams do not show, except across the
 // input's hard edges (RenderLayout::normals, engine/core/smoothing_groups.hpp), where each side

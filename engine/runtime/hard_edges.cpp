@@ -10,17 +10,17 @@
 namespace odeskin {
 namespace {
 
-Status checkNormals(std::span<const gpu::Float4> normals, std::size_t count, bool render_layout) {
+Status checkNormals(std::span<const Vec3> normals, std::size_t count, bool render_layout) {
   if (normals.size() != count) {
     return invalidArgument("runtime asset: render normals: " + std::to_string(normals.size()) + " normals for " +
                            std::to_string(count) + (render_layout ? " render vertices" : " vertices"));
   }
   for (std::size_t r = 0; r < normals.size(); ++r) {
-    const gpu::Float4& n = normals[r];
+    const Vec3& n = normals[r];
     if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) {
       return invalidArgument("runtime asset: render normals: normal " + std::to_string(r) + " is not finite");
     }
-    if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) {
+    if (n == Vec3(0.0)) {
       return invalidArgument("runtime asset: render normals: normal " + std::to_string(r) +
                              " is zero; glTF normals are unit vectors");
     }
@@ -34,13 +34,11 @@ Result<std::optional<RenderCorners>> buildRenderCorners(std::span<const std::uin
                                                         std::span<const std::uint32_t> render_triangles,
                                                         std::span<const std::uint32_t> corner_offsets,
                                                         std::span<const gpu::Corner> corners,
-                                                        std::span<const gpu::Float4> normals) {
+                                                        std::span<const Vec3> normals) {
   ODESKIN_TRY(checkNormals(normals, topology.empty() ? vertex_count : topology.size(), !topology.empty()));
   if (topology.empty()) return std::optional<RenderCorners>();  // one copy per vertex: no hard edge
 
-  std::vector<Vec3> bind(normals.size());
-  for (std::size_t r = 0; r < normals.size(); ++r) bind[r] = Vec3(normals[r].x, normals[r].y, normals[r].z);
-  const SmoothingGroups groups = smoothingGroups(topology, vertex_count, bind);
+  const SmoothingGroups groups = smoothingGroups(topology, vertex_count, normals);
   if (groups.hard_vertices == 0) return std::optional<RenderCorners>();
   const std::size_t render_count = topology.size();
   RenderCorners out;

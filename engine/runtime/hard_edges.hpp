@@ -29,7 +29,7 @@ struct RenderCorners {
 // The render corners of a render layout with hard edges, or nothing when every topology vertex
 // has one smoothing group (its normals are then exactly the gathered ones). `normals`: one per
 // render vertex (topology.size(), or the topology's vertex count when `topology` is empty: no
-// render layout, no hard edge), xyz any non-zero length, w unused. `render_triangles`: 3 render
+// render layout, no hard edge), any non-zero length. `render_triangles`: 3 render
 // vertices each; `corner_offsets`, `corners`: the topology's (RuntimeAsset's). kInvalidArgument
 // naming the normal for a wrong count, a non-finite or a zero normal; kOutOfRange past 32-bit
 // corner indices.
@@ -37,6 +37,6 @@ Result<std::optional<RenderCorners>> buildRenderCorners(std::span<const std::uin
                                                         std::span<const std::uint32_t> render_triangles,
                                                         std::span<const std::uint32_t> corner_offsets,
                                                         std::span<const gpu::Corner> corners,
-                                                        std::span<const gpu::Float4> normals);
+                                                        std::span<const Vec3> normals);
 
 }  // namespace odeskin

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "instance_tangents.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
 #include <glm/geometric.hpp>
+
+#include "../core/unit_vector.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -93,10 +94,7 @@ Result<TangentLayout> buildTangentLayout(std::span<const Vec3> rest_positions, s
     layout.frames.push_back(gpu::TangentFrame{static_cast<std::uint32_t>(layout.weights.size()), t.w < 0.0f ? -1.0f : 1.0f});
     // Only the direction counts; a unit tangent keeps the weights near 1 / edge length, so a
     // tangent given as 1e30 long cannot overflow the frame's float sum into a zero tangent.
-    Vec3 direction(t.x, t.y, t.z);
-    const double scale = std::max({std::fabs(direction.x), std::fabs(direction.y), std::fabs(direction.z)});
-    if (scale > 0.0) direction = glm::normalize(direction / scale);
-    appendWeights(rest_positions, corner_offsets, corners, i, direction, layout.weights);
+    appendWeights(rest_positions, corner_offsets, corners, i, unitVector(Vec3(t.x, t.y, t.z)), layout.weights);
   }
   return layout;
 }

@@ -1,11 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "runtime_asset.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
-
-#include <glm/geometric.hpp>
 
 #include "../io/asset_file.hpp"
 #include "../offline/residual_fit.hpp"
@@ -93,15 +89,12 @@ Result<RuntimeAsset> RuntimeAsset::create(const DeformAsset& asset, const Runtim
     ODESKIN_ASSIGN_OR_RETURN(r.tangents_, buildTangentLayout(asset.rest_positions, r.corner_offsets_, r.corners_,
                                                              asset.render.topology_of_render, options.render_tangents));
   }
-  std::vector<gpu::Float4> asset_normals;
-  if (options.render_normals.empty()) {
-    for (const Vec3& n : asset.render.normals) {
-      // Unit in double first: a valid normal 1e-300 long must not round to a float zero.
-      const Vec3 u = glm::normalize(n / std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)}));
-      asset_normals.push_back(gpu::Float4{static_cast<float>(u.x), static_cast<float>(u.y), static_cast<float>(u.z), 0.0f});
-    }
-  }
-  const std::span<const gpu::Float4> normals = options.render_normals.empty() ? asset_normals : options.render_normals;
+  // The engine's bind normals, else the asset's own (a fit of a glTF with NORMAL keeps them).
+  std::vector<Vec3> engine_normals;
+  engine_normals.reserve(options.render_normals.size());
+  for (const gpu::Float4& n : options.render_normals) engine_normals.emplace_back(n.x, n.y, n.z);
+  const std::span<const Vec3> normals = options.render_normals.empty() ? std::span<const Vec3>(asset.render.normals)
+                                                                        : std::span<const Vec3>(engine_normals);
   if (!normals.empty()) {
     ODESKIN_ASSIGN_OR_RETURN(r.render_corners_,
                              buildRenderCorners(asset.render.topology_of_render, asset.vertexCount(), r.render_triangles_,
@@ -111,7 +104,7 @@ Result<RuntimeAsset> RuntimeAsset::create(const DeformAsset& asset, const Runtim
 }
 
 std::uint32_t RuntimeAsset::renderVertexCount() const {
-  return asset_.render.empty() ? vertexCount() : static_cast<std::uint32_t>(asset_.render.topology_of_render.size());
+  return static_cast<std::uint32_t>(outputVertexCount(asset_));
 }
 
 Result<RuntimeAsset> RuntimeAsset::load(const std::filesystem::path& path, const RuntimeAssetOptions& options) {

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "surface_mesh.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <string>
 
 #include <glm/geometric.hpp>
+
+#include "../core/unit_vector.hpp"
 
 namespace odeskin::visual {
 
@@ -55,10 +55,9 @@ std::vector<Vec3> vertexNormals(std::span<const Vec3> positions, const FaceList&
     for (std::uint32_t i = begin; i < end; ++i) normals[faces.indices[i]] += n;
   }
   for (Vec3& n : normals) {
-    // Divided by its largest component first: on a tiny mesh (faces 1e-150 across) the squared
-    // length of the area vector underflows to 0.
-    const double largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
-    n = largest > 0.0 ? glm::normalize(n / largest) : Vec3(0.0, 0.0, 1.0);
+    // unitVector: on a tiny mesh (faces 1e-150 across) the area vector's squared length underflows.
+    const Vec3 unit = unitVector(n);
+    n = unit != Vec3(0.0) ? unit : Vec3(0.0, 0.0, 1.0);
   }
   return normals;
 }

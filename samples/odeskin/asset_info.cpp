@@ -40,8 +40,8 @@ std::string ratioText(double ratio) {
 AssetStats assetStats(const DeformAsset& asset, std::uintmax_t file_bytes) {
   AssetStats s;
   s.vertices = asset.vertexCount();
-  s.render_vertices = asset.render.empty() ? s.vertices : asset.render.topology_of_render.size();
-  s.faces = asset.render.empty() ? asset.faces.faceCount() : asset.render.faces.faceCount();
+  s.render_vertices = outputVertexCount(asset);
+  s.faces = outputFaces(asset).faceCount();
   if (!asset.render.normals.empty()) {
     s.hard_edge_vertices = smoothingGroups(asset.render.topology_of_render, asset.vertexCount(), asset.render.normals).hard_vertices;
   }

@@ -235,8 +235,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   // .glb: every frame goes into one file (morph target per frame, STEP weights animation).
   const bool glb = lowerExtension(o.output) == ".glb";
   if (glb && write_meshes) {
-    const std::size_t vertices = asset.render.empty() ? asset.vertexCount() : asset.render.topology_of_render.size();
-    if (Status s = checkBakedSize(times.size(), vertices); !s.ok()) {
+    if (Status s = checkBakedSize(times.size(), outputVertexCount(asset)); !s.ok()) {
       return reportUsage(console, "play: " + o.output + ": " + s.message() +
                                       "; lower --fps or --seconds, or write .obj frames");
     }
