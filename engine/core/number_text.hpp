@@ -35,6 +35,11 @@ inline std::string scientific(double x) { return number_text_detail::formatted(x
 // "%g": times, sizes and option values as the user typed them.
 inline std::string numberText(double x) { return number_text_detail::formatted(x, 6, std::chars_format::general); }
 
+// "%.{decimals}f": angles and other values read in a fixed unit ("0.42 degrees").
+inline std::string fixedText(double x, int decimals) {
+  return number_text_detail::formatted(x, decimals, std::chars_format::fixed);
+}
+
 // "%.9g", for values in error messages: enough digits to tell a sum of 1.000001 from 1.
 inline std::string messageNumber(double x) { return number_text_detail::formatted(x, 9, std::chars_format::general); }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 
 #include <tiny_gltf.h>
 
@@ -99,28 +100,21 @@ void writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Primitive& pri
   }
 }
 
-// One morph target's POSITION deltas over the output vertices: dense, or sparse (zeros plus the
-// listed vertices, no bufferView) when that is smaller.
-Result<int> targetAccessor(ModelBuilder& b, const ExportMesh& mesh, const SparseField& field, double factor,
-                           const std::string& name, std::vector<std::int32_t>& slot_of_vertex, bool& sparse) {
-  for (std::size_t k = 0; k < field.vertices.size(); ++k) slot_of_vertex[field.vertices[k]] = static_cast<std::int32_t>(k);
-  std::vector<std::uint32_t> indices;
-  std::vector<float> values;
-  for (std::size_t i = 0; i < mesh.source_vertex.size(); ++i) {
-    const std::int32_t slot = slot_of_vertex[mesh.source_vertex[i]];
-    if (slot < 0) continue;
-    indices.push_back(static_cast<std::uint32_t>(i));
-    putVec3(values, factor * field.values[static_cast<std::size_t>(slot)]);
+// One morph target's deltas over the output vertices (`indices` increasing, 3 floats each in
+// `values`): dense, or sparse (zeros plus the listed vertices, no bufferView) when that is smaller.
+// POSITION deltas need min/max; a target that moves nothing still needs one sparse entry.
+int deltaAccessor(ModelBuilder& b, std::size_t count, std::vector<std::uint32_t> indices, std::vector<float> values,
+                  bool bounds, bool& sparse) {
+  if (indices.empty()) {
+    indices.push_back(0);
+    values.assign(3, 0.0f);
   }
-  for (std::uint32_t v : field.vertices) slot_of_vertex[v] = -1;
-  if (!allFinite(values)) return invalidArgument("export: morph target " + name + " has a non-finite displacement");
-  const std::size_t count = mesh.source_vertex.size();
   const std::size_t index_bytes = count <= 65536 ? 2 : 4;
   sparse = indices.size() * (index_bytes + 12) < count * 12;
   if (!sparse) {
     std::vector<float> dense(count * 3, 0.0f);
     for (std::size_t k = 0; k < indices.size(); ++k) std::memcpy(&dense[3 * std::size_t{indices[k]}], &values[3 * k], 3 * sizeof(float));
-    return b.floats(dense, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    return b.floats(dense, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, bounds);
   }
   tinygltf::Accessor a;
   a.bufferView = -1;
@@ -139,9 +133,36 @@ Result<int> targetAccessor(ModelBuilder& b, const ExportMesh& mesh, const Sparse
   a.sparse.indices.byteOffset = 0;
   a.sparse.values.bufferView = b.view(values, 0);
   a.sparse.values.byteOffset = 0;
-  gltf::setBounds(a, values, 3, indices.size() < count);  // min/max after substitution
+  if (bounds) gltf::setBounds(a, values, 3, indices.size() < count);  // min/max after substitution
   b.model.accessors.push_back(a);
   return static_cast<int>(b.model.accessors.size() - 1);
+}
+
+// A target's POSITION deltas: its field (topology vertices) gathered to the output vertices.
+Result<int> positionAccessor(ModelBuilder& b, const ExportMesh& mesh, const SparseField& field, double factor,
+                             const std::string& name, std::vector<std::int32_t>& slot_of_vertex, bool& sparse) {
+  for (std::size_t k = 0; k < field.vertices.size(); ++k) slot_of_vertex[field.vertices[k]] = static_cast<std::int32_t>(k);
+  std::vector<std::uint32_t> indices;
+  std::vector<float> values;
+  for (std::size_t i = 0; i < mesh.source_vertex.size(); ++i) {
+    const std::int32_t slot = slot_of_vertex[mesh.source_vertex[i]];
+    if (slot < 0) continue;
+    indices.push_back(static_cast<std::uint32_t>(i));
+    putVec3(values, factor * field.values[static_cast<std::size_t>(slot)]);
+  }
+  for (std::uint32_t v : field.vertices) slot_of_vertex[v] = -1;
+  if (!allFinite(values)) return invalidArgument("export: morph target " + name + " has a non-finite displacement");
+  return deltaAccessor(b, mesh.source_vertex.size(), std::move(indices), std::move(values), true, sparse);
+}
+
+// A target's NORMAL deltas, already indexed by output vertex.
+Result<int> normalAccessor(ModelBuilder& b, const ExportMesh& mesh, const SparseField& delta, double factor,
+                           const std::string& name) {
+  std::vector<float> values;
+  for (const Vec3& d : delta.values) putVec3(values, factor * d);
+  if (!allFinite(values)) return invalidArgument("export: morph target " + name + " has a non-finite normal delta");
+  bool sparse = false;
+  return deltaAccessor(b, mesh.positions.size(), delta.vertices, std::move(values), false, sparse);
 }
 
 int sampler(tinygltf::Animation& animation, int input, int output) {
@@ -232,9 +253,14 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
     const ModeTarget& source = contents.targets->targets[t.source];
     const std::string name = source.name + (t.sign > 0 ? "+" : "-");
     bool sparse = false;
-    ODESKIN_ASSIGN_OR_RETURN(const int accessor,
-                             targetAccessor(b, mesh, source.field, t.sign * t.scale, name, slot_of_vertex, sparse));
-    primitive.targets.push_back({{"POSITION", accessor}});
+    ODESKIN_ASSIGN_OR_RETURN(const int position,
+                             positionAccessor(b, mesh, source.field, t.sign * t.scale, name, slot_of_vertex, sparse));
+    std::map<std::string, int>& target = primitive.targets.emplace_back();
+    target["POSITION"] = position;
+    if (contents.normals != nullptr) {
+      ODESKIN_ASSIGN_OR_RETURN(target["NORMAL"],
+                               normalAccessor(b, mesh, contents.normals->deltas[t.source], t.sign * t.scale, name));
+    }
     names.emplace_back(name);
     summary.sparse_targets += sparse ? 1 : 0;
   }

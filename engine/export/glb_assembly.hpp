@@ -2,10 +2,10 @@
 // Puts the compact export together as one glTF 2.0 binary (ECOSYSTEM.md 2): the skinned mesh node
 // at the scene root with identity transform (the spec ignores its transform; the validator warns on
 // any), a skeleton root node holding the joint nodes, the skin with inverse bind matrices J_b^-1,
-// morph targets (float POSITION deltas with min/max, sparse where that is smaller, names in
-// mesh.extras.targetNames), and one animation "odeskin": the CUBICSPLINE "weights" channel of the
-// mesh node and CUBICSPLINE translation and rotation channels of every joint, times in seconds
-// (t * segment_seconds) and tangents per second.
+// morph targets (float POSITION deltas with min/max, NORMAL deltas when given, sparse where that
+// is smaller, names in mesh.extras.targetNames), and one animation "odeskin": the CUBICSPLINE
+// "weights" channel of the mesh node and CUBICSPLINE translation and rotation channels of every
+// joint, times in seconds (t * segment_seconds) and tangents per second.
 #pragma once
 
 #include <filesystem>
@@ -15,6 +15,7 @@
 #include "export_mesh.hpp"
 #include "mode_targets.hpp"
 #include "skeleton_keys.hpp"
+#include "target_normals.hpp"
 #include "weight_keys.hpp"
 
 namespace odeskin {
@@ -25,6 +26,7 @@ struct GlbContents {
   const ModeTargetSet* targets = nullptr;
   const WeightKeys* weights = nullptr;
   const SkeletonKeys* skeleton = nullptr;
+  const TargetNormals* normals = nullptr;  // NORMAL deltas for every target, or none
   std::string generator = "odeskin export";
 };
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <system_error>
 
 #include "../core/number_text.hpp"
@@ -86,7 +87,14 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
 
   const double box = report.box > 0.0 ? report.box : 1.0;
   progress("targets", 0.0);
-  ODESKIN_ASSIGN_OR_RETURN(const ModeTargetSet targets, buildModeTargets(asset, player));
+  ModeTargetOptions target_options;
+  target_options.keep_zero_corrections = o.target_normals;
+  ODESKIN_ASSIGN_OR_RETURN(const ModeTargetSet targets, buildModeTargets(asset, player, target_options));
+  TargetNormals normals;
+  if (o.target_normals) {
+    progress("target normals", 0.0);
+    ODESKIN_ASSIGN_OR_RETURN(normals, buildTargetNormals(asset, base, targets));
+  }
   progress("weight keys", 0.0);
   WeightKeyOptions weight_options;
   weight_options.position_tolerance = o.tolerance * box;
@@ -101,7 +109,7 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   const std::vector<std::vector<BoneTransform>> key_bones = keyBones(asset);
   ODESKIN_ASSIGN_OR_RETURN(const ExportMesh mesh, buildExportMesh(asset, base, key_bones));
   progress("writing", 0.0);
-  GlbContents contents{&asset, &mesh, &targets, &weights, &skeleton, o.generator};
+  GlbContents contents{&asset, &mesh, &targets, &weights, &skeleton, o.target_normals ? &normals : nullptr, o.generator};
   ODESKIN_ASSIGN_OR_RETURN(const GlbSummary summary, writeExportGlb(path, contents));
   progress("writing", 1.0);
 
@@ -116,6 +124,12 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   report.weight_position_error = weights.max_position_error / box;
   report.skeleton_position_error = skeleton.max_position_error / box;
   report.player_deviation = targets.max_player_deviation / box;
+  report.target_normals = o.target_normals;
+  constexpr double kDegrees = 180.0 / std::numbers::pi;
+  report.normal_mean_degrees = normals.mean_angle * kDegrees;
+  report.normal_p99_degrees = normals.vertex_p99_angle * kDegrees;
+  report.normal_max_degrees = normals.max_angle * kDegrees;
+  report.normal_key_blended = normals.key_blended;
   report.max_influences = mesh.max_influences;
   report.pruned_vertices = mesh.pruned_vertices;
   report.prune_error = mesh.max_prune_error / box;

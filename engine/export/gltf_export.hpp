@@ -30,6 +30,10 @@ struct GltfExportOptions {
   // the skeleton, each as a fraction of the base shape's longest bounding-box side.
   double tolerance = 1e-5;
   bool bake = false;        // write the baked form even when the compact one is possible
+  // Compact form: NORMAL deltas in every morph target (target_normals.hpp), so viewers shade the
+  // corrective deformation; without them they shade the skinned base shape. About doubles the
+  // targets' bytes.
+  bool target_normals = true;
   double bake_fps = 30.0;   // frames per second of the baked form (the last key is always a frame)
   std::string generator = "odeskin export";
   // Called with a stage name and its completed fraction in [0, 1] (for progress bars).
@@ -53,6 +57,12 @@ struct GltfExportReport {
   double weight_position_error = 0.0;    // implied position error bound from it, / box
   double skeleton_position_error = 0.0;  // measured bound from the skeleton keys, / box
   double player_deviation = 0.0;         // mid-segment deviation bound from the player (mode_targets.hpp), / box
+  bool target_normals = false;           // the targets carry NORMAL deltas
+  // Their deviation from the exact bind-space normals between keys, degrees (TargetNormals).
+  double normal_mean_degrees = 0.0;
+  double normal_p99_degrees = 0.0;       // 99% of the vertices stay within this at every checked time
+  double normal_max_degrees = 0.0;
+  std::size_t normal_key_blended = 0;    // (vertex, segment) pairs that blend the two keys' normals only
   std::uint32_t max_influences = 0;      // in the asset; more than 4 are pruned
   std::uint32_t pruned_vertices = 0;
   double prune_error = 0.0;              // max LBS error of the pruning over the key poses, / box

@@ -138,7 +138,8 @@ double SparseField::maxLength() const {
   return out;
 }
 
-Result<ModeTargetSet> buildModeTargets(const DeformAsset& asset, const DeformPlayer& player) {
+Result<ModeTargetSet> buildModeTargets(const DeformAsset& asset, const DeformPlayer& player,
+                                       const ModeTargetOptions& options) {
   if (asset.residual_space != ResidualSpace::kBind) {
     return invalidArgument("export: a posed-space residual is added after skinning; glTF morph targets come before it");
   }
@@ -216,7 +217,7 @@ Result<ModeTargetSet> buildModeTargets(const DeformAsset& asset, const DeformPla
         correction.field.values.push_back(value);
       }
     }
-    if (!correction.field.vertices.empty()) {
+    if (!correction.field.vertices.empty() || options.keep_zero_corrections) {
       set.targets.push_back(std::move(correction));
     } else {
       ++set.zero_fields;

@@ -65,7 +65,14 @@ struct ModeTargetSet {
   double max_player_deviation = 0.0;
 };
 
+struct ModeTargetOptions {
+  // Keep every segment's key correction even where it moves no vertex (an empty field): the
+  // NORMAL deltas (target_normals.hpp) need one per segment to land exactly on each key's normals.
+  bool keep_zero_corrections = false;
+};
+
 // kInvalidArgument for a posed-space residual (glTF adds morph targets before skinning only).
-Result<ModeTargetSet> buildModeTargets(const DeformAsset& asset, const DeformPlayer& player);
+Result<ModeTargetSet> buildModeTargets(const DeformAsset& asset, const DeformPlayer& player,
+                                       const ModeTargetOptions& options = {});
 
 }  // namespace odeskin

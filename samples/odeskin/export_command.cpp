@@ -31,6 +31,7 @@ std::string usageProblem(const ExportCommandOptions& o) {
 
 // Overall progress of the compact export's stages (their own fractions are coarse).
 double stageStart(std::string_view stage) {
+  if (stage == "target normals") return 0.2;
   if (stage == "weight keys") return 0.3;
   if (stage == "skeleton keys") return 0.5;
   if (stage == "writing") return 0.8;
@@ -53,6 +54,13 @@ void printSummary(std::ostream& out, const ExportCommandOptions& o, const Deform
   out << "morph targets: " << r.morph_targets << " (" << r.sparse_targets << " sparse";
   if (r.merged_fields > 0) out << "; " << r.merged_fields << " mode fields merged into targets with the same curve";
   out << ")\n";
+  if (r.target_normals) {
+    out << "target normals: exact at the keys; between them, from the exact bind-space normals: mean "
+        << fixedText(r.normal_mean_degrees, 2) << " degrees, 99% of vertices within " << fixedText(r.normal_p99_degrees, 2)
+        << ", at most " << fixedText(r.normal_max_degrees, 1) << "\n";
+  } else {
+    out << "target normals: none (viewers shade the skinned base shape)\n";
+  }
   out << "weight keys: " << r.weight_keys << " CUBICSPLINE, max weight error " << scientific(r.max_weight_error)
       << " (position error <= " << scientific(r.weight_position_error) << " of the box)\n";
   out << "skeleton keys: " << r.skeleton_keys << " CUBICSPLINE, position error <= "
@@ -79,6 +87,7 @@ int runExportCommand(const ExportCommandOptions& o, Console& console, GltfExport
   options.bake = o.bake;
   options.bake_fps = o.fps.value_or(30.0);
   options.tolerance = o.tolerance;
+  options.target_normals = o.target_normals;
   const std::string reason = compactExportProblem(asset);
   if (reason.empty() && !o.bake && o.fps && !console.quiet) {
     console.err << "note: --fps applies to bakes only; " << o.asset.string()

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `odeskin export ASSET -o OUT.glb [--bake [--fps F]] [--tolerance T]`: a .odsk asset as one glTF
+// `odeskin export ASSET -o OUT.glb [--bake [--fps F]] [--tolerance T] [--no-target-normals]`: a .odsk asset as one glTF
 // 2.0 binary that any viewer plays with the player's motion (exportGltf, engine/export/).
 #pragma once
 
@@ -17,6 +17,7 @@ struct ExportCommandOptions {
   bool bake = false;                   // one morph target per frame even when the compact form works
   std::optional<double> fps;           // frames per second of a bake (default 30)
   double tolerance = 1e-5;             // of the box: error budget of the weight keys and of the skeleton keys
+  bool target_normals = true;          // NORMAL deltas in the compact form's morph targets
 };
 
 // Exit status as console.hpp: usage (2) for option errors, failure (1) for a missing or corrupt

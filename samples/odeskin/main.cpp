@@ -113,6 +113,8 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
   cmd->add_option("--tolerance", o.tolerance,
                   "Position error allowed from the weight keys, and from the skeleton keys, as a fraction of the box\n"
                   "in [1e-8, 0.01] (default 1e-5)");
+  cmd->add_flag("!--no-target-normals", o.target_normals,
+                "Morph targets without NORMAL deltas (about half the bytes; viewers then shade the skinned base shape)");
   return cmd;
 }
 

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -190,7 +191,12 @@ class GltfPlayback {
     const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(mesh_node_)];
     const tinygltf::Primitive& p = model_.meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
     base_ = readAccessor(model_, p.attributes.at("POSITION"));
-    for (const auto& target : p.targets) targets_.push_back(readAccessor(model_, target.at("POSITION")));
+    if (p.attributes.count("NORMAL") > 0) normals_ = readAccessor(model_, p.attributes.at("NORMAL"));
+    for (const auto& target : p.targets) {
+      targets_.push_back(readAccessor(model_, target.at("POSITION")));
+      if (target.count("NORMAL") > 0) normal_targets_.push_back(readAccessor(model_, target.at("NORMAL")));
+    }
+    EXPECT_TRUE(normal_targets_.empty() || normal_targets_.size() == targets_.size()) << "NORMAL in some targets only";
     default_weights_ = node.weights.empty() ? model_.meshes[static_cast<std::size_t>(node.mesh)].weights : node.weights;
     default_weights_.resize(targets_.size(), 0.0);
     if (node.skin >= 0) {
@@ -218,8 +224,64 @@ class GltfPlayback {
   const std::vector<double>& weights() const { return weights_; }
   const std::vector<double>& inverseBinds() const { return ibm_; }
 
+  bool hasTargetNormals() const { return !normal_targets_.empty(); }
+
   std::vector<Vec3> positionsAt(double seconds) const {
-    std::vector<double> morph = default_weights_;
+    const Pose pose = poseAt(seconds);
+    std::vector<Vec3> out(vertexCount());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      Vec3 p = at(base_, i);  // morph targets first (spec 3.7.2.2)
+      for (std::size_t k = 0; k < targets_.size(); ++k) p += pose.morph[k] * at(targets_[k], i);
+      out[i] = Vec3(pose.skin(i) * glm::dvec4(p, 1.0));  // then skinning
+    }
+    return out;
+  }
+
+  // The unit NORMALs before skinning: the base plus the weighted target deltas (when
+  // `morph_normals` and the file has them), normalised as viewers do.
+  std::vector<Vec3> bindNormalsAt(double seconds, bool morph_normals = true) const {
+    const Pose pose = poseAt(seconds);
+    std::vector<Vec3> out(vertexCount());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      Vec3 n = at(normals_, i);
+      for (std::size_t k = 0; morph_normals && k < normal_targets_.size(); ++k) n += pose.morph[k] * at(normal_targets_[k], i);
+      out[i] = glm::normalize(n);
+    }
+    return out;
+  }
+
+  // Skinned as three.js and Filament do: the blended joint matrix's linear part, then normalised.
+  std::vector<Vec3> normalsAt(double seconds, bool morph_normals) const {
+    const Pose pose = poseAt(seconds);
+    std::vector<Vec3> out = bindNormalsAt(seconds, morph_normals);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::normalize(glm::dmat3(pose.skin(i)) * out[i]);
+    return out;
+  }
+
+ private:
+  // The animated state at one time: morph weights and the matrix that places each vertex.
+  struct Pose {
+    const GltfPlayback* file = nullptr;
+    std::vector<double> morph;
+    std::vector<glm::dmat4> joint_matrices;
+    glm::dmat4 mesh_world{1.0};
+
+    glm::dmat4 skin(std::size_t i) const {
+      if (joint_matrices.empty()) return mesh_world;
+      glm::dmat4 m(0.0);  // the skinned mesh node's own transform is ignored
+      for (std::size_t k = 0; k < 4; ++k) {
+        m += file->weights_[4 * i + k] * joint_matrices[static_cast<std::size_t>(file->joints_[4 * i + k])];
+      }
+      return m;
+    }
+  };
+
+  static Vec3 at(const std::vector<double>& xyz, std::size_t i) { return Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]); }
+
+  Pose poseAt(double seconds) const {
+    Pose pose;
+    pose.file = this;
+    pose.morph = default_weights_;
     std::vector<std::vector<double>> t(model_.nodes.size()), r(model_.nodes.size()), s(model_.nodes.size());
     for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
       t[n] = model_.nodes[n].translation;
@@ -228,7 +290,7 @@ class GltfPlayback {
     }
     for (const Channel& c : channels_) {
       const auto node = static_cast<std::size_t>(c.node);
-      if (c.path == "weights") morph = sample(c, seconds, targets_.size());
+      if (c.path == "weights") pose.morph = sample(c, seconds, targets_.size());
       if (c.path == "translation") t[node] = sample(c, seconds, 3);
       if (c.path == "rotation") r[node] = sample(c, seconds, 4);
       if (c.path == "scale") s[node] = sample(c, seconds, 3);
@@ -248,40 +310,25 @@ class GltfPlayback {
       done[n] = true;
       return world[n];
     };
-    std::vector<glm::dmat4> joint_matrices;
     for (std::size_t j = 0; j < joint_nodes_.size(); ++j) {
       glm::dmat4 ibm;
       for (int c = 0; c < 4; ++c) {
         for (int row = 0; row < 4; ++row) ibm[c][row] = ibm_[16 * j + static_cast<std::size_t>(4 * c + row)];
       }
-      joint_matrices.push_back(worldOf(static_cast<std::size_t>(joint_nodes_[j])) * ibm);
+      pose.joint_matrices.push_back(worldOf(static_cast<std::size_t>(joint_nodes_[j])) * ibm);
     }
-    std::vector<Vec3> out(vertexCount());
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      Vec3 p(base_[3 * i], base_[3 * i + 1], base_[3 * i + 2]);  // morph targets first (spec 3.7.2.2)
-      for (std::size_t k = 0; k < targets_.size(); ++k) {
-        p += morph[k] * Vec3(targets_[k][3 * i], targets_[k][3 * i + 1], targets_[k][3 * i + 2]);
-      }
-      if (joint_nodes_.empty()) {
-        out[i] = Vec3(worldOf(static_cast<std::size_t>(mesh_node_)) * glm::dvec4(p, 1.0));
-        continue;
-      }
-      glm::dmat4 skin(0.0);  // then skinning; the skinned mesh node's transform is ignored
-      for (std::size_t k = 0; k < 4; ++k) {
-        skin += weights_[4 * i + k] * joint_matrices[static_cast<std::size_t>(joints_[4 * i + k])];
-      }
-      out[i] = Vec3(skin * glm::dvec4(p, 1.0));
-    }
-    return out;
+    pose.mesh_world = worldOf(static_cast<std::size_t>(mesh_node_));
+    return pose;
   }
 
- private:
   bool ok_ = false;
   tinygltf::Model model_;
   std::vector<int> parents_;
   int mesh_node_ = -1;
   std::vector<double> base_;
   std::vector<std::vector<double>> targets_;
+  std::vector<double> normals_;
+  std::vector<std::vector<double>> normal_targets_;
   std::vector<double> default_weights_;
   std::vector<int> joint_nodes_;
   std::vector<double> ibm_, joints_, weights_;
@@ -291,13 +338,30 @@ class GltfPlayback {
 // ---------------------------------------------------------------------------------------------
 // Assets and odeskin's own playback
 
-std::vector<Vec3> playerPositions(const DeformAsset& asset, double t) {
+// The player's V topology positions at global time t: posed, or with identity bones the bind-space
+// shape X + residual that the morph targets reproduce.
+std::vector<Vec3> playerShape(const DeformAsset& asset, double t, bool posed) {
   Result<DeformPlayer> player = DeformPlayer::create(asset);
   EXPECT_TRUE(player.ok());
   std::vector<Vec3> out(asset.vertexCount());
   const auto [segment, tau] = player->locate(t);
-  EXPECT_TRUE(player->play(asset, segment, tau, out).ok());
-  return outputPositions(asset, out);
+  if (posed) {
+    EXPECT_TRUE(player->play(asset, segment, tau, out).ok());
+    return out;
+  }
+  std::vector<ModeBasisValue> basis(player->basisSize());
+  player->basisAt(tau, basis);
+  const std::vector<BoneTransform> identity(asset.bone_count, BoneTransform(1.0));
+  EXPECT_TRUE(referenceJob(asset, segment, basis, identity, out).run().ok());
+  return out;
+}
+
+std::vector<Vec3> playerPositions(const DeformAsset& asset, double t) {
+  return outputPositions(asset, playerShape(asset, t, true));
+}
+
+double degreesBetween(const Vec3& a, const Vec3& b) {
+  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)) * 180.0 / std::numbers::pi;
 }
 
 // The procedural arm bent to 100 degrees and back to 40 (two segments, so the second carries a rate),
@@ -380,11 +444,65 @@ class GltfExportTest : public testing::TempDirTest {
                 name.c_str(), report->morph_targets, report->weight_keys, report->skeleton_keys, report->bytes, worst,
                 worst_t, worst_key, report->weight_position_error, report->skeleton_position_error,
                 report->player_deviation);
+    expectNormalsFollowThePlayer(asset, gltf, *report, name);
     EXPECT_LT(worst, kMatchTolerance) << name << " at t = " << worst_t;
     // At the keys every weight and joint transform is a key value itself: the example poses come
     // back to float32 rounding, however many segments were summed before (the key corrections).
     EXPECT_LT(worst_key, kKeyTolerance) << name;
     return *report;
+  }
+
+  // The NORMAL deltas: before skinning, the normals viewers compute match the player's bind-space
+  // shape's (exact at the keys, within the reported linearisation bound between them); skinned,
+  // they are nearer the player's posed normals than the base NORMAL alone.
+  static void expectNormalsFollowThePlayer(const DeformAsset& asset, const GltfPlayback& gltf,
+                                           const GltfExportReport& report, const std::string& name) {
+    ASSERT_TRUE(report.target_normals);
+    ASSERT_TRUE(gltf.hasTargetNormals());
+    double worst = 0.0, worst_key = 0.0, posed_with = 0.0, posed_without = 0.0, bind_with = 0.0, bind_without = 0.0;
+    std::size_t samples = 0;
+    for (std::size_t eighth = 0; eighth <= 8 * asset.segments.size(); ++eighth) {
+      const double t = 0.125 * static_cast<double>(eighth);
+      const std::vector<Vec3> exact = outputNormals(asset, playerShape(asset, t, false));
+      const std::vector<Vec3> played = gltf.bindNormalsAt(t * asset.segment_seconds);
+      const std::vector<Vec3> unmorphed = gltf.bindNormalsAt(t * asset.segment_seconds, false);
+      ASSERT_EQ(played.size(), exact.size());
+      const std::vector<Vec3> posed = outputNormals(asset, playerShape(asset, t, true));
+      const std::vector<Vec3> with = gltf.normalsAt(t * asset.segment_seconds, true);
+      const std::vector<Vec3> without = gltf.normalsAt(t * asset.segment_seconds, false);
+      for (std::size_t i = 0; i < exact.size(); ++i) {
+        const double e = degreesBetween(played[i], exact[i]);
+        worst = std::max(worst, e);
+        bind_with += e;
+        bind_without += degreesBetween(unmorphed[i], exact[i]);
+        if (t == std::floor(t)) worst_key = std::max(worst_key, e);
+        posed_with += degreesBetween(with[i], posed[i]);
+        posed_without += degreesBetween(without[i], posed[i]);
+      }
+      samples += exact.size();
+    }
+    posed_with /= static_cast<double>(samples);
+    posed_without /= static_cast<double>(samples);
+    bind_with /= static_cast<double>(samples);
+    bind_without /= static_cast<double>(samples);
+    std::printf("%s normals, degrees from the player's: bind space mean %.3f with the NORMAL deltas, %.3f without; max "
+                "%.2f (reported %.2f, mean %.3f, 99%% of vertices %.2f), at the keys %.1e; skinned, mean %.3f with, "
+                "%.3f without\n",
+                name.c_str(), bind_with, bind_without, worst, report.normal_max_degrees, report.normal_mean_degrees,
+                report.normal_p99_degrees, worst_key, posed_with, posed_without);
+    EXPECT_LT(worst_key, 1e-3) << name;  // float32 deltas summed over the segments before
+    // The report's figures are on the exact weight curves and the export's own shape; the keyed
+    // weights and the key corrections' deviation from the player (both ~1e-5 of the box) add a little.
+    EXPECT_LT(worst, report.normal_max_degrees + 0.05) << name;
+    EXPECT_LE(report.normal_mean_degrees, report.normal_p99_degrees) << name;
+    EXPECT_LE(report.normal_p99_degrees, report.normal_max_degrees) << name;
+    // Where the deformation turns normals at all, the deltas take most of that error away.
+    if (bind_without > 0.01) {
+      EXPECT_LT(bind_with, 0.2 * bind_without) << name;
+      EXPECT_LT(posed_with, posed_without) << name;
+    } else {
+      EXPECT_LE(bind_with, bind_without + 1e-6) << name;
+    }
   }
 
   // ECOSYSTEM.md 2.1-2.2: skinned mesh node at the root with no transform, IBM last rows, weights.
@@ -600,6 +718,28 @@ TEST_F(GltfExportTest, HorseFourKeysAutoRigSkin) {
   const GltfExportReport report = exportAndCompare(asset, "horse");
   EXPECT_LT(report.weight_position_error, 1e-5);
   EXPECT_LT(report.skeleton_position_error, 1e-5);
+}
+
+// Without NORMAL deltas every target has POSITION only, the file is smaller, and a segment whose
+// key correction moves nothing has no target for it.
+TEST_F(GltfExportTest, TargetNormalsCanBeLeftOut) {
+  const DeformAsset asset = fitted(testing::cylinderWithRig(true, true), staticMaterial());
+  GltfExportOptions options;
+  options.target_normals = false;
+  Result<GltfExportReport> without = exportGltf(asset, dir_ / "without.glb", options);
+  Result<GltfExportReport> with = exportGltf(asset, dir_ / "with.glb", GltfExportOptions{});
+  ASSERT_TRUE(without.ok() && with.ok());
+  EXPECT_FALSE(without->target_normals);
+  EXPECT_TRUE(with->target_normals);
+  EXPECT_LT(without->bytes, with->bytes);
+  EXPECT_LT(without->morph_targets, with->morph_targets);
+  GltfPlayback gltf(dir_ / "without.glb");
+  ASSERT_TRUE(gltf.ok());
+  EXPECT_FALSE(gltf.hasTargetNormals());
+  for (const auto& target : gltf.model().meshes.at(0).primitives.at(0).targets) {
+    EXPECT_EQ(target.size(), 1u);
+    EXPECT_EQ(target.count("POSITION"), 1u);
+  }
 }
 
 TEST_F(GltfExportTest, PosedResidualAndDualQuaternionAssetsAreBaked) {
