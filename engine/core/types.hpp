@@ -9,6 +9,7 @@
 
 namespace odeskin {
 
+using Vec2 = glm::dvec2;
 using Vec3 = glm::dvec3;
 
 // Affine bind-space -> posed-space bone transform: 3 rows x 4 columns, column-major like all of
@@ -58,6 +59,9 @@ struct RenderLayout {
   // The input's bind normals per render vertex (a glTF's NORMAL), or empty: they tell hard edges
   // from UV seams (smoothing_groups.hpp), so outputs keep the input's creases.
   std::vector<Vec3> normals;
+  // The input's TEXCOORD_0 per render vertex, or empty: carried to the glTF the exports write, so
+  // the character keeps its texture mapping.
+  std::vector<Vec2> uvs;
   bool empty() const { return topology_of_render.empty(); }
 };
 

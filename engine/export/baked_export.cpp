@@ -41,7 +41,7 @@ Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlaye
   options.linear = true;
   options.generator = generator;
   options.animation = "odeskin";
-  ODESKIN_TRY(writeBakedGlb(path, outputFaces(asset), frames, seconds, options, normals));
+  ODESKIN_TRY(writeBakedGlb(path, outputFaces(asset), frames, seconds, options, normals, asset.render.uvs));
   return BakedExport{frames.size(), out_vertices};
 }
 

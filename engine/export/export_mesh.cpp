@@ -74,6 +74,7 @@ Result<ExportMesh> buildExportMesh(const DeformAsset& asset, std::span<const Vec
 
   // Welded, so UV seams of a glTF input do not show as creases; across its hard edges, each side's own.
   mesh.normals = outputNormals(asset, base_positions);
+  mesh.uvs = asset.render.uvs;
   mesh.positions.reserve(mesh.source_vertex.size());
   for (const std::uint32_t t : mesh.source_vertex) mesh.positions.push_back(base_positions[t]);
 

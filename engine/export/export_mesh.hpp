@@ -22,6 +22,7 @@ struct ExportMesh {
   std::vector<std::uint32_t> triangles;      // 3 output vertex indices each (polygons as fans)
   std::vector<Vec3> positions;               // output vertices of the base shape
   std::vector<Vec3> normals;                 // output vertices: unit, area-weighted, of the base shape
+  std::vector<Vec2> uvs;                     // output vertices: the input's TEXCOORD_0, or empty
   // Output vertices x 4, largest weight first. Unused slots are (joint 0, weight 0); the weights are
   // renormalised in float32 so their float32 sum is 1 within an ulp (the validator's test).
   std::vector<std::array<std::uint32_t, kExportInfluences>> joints;

@@ -80,6 +80,7 @@ void writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Primitive& pri
   xyz.clear();
   for (const Vec3& n : mesh.normals) putVec3(xyz, n);
   primitive.attributes["NORMAL"] = b.floats(xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  if (!mesh.uvs.empty()) primitive.attributes["TEXCOORD_0"] = gltf::appendTexcoordAccessor(b.model, mesh.uvs);
   std::vector<float> weights;
   for (const auto& w : mesh.weights) weights.insert(weights.end(), w.begin(), w.end());
   primitive.attributes["WEIGHTS_0"] = b.floats(weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false);

@@ -43,7 +43,8 @@ constexpr std::array<std::uint32_t, 12> kRequired{kMeta,  kRest,           kFace
 // Optional sections, written only when the asset has their data; a version 1 reader that predates
 // one skips it as a later version's (the asset then plays as before, without what it adds).
 constexpr std::uint32_t kRenderNormals = fourcc("RNRM");  // the render layout's bind normals (hard edges)
-constexpr std::array<std::uint32_t, 1> kOptional{kRenderNormals};
+constexpr std::uint32_t kRenderUvs = fourcc("RUV0");      // the render layout's TEXCOORD_0
+constexpr std::array<std::uint32_t, 2> kOptional{kRenderNormals, kRenderUvs};
 
 std::string tagName(std::uint32_t tag) {
   std::string name;
@@ -84,6 +85,13 @@ class Writer {
   void vec3s(const std::vector<Vec3>& xs) {
     count(xs.size());
     for (const Vec3& x : xs) vec3(x);
+  }
+  void vec2s(const std::vector<Vec2>& xs) {
+    count(xs.size());
+    for (const Vec2& x : xs) {
+      f64(x.x);
+      f64(x.y);
+    }
   }
   void faces(const FaceList& f) {
     u32s(f.face_offsets);
@@ -136,6 +144,11 @@ void writeSections(const DeformAsset& a, Writer& w) {
   if (!a.render.normals.empty()) {
     w.beginSection(kRenderNormals);
     w.vec3s(a.render.normals);
+    w.endSection();
+  }
+  if (!a.render.uvs.empty()) {
+    w.beginSection(kRenderUvs);
+    w.vec2s(a.render.uvs);
     w.endSection();
   }
 
@@ -265,6 +278,13 @@ class Reader {
   std::vector<std::int32_t> i32s() { return array<std::int32_t>(4, [this] { return i32(); }); }
   std::vector<double> f64s() { return array<double>(8, [this] { return f64(); }); }
   std::vector<Vec3> vec3s() { return array<Vec3>(24, [this] { return vec3(); }); }
+  std::vector<Vec2> vec2s() {
+    return array<Vec2>(16, [this] {
+      const double u = f64();
+      const double v = f64();
+      return Vec2(u, v);
+    });
+  }
   FaceList faces() {
     FaceList f;
     f.face_offsets = u32s();
@@ -323,6 +343,8 @@ void readSection(std::uint32_t tag, Reader& r, DeformAsset& a) {
     a.render.faces = r.faces();
   } else if (tag == kRenderNormals) {
     a.render.normals = r.vec3s();
+  } else if (tag == kRenderUvs) {
+    a.render.uvs = r.vec2s();
   } else if (tag == kBindings) {
     a.bindings.resize(r.count(24));
     for (CurveBinding& b : a.bindings) {

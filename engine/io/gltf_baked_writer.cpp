@@ -16,7 +16,7 @@ namespace odeskin {
 namespace {
 
 Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                  const std::vector<std::vector<Vec3>>& normals) {
+                  const std::vector<std::vector<Vec3>>& normals, std::span<const Vec2> uvs) {
   if (frames.empty()) return invalidArgument("baked glTF: no frames");
   if (seconds.size() != frames.size()) return invalidArgument("baked glTF: one time per frame is needed");
   if (!normals.empty() && normals.size() != frames.size()) return invalidArgument("baked glTF: normals for some frames only");
@@ -31,6 +31,15 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
     }
   }
   const std::size_t v_count = frames[0].size();
+  if (!uvs.empty() && uvs.size() != v_count) {
+    return invalidArgument("baked glTF: " + std::to_string(uvs.size()) + " texture coordinates for " + std::to_string(v_count) +
+                           " vertices");
+  }
+  for (std::size_t i = 0; i < uvs.size(); ++i) {
+    if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y)) {
+      return invalidArgument("baked glTF: texture coordinate " + std::to_string(i) + " is not finite");
+    }
+  }
   for (std::size_t f = 0; f < frames.size(); ++f) {
     if (frames[f].size() != v_count) return invalidArgument("baked glTF: frame " + std::to_string(f) + " has another vertex count");
     for (const Vec3& p : frames[f]) {
@@ -53,8 +62,9 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
 
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                     const BakedGlbOptions& options, const std::vector<std::vector<Vec3>>& normals) {
-  if (Status s = checkInput(faces, frames, seconds, normals); !s.ok()) return Status(s.code(), path.string() + ": " + s.message());
+                     const BakedGlbOptions& options, const std::vector<std::vector<Vec3>>& normals,
+                     std::span<const Vec2> uvs) {
+  if (Status s = checkInput(faces, frames, seconds, normals, uvs); !s.ok()) return Status(s.code(), path.string() + ": " + s.message());
   tinygltf::Model m = gltf::newModel(options.generator);
 
   const std::vector<std::uint32_t> triangles = gltf::fanTriangles(faces);
@@ -73,6 +83,7 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   };
   primitive.attributes["POSITION"] = flatten(frames, 0, true);
   if (!normals.empty()) primitive.attributes["NORMAL"] = flatten(normals, 0, false);
+  if (!uvs.empty()) primitive.attributes["TEXCOORD_0"] = gltf::appendTexcoordAccessor(m, uvs);
   for (std::size_t f = 1; f < frames.size(); ++f) {
     std::map<std::string, int> target{{"POSITION", flatten(frames, f, true)}};
     if (!normals.empty()) target["NORMAL"] = flatten(normals, f, false);

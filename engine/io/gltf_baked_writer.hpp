@@ -29,13 +29,15 @@ struct BakedGlbOptions {
 
 // frames: F >= 1 vertex arrays of one mesh; seconds: F increasing times (seconds[0] >= 0);
 // normals: empty, or one unit normal per vertex of every frame, written as the mesh's NORMAL and
-// each target's NORMAL delta (without them a viewer shades the mesh flat, as glTF requires).
+// each target's NORMAL delta (without them a viewer shades the mesh flat, as glTF requires);
+// uvs: empty, or one texture coordinate per vertex, written as TEXCOORD_0.
 // Polygons are triangulated as fans. Written through a temporary file and rename. Errors:
 // kInvalidArgument naming the path (sizes, indices, non-finite values, positions beyond glTF's
 // float32 range: gltf::checkFloat32Positions, times not increasing), kIoError naming the path.
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                     const BakedGlbOptions& options = {}, const std::vector<std::vector<Vec3>>& normals = {});
+                     const BakedGlbOptions& options = {}, const std::vector<std::vector<Vec3>>& normals = {},
+                     std::span<const Vec2> uvs = {});
 
 // kInvalidArgument "baking F frames of V vertices needs 2 GiB or more" when a baked GLB of `frames`
 // x `vertices` (a float32 position and normal each) would reach 2 GiB: tinygltf reads no larger

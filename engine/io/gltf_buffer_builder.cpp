@@ -76,6 +76,13 @@ int appendFloatAccessor(tinygltf::Model& m, const std::vector<float>& values, in
   return index;
 }
 
+int appendTexcoordAccessor(tinygltf::Model& m, std::span<const Vec2> uvs) {
+  std::vector<float> values;
+  values.reserve(2 * uvs.size());
+  for (const Vec2& uv : uvs) values.insert(values.end(), {static_cast<float>(uv.x), static_cast<float>(uv.y)});
+  return appendFloatAccessor(m, values, TINYGLTF_TYPE_VEC2, 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+}
+
 int appendTriangleIndices(tinygltf::Model& m, const std::vector<std::uint32_t>& triangles) {
   return appendAccessor(m, appendView(m, triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());

@@ -49,6 +49,9 @@ void setBounds(tinygltf::Accessor& a, std::span<const float> values, int compone
 int appendFloatAccessor(tinygltf::Model& m, const std::vector<float>& values, int type, int components, int target,
                         bool bounds);
 
+// A float VEC2 TEXCOORD accessor over a new ARRAY_BUFFER view of `uvs`.
+int appendTexcoordAccessor(tinygltf::Model& m, std::span<const Vec2> uvs);
+
 // An UNSIGNED_INT index accessor over a new ELEMENT_ARRAY_BUFFER view of `triangles`.
 int appendTriangleIndices(tinygltf::Model& m, const std::vector<std::uint32_t>& triangles);
 

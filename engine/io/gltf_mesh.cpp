@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "gltf_mesh.hpp"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <string>
@@ -16,6 +17,36 @@ constexpr std::array kQuantizedPositions{kFloat, kByte, kByteNorm, kUByte, kUByt
                                          kShort, kShortNorm, kUShort, kUShortNorm};
 constexpr std::array kQuantizedDeltas{kFloat, kByte, kByteNorm, kShort, kShortNorm};
 constexpr std::array kQuantizedNormals{kFloat, kByteNorm, kShortNorm};
+// TEXCOORD_0 as the core specification stores it, and KHR_mesh_quantization's normalized signed
+// forms. Its unnormalized integers need the material's KHR_texture_transform to mean anything.
+constexpr std::array kTexcoords{kFloat, kUByteNorm, kUShortNorm};
+constexpr std::array kQuantizedTexcoords{kFloat, kUByteNorm, kUShortNorm, kByteNorm, kShortNorm};
+
+// Why the mesh's TEXCOORD_0 cannot be kept, or empty when every primitive has it in a form read.
+std::string texcoordProblem(const tinygltf::Model& model, const tinygltf::Mesh& mesh, bool quantized) {
+  const std::span<const AccessorFormat> formats =
+      quantized ? std::span<const AccessorFormat>(kQuantizedTexcoords) : std::span<const AccessorFormat>(kTexcoords);
+  bool any = false, all = true;
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const auto uv = mesh.primitives[p].attributes.find("TEXCOORD_0");
+    if (uv == mesh.primitives[p].attributes.end()) {
+      all = false;
+      continue;
+    }
+    any = true;
+    if (uv->second < 0 || static_cast<std::size_t>(uv->second) >= model.accessors.size()) continue;  // readAccessor names it
+    const tinygltf::Accessor& a = model.accessors[static_cast<std::size_t>(uv->second)];
+    const bool known = std::any_of(formats.begin(), formats.end(), [&](const AccessorFormat& f) {
+      return f.component_type == a.componentType && f.normalized == a.normalized;
+    });
+    if (!known) {
+      return "primitive " + std::to_string(p) + " stores TEXCOORD_0 as unnormalized integers, whose meaning is in a texture "
+             "transform odeskin does not carry";
+    }
+  }
+  if (any && !all) return "some primitives have no TEXCOORD_0";
+  return {};
+}
 constexpr std::array kIndexFormats{kUByte, kUShort, kUInt};
 constexpr std::array kJointFormats{kUByte, kUShort};
 constexpr std::array kWeightFormats{kFloat, kUByteNorm, kUShortNorm};
@@ -121,6 +152,8 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
   // has it, since a primitive without it has no normals to compare.
   bool normals = true;
   for (const tinygltf::Primitive& prim : mesh.primitives) normals = normals && has(prim.attributes, "NORMAL");
+  out.uv_warning = texcoordProblem(model, mesh, quantized);
+  const bool uvs = out.uv_warning.empty() && has(mesh.primitives.front().attributes, "TEXCOORD_0");
   const std::size_t target_count = mesh.primitives.front().targets.size();
   out.target_deltas.resize(target_count);
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -153,6 +186,14 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
         return parseError(where + ": NORMAL has " + std::to_string(read.count) + " entries, POSITION " + std::to_string(n));
       }
       for (std::size_t i = 0; i < n; ++i) out.normals.emplace_back(read.at(i, 0), read.at(i, 1), read.at(i, 2));
+    }
+    if (uvs) {
+      const std::span<const AccessorFormat> uv_formats =
+          quantized ? std::span<const AccessorFormat>(kQuantizedTexcoords) : std::span<const AccessorFormat>(kTexcoords);
+      ODESKIN_ASSIGN_OR_RETURN(AccessorData read, readAccessor(model, prim.attributes.at("TEXCOORD_0"),
+                                                               {where + " TEXCOORD_0", TINYGLTF_TYPE_VEC2, uv_formats, n},
+                                                               budget));
+      for (std::size_t i = 0; i < n; ++i) out.uvs.emplace_back(read.at(i, 0), read.at(i, 1));
     }
 
     Status status;

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // One glTF mesh as render vertices (internal to odeskin_gltf): every primitive's POSITION, NORMAL,
-// JOINTS_n / WEIGHTS_n and morph-target POSITION deltas, primitives concatenated in file order,
+// TEXCOORD_0, JOINTS_n / WEIGHTS_n and morph-target POSITION deltas, primitives concatenated in file order,
 // triangles (indexed or not) re-indexed into the concatenation.
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -23,6 +24,10 @@ struct MeshData {
   std::vector<double> weights;                   // R x (4 influence_sets): decoded, not yet normalised
   std::vector<std::vector<Vec3>> target_deltas;  // T x R morph-target POSITION deltas (zeros if absent)
   std::vector<Vec3> normals;                     // R NORMAL, as stored, when every primitive has it; else empty
+  // R TEXCOORD_0, decoded, when every primitive has it as float or normalized integers; else
+  // empty, and `uv_warning` says why when some primitive has TEXCOORD_0 that could not be kept.
+  std::vector<Vec2> uvs;
+  std::string uv_warning;
 };
 
 // Reads mesh `mesh_index`. `quantized`: the file uses KHR_mesh_quantization, so POSITION and its

@@ -256,6 +256,11 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
     out.warnings.push_back("NORMAL of vertex " + std::to_string(unusable - mesh.normals.begin()) +
                            " is zero or not finite, so the mesh's hard edges (normal seams) are not kept");
   }
+  if (mesh.uv_warning.empty()) {
+    out.render.uvs = std::move(mesh.uvs);
+  } else {
+    out.warnings.push_back("TEXCOORD_0 is not kept: " + mesh.uv_warning);
+  }
 
   std::optional<Skinned> skinned;
   if (node.skin >= 0) {

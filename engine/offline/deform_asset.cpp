@@ -210,6 +210,17 @@ Status validateDeformAsset(const DeformAsset& a) {
       }
     }
   }
+  if (!a.render.uvs.empty()) {
+    if (a.render.uvs.size() != outputVertexCount(a)) {
+      return invalidArgument("deform asset: " + std::to_string(a.render.uvs.size()) + " render UVs for " +
+                             std::to_string(outputVertexCount(a)) + " output vertices");
+    }
+    for (std::size_t r = 0; r < a.render.uvs.size(); ++r) {
+      if (!std::isfinite(a.render.uvs[r].x) || !std::isfinite(a.render.uvs[r].y)) {
+        return invalidArgument("deform asset: render UV " + std::to_string(r) + " is not finite");
+      }
+    }
+  }
   return validateInfluences(a.influences, v_count, a.bone_count);
 }
 

@@ -45,6 +45,7 @@ AssetStats assetStats(const DeformAsset& asset, std::uintmax_t file_bytes) {
   if (!asset.render.normals.empty()) {
     s.hard_edge_vertices = smoothingGroups(asset.render.topology_of_render, asset.vertexCount(), asset.render.normals).hard_vertices;
   }
+  s.texcoords = !asset.render.uvs.empty();
   s.curves = asset.curveCount();
   std::set<std::uint32_t> parts;
   for (const IsoCurve& curve : asset.curves) parts.insert(curve.part);
@@ -76,6 +77,7 @@ void printAssetStats(std::ostream& out, const std::filesystem::path& path, const
     if (s.hard_edge_vertices > 0) out << ", " << s.hard_edge_vertices << " on hard edges";
     out << ")";
   }
+  if (s.texcoords) out << "; with the input's TEXCOORD_0";
   out << "\nfaces:          " << s.faces << "\n";
   out << "curves:         " << s.curves << "\n";
   out << "parts:          " << s.parts << (s.curves > 0 && s.parts == 0 ? " (curves not stored)" : "") << "\n";

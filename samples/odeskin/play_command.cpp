@@ -303,7 +303,8 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       kept_normals.push_back(std::move(baked_normals[f]));
       kept_seconds.push_back(seconds[f]);
     }
-    if (Status s = writeBakedGlb(o.output, outputFaces(asset), kept, kept_seconds, BakedGlbOptions{}, kept_normals); !s.ok()) {
+    if (Status s = writeBakedGlb(o.output, outputFaces(asset), kept, kept_seconds, BakedGlbOptions{}, kept_normals,
+                                 asset.render.uvs); !s.ok()) {
       return reportFailure(console, s);
     }
   }

@@ -78,6 +78,10 @@ void expectSameAsset(const DeformAsset& a, const DeformAsset& b) {
   EXPECT_EQ(a.render.topology_of_render, b.render.topology_of_render);
   expectSameFaces(a.render.faces, b.render.faces);
   expectSameVec3s(a.render.normals, b.render.normals, "render normal");
+  ASSERT_EQ(a.render.uvs.size(), b.render.uvs.size());
+  for (std::size_t r = 0; r < a.render.uvs.size(); ++r) {
+    EXPECT_TRUE(sameBits(a.render.uvs[r].x, b.render.uvs[r].x) && sameBits(a.render.uvs[r].y, b.render.uvs[r].y)) << "UV " << r;
+  }
   ASSERT_EQ(a.bindings.size(), b.bindings.size());
   for (std::size_t i = 0; i < a.bindings.size(); ++i) {
     EXPECT_EQ(a.bindings[i].curve_a, b.bindings[i].curve_a) << i;
@@ -305,6 +309,36 @@ TEST_F(AssetFile, RenderNormalsAreAnOptionalSection) {
   asset.render.normals.emplace_back(0.0, 0.0, 0.0);
   EXPECT_NE(encodeAsset(asset).status().message().find("render normal " + std::to_string(asset.render.normals.size() - 1) +
                                                        " is zero or not finite"),
+            std::string::npos);
+}
+
+// The render layout's TEXCOORD_0 goes in the optional RUV0 section, bit-exactly, in the same way.
+TEST_F(AssetFile, RenderTexcoordsAreAnOptionalSection) {
+  DeformAsset asset = *asset_;
+  for (std::size_t r = 0; r < outputVertexCount(asset); ++r) {
+    asset.render.uvs.emplace_back(0.1 * static_cast<double>(r), r == 0 ? -3.5 : std::nextafter(1.0, 2.0));
+  }
+  Result<std::string> bytes = encodeAsset(asset);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().toString();
+  const auto parts = sections(*bytes);
+  ASSERT_EQ(parts.size(), 13u);
+  EXPECT_EQ(std::count_if(parts.begin(), parts.end(), [](const auto& p) { return p.first == "RUV0"; }), 1);
+  Result<DeformAsset> decoded = decodeAsset(*bytes, "uvs.odsk");
+  ASSERT_TRUE(decoded.ok()) << decoded.status().toString();
+  expectSameAsset(asset, *decoded);
+  std::string without;
+  for (const auto& [tag, section] : parts) {
+    if (tag != "RUV0") without += section;
+  }
+  decoded = decodeAsset(withPayload(*bytes, without), "older.odsk");
+  ASSERT_TRUE(decoded.ok()) << decoded.status().toString();
+  EXPECT_TRUE(decoded->render.uvs.empty());
+
+  asset.render.uvs.pop_back();
+  EXPECT_NE(encodeAsset(asset).status().message().find("render UVs for"), std::string::npos);
+  asset.render.uvs.emplace_back(std::numeric_limits<double>::infinity(), 0.0);
+  EXPECT_NE(encodeAsset(asset).status().message().find("render UV " + std::to_string(asset.render.uvs.size() - 1) +
+                                                       " is not finite"),
             std::string::npos);
 }
 

@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/export/gltf_export.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/io/text_tokens.hpp"
 #include "engine/offline/deform_player.hpp"
@@ -177,6 +178,11 @@ struct TubeOptions {
   double position_scale = 1.0;    // stored = position x scale (for quantized positions)
   std::function<Vec3(int ring, int column)> normal;  // NORMAL of each vertex; none when empty
   int normal_type = kFloatType;   // float, or byte stored normalized (x 127)
+  int uv_type = kFloatType;       // TEXCOORD_0: float, or an integer type (x uv_scale)
+  bool uv_normalized = false;
+  double uv_scale = 1.0;
+  std::function<Vec2(int ring, int column)> uv = [](int ring, int column) { return Vec2(column / 4.0, ring / 2.0); };
+  bool uv_in_first_primitive_only = false;
   std::function<void(Prim&)> tweak;
 };
 
@@ -242,18 +248,21 @@ std::vector<double> flat(const std::vector<std::array<double, 4>>& v) {
   return out;
 }
 
-tinygltf::Primitive emit(Builder& b, const Prim& p, const TubeOptions& o, bool sparse_target) {
+tinygltf::Primitive emit(Builder& b, const Prim& p, const TubeOptions& o, bool sparse_target, bool first_primitive) {
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   std::vector<double> positions;
   std::vector<double> uvs;
   for (std::size_t i = 0; i < p.positions.size(); ++i) {
     for (int k = 0; k < 3; ++k) positions.push_back(p.positions[i][k] * o.position_scale);
-    uvs.push_back(p.column[i] / 4.0);
-    uvs.push_back(p.ring[i] / 2.0);
+    const Vec2 uv = o.uv(p.ring[i], p.column[i]);
+    uvs.push_back(uv.x * o.uv_scale);
+    uvs.push_back(uv.y * o.uv_scale);
   }
   prim.attributes["POSITION"] = b.accessor(positions, o.position_type, TINYGLTF_TYPE_VEC3, o.position_normalized);
-  prim.attributes["TEXCOORD_0"] = b.accessor(uvs, kFloatType, TINYGLTF_TYPE_VEC2);
+  if (!o.uv_in_first_primitive_only || first_primitive) {
+    prim.attributes["TEXCOORD_0"] = b.accessor(uvs, o.uv_type, TINYGLTF_TYPE_VEC2, o.uv_normalized);
+  }
   if (o.normal) {
     std::vector<double> normals;
     const double scale = o.normal_type == kByteType ? 127.0 : 1.0;
@@ -354,7 +363,7 @@ Tube makeTube(const TubeOptions& o = {}) {
   for (std::size_t i = 0; i < prims.size(); ++i) {
     if (o.tweak) o.tweak(prims[i]);
     const bool has_ring2 = std::find(prims[i].ring.begin(), prims[i].ring.end(), 2) != prims[i].ring.end();
-    mesh.primitives.push_back(emit(b, prims[i], o, has_ring2));
+    mesh.primitives.push_back(emit(b, prims[i], o, has_ring2, i == 0));
     tube.render_positions.insert(tube.render_positions.end(), prims[i].positions.begin(), prims[i].positions.end());
   }
   tube.position_accessor = mesh.primitives[0].attributes["POSITION"];
@@ -589,6 +598,66 @@ TEST(GltfReader, NormalsAreKeptPerRenderVertex) {
       << examples->warnings[0];
 }
 
+// TEXCOORD_0 per render vertex: float as stored, normalized integers decoded; what cannot be kept
+// (unnormalized quantized integers, a primitive without it) is dropped with a warning.
+TEST(GltfReader, TexcoordsAreKeptPerRenderVertex) {
+  auto expected = [](std::size_t r) { return Vec2(static_cast<double>(r % kColumns) / 4.0, static_cast<double>(r / kColumns) / 2.0); };
+  TubeOptions o;
+  auto examples = read(write(makeTube(o).model, "uv.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  ASSERT_EQ(examples->render.uvs.size(), 15u);
+  for (std::size_t r = 0; r < 15; ++r) EXPECT_EQ(examples->render.uvs[r], expected(r)) << "render vertex " << r;  // exact in float32
+  EXPECT_TRUE(examples->warnings.empty());
+
+  o.uv_type = kUShortType;  // core glTF: normalized unsigned short
+  o.uv_normalized = true;
+  o.uv_scale = 65535.0;
+  examples = read(write(makeTube(o).model, "uv-ushort.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  ASSERT_EQ(examples->render.uvs.size(), 15u);
+  for (std::size_t r = 0; r < 15; ++r) EXPECT_LT(glm::length(examples->render.uvs[r] - expected(r)), 1.0 / 65535.0);
+
+  o.uv_type = kShortType;  // KHR_mesh_quantization: normalized short, then unnormalized
+  o.uv_scale = 32767.0;
+  tinygltf::Model quantized = makeTube(o).model;
+  quantized.extensionsRequired = quantized.extensionsUsed = {"KHR_mesh_quantization"};
+  examples = read(write(quantized, "uv-short.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  ASSERT_EQ(examples->render.uvs.size(), 15u);
+  for (std::size_t r = 0; r < 15; ++r) EXPECT_LT(glm::length(examples->render.uvs[r] - expected(r)), 1.0 / 32767.0);
+  o.uv_normalized = false;
+  quantized = makeTube(o).model;
+  quantized.extensionsRequired = quantized.extensionsUsed = {"KHR_mesh_quantization"};
+  examples = read(write(quantized, "uv-raw.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  EXPECT_TRUE(examples->render.uvs.empty());
+  ASSERT_EQ(examples->warnings.size(), 1u);
+  EXPECT_NE(examples->warnings[0].find("uv-raw.glb: TEXCOORD_0 is not kept: primitive 0 stores TEXCOORD_0 as unnormalized "
+                                       "integers"),
+            std::string::npos)
+      << examples->warnings[0];
+
+  o = TubeOptions{};
+  o.two_primitives = true;
+  o.uv_in_first_primitive_only = true;
+  examples = read(write(makeTube(o).model, "uv-partial.glb", true), {1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  EXPECT_TRUE(examples->render.uvs.empty());
+  ASSERT_EQ(examples->warnings.size(), 1u);
+  EXPECT_NE(examples->warnings[0].find("TEXCOORD_0 is not kept: some primitives have no TEXCOORD_0"), std::string::npos)
+      << examples->warnings[0];
+
+  // A NaN is refused like in any accessor, naming it.
+  o = TubeOptions{};
+  o.uv = [](int ring, int column) { return ring == 2 && column == 1 ? Vec2(std::nan(""), 0.0) : Vec2(0.5); };
+  examples = read(write(makeTube(o).model, "uv-nan.glb", true), {1.0});
+  ASSERT_FALSE(examples.ok());
+  EXPECT_NE(examples.status().message().find("uv-nan.glb: accessor 1 (mesh 0 primitive 0 TEXCOORD_0): element 11 is not a "
+                                             "finite number"),
+            std::string::npos)
+      << examples.status().message();
+}
+
 TEST(GltfReader, SkeletonFromSkin) {
   const auto examples = read(write(makeTube().model, "tube.glb", true), {1.0});
   ASSERT_TRUE(examples.ok()) << examples.status().toString();
@@ -644,6 +713,50 @@ TEST(GltfPipeline, HardEdgesSurviveTheFitAndTheAssetFile) {
     ASSERT_TRUE(runtime_asset.ok()) << runtime_asset.status().toString();
     EXPECT_EQ(runtime_asset->hasHardEdges(), hard_seam);
     EXPECT_EQ(runtime_asset->hardEdgeVertices(), hard_seam ? 3u : 0u);
+  }
+}
+
+// The float VEC2 TEXCOORD_0 of mesh 0's first primitive in a written .glb.
+std::vector<Vec2> writtenTexcoords(const fs::path& path) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, path.string())) << err;
+  const tinygltf::Primitive& prim = model.meshes.at(0).primitives.at(0);
+  if (prim.attributes.count("TEXCOORD_0") == 0) return {};
+  const tinygltf::Accessor& a = model.accessors.at(static_cast<std::size_t>(prim.attributes.at("TEXCOORD_0")));
+  EXPECT_EQ(a.componentType, kFloatType);
+  EXPECT_EQ(a.type, TINYGLTF_TYPE_VEC2);
+  const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(a.bufferView));
+  const unsigned char* data = model.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + view.byteOffset + a.byteOffset;
+  std::vector<Vec2> out(a.count);
+  for (std::size_t i = 0; i < a.count; ++i) {
+    float uv[2];
+    std::memcpy(uv, data + 8 * i, sizeof uv);
+    out[i] = Vec2(uv[0], uv[1]);
+  }
+  return out;
+}
+
+// The input's TEXCOORD_0 travels through the fit and the .odsk file to both forms of `export`, so
+// a textured character keeps its texture mapping in the file an artist opens elsewhere.
+TEST(GltfPipeline, TexcoordsReachTheExports) {
+  const auto examples = read(write(makeTube().model, "textured.glb", true), {0.5, 1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  ASSERT_EQ(examples->render.uvs.size(), 15u);
+  Result<PipelineResult> fit = runFitPipeline(*examples, PipelineOptions{});
+  ASSERT_TRUE(fit.ok()) << fit.status().toString();
+  Result<std::string> bytes = encodeAsset(fit->asset);
+  ASSERT_TRUE(bytes.ok());
+  Result<DeformAsset> loaded = decodeAsset(*bytes, "textured.odsk");
+  ASSERT_TRUE(loaded.ok()) << loaded.status().toString();
+  EXPECT_EQ(loaded->render.uvs, examples->render.uvs);
+  for (const bool bake : {false, true}) {
+    GltfExportOptions options;
+    options.bake = bake;
+    const fs::path out = tempDir() / (bake ? "textured-baked.glb" : "textured-export.glb");
+    ASSERT_TRUE(exportGltf(*loaded, out, options).ok());
+    EXPECT_EQ(writtenTexcoords(out), examples->render.uvs) << out;  // the inputs are exact in float32
   }
 }
 

@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
   if (!asset.ok()) return fail(asset.status().toString());
   if (Status s = saveAsset(folder / "odsk" / "arm.odsk", *asset); !s.ok()) return fail(s.toString());
   // The same with a render layout whose bind normals put vertex 0 on a hard edge (the optional
-  // RNRM section): its first face takes a second copy of it, with another normal.
+  // RNRM section): its first face takes a second copy of it, with another normal; and with
+  // texture coordinates (RUV0), the copy on the other side of a UV seam.
   DeformAsset hard = *asset;
   for (std::uint32_t i = 0; i < hard.vertexCount(); ++i) hard.render.topology_of_render.push_back(i);
   hard.render.topology_of_render.push_back(hard.faces.indices[0]);
@@ -56,11 +57,15 @@ int main(int argc, char** argv) {
   hard.render.faces.indices[0] = static_cast<std::uint32_t>(hard.vertexCount());
   hard.render.normals.assign(hard.render.topology_of_render.size(), Vec3(0.0, 0.0, 1.0));
   hard.render.normals.back() = Vec3(1.0, 0.0, 0.0);
+  for (std::uint32_t r = 0; r < hard.render.topology_of_render.size(); ++r) hard.render.uvs.emplace_back(r / 64.0, 0.5);
   if (Status s = saveAsset(folder / "odsk" / "arm-hard-edges.odsk", hard); !s.ok()) return fail(s.toString());
 
   GltfExportOptions compact;
   const fs::path glb = folder / "gltf" / "arm-compact.glb";
   if (Result<GltfExportReport> r = exportGltf(*asset, glb, compact); !r.ok()) return fail(r.status().toString());
+  if (Result<GltfExportReport> r = exportGltf(hard, folder / "gltf" / "arm-textured.glb", compact); !r.ok()) {
+    return fail(r.status().toString());
+  }
   GltfExportOptions baked;
   baked.bake = true;
   baked.bake_fps = 4.0;
