@@ -51,6 +51,13 @@ struct FaceList {
   std::size_t faceCount() const { return face_offsets.size() - 1; }
 };
 
+// One glTF primitive of the input: a run of RenderLayout::faces and the material it was drawn with.
+struct RenderPrimitive {
+  std::uint32_t face_end = 0;  // its faces are [the previous primitive's face_end, face_end)
+  std::int32_t material = -1;  // the input's material index, or -1 for none
+  bool operator==(const RenderPrimitive&) const = default;
+};
+
 // glTF meshes are split at UV/normal seams: analysis runs on welded topology vertices, output keeps
 // the input's render vertices. Empty `topology_of_render`: render layout == topology layout.
 struct RenderLayout {
@@ -62,6 +69,9 @@ struct RenderLayout {
   // The input's TEXCOORD_0 per render vertex, or empty: carried to the glTF the exports write, so
   // the character keeps its texture mapping.
   std::vector<Vec2> uvs;
+  // The input's primitives in file order, or empty for one primitive without a material: the
+  // exports write them back as they were, so `export --materials` can give each its material.
+  std::vector<RenderPrimitive> primitives;
   bool empty() const { return topology_of_render.empty(); }
 };
 

@@ -10,7 +10,8 @@ namespace odeskin {
 
 Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlayer& player, const std::filesystem::path& path,
                                      double fps, const std::string& generator,
-                                     const std::function<void(std::string_view, double)>& progress) {
+                                     const std::function<void(std::string_view, double)>& progress,
+                                     const gltf::MaterialLibrary* materials) {
   const double t_end = static_cast<double>(player.segmentCount());
   const double end_seconds = t_end * asset.segment_seconds;
   std::vector<double> seconds;
@@ -41,7 +42,9 @@ Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlaye
   options.linear = true;
   options.generator = generator;
   options.animation = "odeskin";
-  ODESKIN_TRY(writeBakedGlb(path, outputFaces(asset), frames, seconds, options, normals, asset.render.uvs));
+  options.materials = materials;
+  ODESKIN_TRY(writeBakedGlb(path, outputFaces(asset), frames, seconds, options,
+                            {normals, asset.render.uvs, asset.render.primitives}));
   return BakedExport{frames.size(), out_vertices};
 }
 

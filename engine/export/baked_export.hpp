@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "../core/result.hpp"
+#include "../io/gltf_materials.hpp"
 #include "../offline/deform_player.hpp"
 
 namespace odeskin {
@@ -22,6 +23,7 @@ struct BakedExport {
 // frames. kInvalidArgument when the frames would need 2 GiB or more; the writer's errors.
 Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlayer& player, const std::filesystem::path& path,
                                      double fps, const std::string& generator,
-                                     const std::function<void(std::string_view, double)>& progress);
+                                     const std::function<void(std::string_view, double)>& progress,
+                                     const gltf::MaterialLibrary* materials = nullptr);
 
 }  // namespace odeskin

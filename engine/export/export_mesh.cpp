@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "../io/gltf_buffer_builder.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -62,11 +64,17 @@ Result<ExportMesh> buildExportMesh(const DeformAsset& asset, std::span<const Vec
   } else {
     mesh.source_vertex = asset.render.topology_of_render;
   }
-  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
-    const std::uint32_t begin = faces.face_offsets[f];
-    for (std::uint32_t k = begin + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
-      mesh.triangles.insert(mesh.triangles.end(), {faces.indices[begin], faces.indices[k], faces.indices[k + 1]});
-    }
+  const std::vector<RenderPrimitive> primitives =
+      asset.render.primitives.empty()
+          ? std::vector<RenderPrimitive>{{static_cast<std::uint32_t>(faces.faceCount()), -1}}
+          : asset.render.primitives;
+  std::size_t first_face = 0;
+  for (const RenderPrimitive& primitive : primitives) {
+    const std::vector<std::uint32_t> run = gltf::fanTriangles(faces, first_face, primitive.face_end);
+    first_face = primitive.face_end;
+    mesh.triangles.insert(mesh.triangles.end(), run.begin(), run.end());
+    mesh.primitive_ends.push_back(static_cast<std::uint32_t>(mesh.triangles.size() / 3));
+    mesh.primitive_materials.push_back(primitive.material);
   }
   for (std::uint32_t index : mesh.triangles) {
     if (index >= mesh.source_vertex.size()) return invalidArgument("export: a face uses vertex " + std::to_string(index));

@@ -64,15 +64,27 @@ Result<int> timeAccessor(ModelBuilder& b, const std::vector<double>& t, double s
   return b.floats(seconds, TINYGLTF_TYPE_SCALAR, 1, 0, true);
 }
 
-void writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Primitive& primitive, std::size_t joint_count) {
+// The index accessor of every primitive with triangles (-1 for one without), then the vertex
+// attributes all primitives share, into `primitive`.
+std::vector<int> writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Primitive& primitive, std::size_t joint_count) {
   const std::size_t count = mesh.positions.size();
-  if (count < 65535) {
-    std::vector<std::uint16_t> indices(mesh.triangles.begin(), mesh.triangles.end());
-    primitive.indices = b.accessor(b.view(indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, indices.size());
-  } else {
-    primitive.indices = b.accessor(b.view(mesh.triangles, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.triangles.size());
+  std::vector<int> index_accessors;
+  std::uint32_t begin = 0;
+  for (const std::uint32_t end : mesh.primitive_ends) {
+    const auto first = mesh.triangles.begin() + 3 * static_cast<std::ptrdiff_t>(begin);
+    const auto last = mesh.triangles.begin() + 3 * static_cast<std::ptrdiff_t>(end);
+    begin = end;
+    if (first == last) {
+      index_accessors.push_back(-1);
+    } else if (count < 65535) {
+      std::vector<std::uint16_t> indices(first, last);
+      index_accessors.push_back(b.accessor(b.view(indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, indices.size()));
+    } else {
+      std::vector<std::uint32_t> indices(first, last);
+      index_accessors.push_back(b.accessor(b.view(indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, indices.size()));
+    }
   }
   std::vector<float> xyz;
   for (const Vec3& p : mesh.positions) putVec3(xyz, p);
@@ -99,6 +111,7 @@ void writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Primitive& pri
     primitive.attributes["JOINTS_0"] = b.accessor(b.view(joints, TINYGLTF_TARGET_ARRAY_BUFFER),
                                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, count);
   }
+  return index_accessors;
 }
 
 // One morph target's deltas over the output vertices (`indices` increasing, 3 floats each in
@@ -245,9 +258,9 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
   b.model.asset.version = "2.0";
   b.model.asset.generator = contents.generator;
 
-  tinygltf::Primitive primitive;
+  tinygltf::Primitive primitive;  // what every primitive shares: attributes and targets
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  writeMesh(b, mesh, primitive, bones);
+  const std::vector<int> index_accessors = writeMesh(b, mesh, primitive, bones);
   tinygltf::Value::Array names;
   std::vector<std::int32_t> slot_of_vertex(asset.vertexCount(), -1);
   for (const SplitTarget& t : contents.weights->targets) {
@@ -268,7 +281,17 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
   summary.morph_targets = primitive.targets.size();
   tinygltf::Mesh gltf_mesh;
   gltf_mesh.name = "odeskin";
-  gltf_mesh.primitives.push_back(primitive);
+  std::vector<int> materials(index_accessors.size(), -1);
+  if (contents.materials != nullptr) {
+    ODESKIN_ASSIGN_OR_RETURN(materials, gltf::primitiveMaterials(*contents.materials, asset.render.primitives,
+                                                                 index_accessors.size()));
+  }
+  for (std::size_t p = 0; p < index_accessors.size(); ++p) {
+    if (index_accessors[p] < 0) continue;  // a primitive without triangles: glTF has no empty one
+    tinygltf::Primitive& written = gltf_mesh.primitives.emplace_back(primitive);
+    written.indices = index_accessors[p];
+    written.material = materials[p];
+  }
   if (!names.empty()) {
     gltf_mesh.weights.assign(names.size(), 0.0);
     tinygltf::Value::Object extras;
@@ -326,6 +349,7 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
   scene.nodes = {0, 1};
   b.model.scenes.push_back(scene);
   b.model.defaultScene = 0;
+  if (contents.materials != nullptr) gltf::addMaterialLibrary(b.model, *contents.materials);
   std::vector<unsigned char>& data = b.model.buffers[0].data;
   data.resize((data.size() + 3) / 4 * 4, 0);
   if (data.size() >= kMaxBufferBytes) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "../core/status.hpp"
+#include "../io/gltf_materials.hpp"
 #include "export_mesh.hpp"
 #include "mode_targets.hpp"
 #include "skeleton_keys.hpp"
@@ -27,6 +28,7 @@ struct GlbContents {
   const WeightKeys* weights = nullptr;
   const SkeletonKeys* skeleton = nullptr;
   const TargetNormals* normals = nullptr;  // NORMAL deltas for every target, or none
+  const gltf::MaterialLibrary* materials = nullptr;  // to dress the primitives with, or none
   std::string generator = "odeskin export";
 };
 

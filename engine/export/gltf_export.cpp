@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <numbers>
 #include <system_error>
 
@@ -64,6 +65,13 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
     return invalidArgument("export: bake fps " + messageNumber(o.bake_fps) + " outside (0, 1000]");
   }
   ODESKIN_ASSIGN_OR_RETURN(const DeformPlayer player, DeformPlayer::create(asset));
+  std::optional<gltf::MaterialLibrary> materials;
+  if (!o.materials.empty()) {
+    ODESKIN_ASSIGN_OR_RETURN(materials, gltf::readMaterialLibrary(o.materials));
+    // Checked before anything is computed; the writers ask again for the primitives they write.
+    ODESKIN_TRY(gltf::primitiveMaterials(*materials, asset.render.primitives, 1).status());
+  }
+  const gltf::MaterialLibrary* library = materials ? &*materials : nullptr;
   auto progress = [&](std::string_view stage, double fraction) {
     if (o.progress) o.progress(stage, fraction);
   };
@@ -77,7 +85,7 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   if (o.bake || !report.bake_reason.empty()) {
     report.baked = true;
     ODESKIN_ASSIGN_OR_RETURN(const BakedExport baked,
-                             writeBakedExport(asset, player, path, o.bake_fps, o.generator, o.progress));
+                             writeBakedExport(asset, player, path, o.bake_fps, o.generator, o.progress, library));
     report.frames = baked.frames;
     report.vertices = baked.vertices;
     report.morph_targets = baked.frames - 1;
@@ -109,7 +117,8 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   const std::vector<std::vector<BoneTransform>> key_bones = keyBones(asset);
   ODESKIN_ASSIGN_OR_RETURN(const ExportMesh mesh, buildExportMesh(asset, base, key_bones));
   progress("writing", 0.0);
-  GlbContents contents{&asset, &mesh, &targets, &weights, &skeleton, o.target_normals ? &normals : nullptr, o.generator};
+  GlbContents contents{&asset,    &mesh, &targets, &weights, &skeleton, o.target_normals ? &normals : nullptr,
+                       library, o.generator};
   ODESKIN_ASSIGN_OR_RETURN(const GlbSummary summary, writeExportGlb(path, contents));
   progress("writing", 1.0);
 

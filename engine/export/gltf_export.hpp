@@ -34,6 +34,9 @@ struct GltfExportOptions {
   // corrective deformation; without them they shade the skinned base shape. About doubles the
   // targets' bytes.
   bool target_normals = true;
+  // A glTF file whose materials, textures and images dress the output (gltf_materials.hpp): the
+  // file the asset was fitted from, or any file with one material. Empty: no materials.
+  std::filesystem::path materials;
   double bake_fps = 30.0;   // frames per second of the baked form (the last key is always a frame)
   std::string generator = "odeskin export";
   // Called with a stage name and its completed fraction in [0, 1] (for progress bars).
@@ -74,6 +77,7 @@ struct GltfExportReport {
 std::string compactExportProblem(const DeformAsset& asset);
 
 // Writes `path` through a temporary file and rename (no half-written file on failure). Errors:
+// readMaterialLibrary's and primitiveMaterials' for options.materials;
 // kInvalidArgument for options out of range (tolerance not in [1e-8, 0.01], fps not in (0, 1000]),
 // a mesh beyond glTF's float32 range (gltf::checkFloat32Positions) and for assets the writers
 // reject; DeformPlayer::create's errors; kIoError naming `path`.

@@ -44,7 +44,8 @@ constexpr std::array<std::uint32_t, 12> kRequired{kMeta,  kRest,           kFace
 // one skips it as a later version's (the asset then plays as before, without what it adds).
 constexpr std::uint32_t kRenderNormals = fourcc("RNRM");  // the render layout's bind normals (hard edges)
 constexpr std::uint32_t kRenderUvs = fourcc("RUV0");      // the render layout's TEXCOORD_0
-constexpr std::array<std::uint32_t, 2> kOptional{kRenderNormals, kRenderUvs};
+constexpr std::uint32_t kRenderPrimitives = fourcc("RPRM");  // the render layout's primitives and materials
+constexpr std::array<std::uint32_t, 3> kOptional{kRenderNormals, kRenderUvs, kRenderPrimitives};
 
 std::string tagName(std::uint32_t tag) {
   std::string name;
@@ -149,6 +150,15 @@ void writeSections(const DeformAsset& a, Writer& w) {
   if (!a.render.uvs.empty()) {
     w.beginSection(kRenderUvs);
     w.vec2s(a.render.uvs);
+    w.endSection();
+  }
+  if (!a.render.primitives.empty()) {
+    w.beginSection(kRenderPrimitives);
+    w.count(a.render.primitives.size());
+    for (const RenderPrimitive& p : a.render.primitives) {
+      w.u32(p.face_end);
+      w.i32(p.material);
+    }
     w.endSection();
   }
 
@@ -345,6 +355,12 @@ void readSection(std::uint32_t tag, Reader& r, DeformAsset& a) {
     a.render.normals = r.vec3s();
   } else if (tag == kRenderUvs) {
     a.render.uvs = r.vec2s();
+  } else if (tag == kRenderPrimitives) {
+    a.render.primitives.resize(r.count(8));
+    for (RenderPrimitive& p : a.render.primitives) {
+      p.face_end = r.u32();
+      p.material = r.i32();
+    }
   } else if (tag == kBindings) {
     a.bindings.resize(r.count(24));
     for (CurveBinding& b : a.bindings) {

@@ -5,8 +5,8 @@
 //   payload: tagged sections (u32 tag, u64 bytes, data) so later versions can add sections;
 //            readers skip tags they do not know. Version 1 writes (and requires) META REST FACE
 //            RNDR BIND CURV CMAT MATL INFL BONE KEYS SEGM, tags being the four ASCII letters,
-//            and, when the asset has them, RNRM (the render layout's bind normals) and RUV0 (its
-//            TEXCOORD_0).
+//            and, when the asset has them, RNRM (the render layout's bind normals), RUV0 (its
+//            TEXCOORD_0) and RPRM (its glTF primitives: face runs and material indices).
 // Doubles are stored bit-exactly: save -> load reproduces the asset exactly.
 #pragma once
 

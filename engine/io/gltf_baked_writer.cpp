@@ -16,7 +16,9 @@ namespace odeskin {
 namespace {
 
 Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                  const std::vector<std::vector<Vec3>>& normals, std::span<const Vec2> uvs) {
+                  const BakedVertexData& data) {
+  const std::span<const std::vector<Vec3>> normals = data.normals;
+  const std::span<const Vec2> uvs = data.uvs;
   if (frames.empty()) return invalidArgument("baked glTF: no frames");
   if (seconds.size() != frames.size()) return invalidArgument("baked glTF: one time per frame is needed");
   if (!normals.empty() && normals.size() != frames.size()) return invalidArgument("baked glTF: normals for some frames only");
@@ -55,6 +57,15 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
   for (std::uint32_t index : faces.indices) {
     if (index >= v_count) return invalidArgument("baked glTF: a face uses vertex " + std::to_string(index));
   }
+  std::uint32_t end = 0;
+  for (const RenderPrimitive& p : data.primitives) {
+    if (p.face_end < end) return invalidArgument("baked glTF: primitives out of face order");
+    end = p.face_end;
+  }
+  if (!data.primitives.empty() && end != faces.faceCount()) {
+    return invalidArgument("baked glTF: the primitives end at face " + std::to_string(end) + " of " +
+                           std::to_string(faces.faceCount()));
+  }
   return okStatus();
 }
 
@@ -62,18 +73,33 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
 
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                     const BakedGlbOptions& options, const std::vector<std::vector<Vec3>>& normals,
-                     std::span<const Vec2> uvs) {
-  if (Status s = checkInput(faces, frames, seconds, normals, uvs); !s.ok()) return Status(s.code(), path.string() + ": " + s.message());
+                     const BakedGlbOptions& options, const BakedVertexData& data) {
+  if (Status s = checkInput(faces, frames, seconds, data); !s.ok()) return Status(s.code(), path.string() + ": " + s.message());
+  const std::span<const std::vector<Vec3>> normals = data.normals;
   tinygltf::Model m = gltf::newModel(options.generator);
 
-  const std::vector<std::uint32_t> triangles = gltf::fanTriangles(faces);
+  // One index accessor per primitive with faces, over the vertices they all share.
+  const RenderPrimitive whole{static_cast<std::uint32_t>(faces.faceCount()), -1};
+  const std::span<const RenderPrimitive> runs = data.primitives.empty() ? std::span<const RenderPrimitive>(&whole, 1) : data.primitives;
+  std::vector<int> materials(runs.size(), -1);
+  if (options.materials != nullptr) {
+    Result<std::vector<int>> chosen = gltf::primitiveMaterials(*options.materials, data.primitives, runs.size());
+    if (!chosen.ok()) return chosen.status();
+    materials = std::move(chosen).value();
+  }
+  std::vector<std::pair<int, int>> written;  // (indices, material) of each primitive with faces
+  std::uint32_t begin = 0;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    if (runs[r].face_end > begin) {
+      written.emplace_back(gltf::appendTriangleIndices(m, gltf::fanTriangles(faces, begin, runs[r].face_end)), materials[r]);
+    }
+    begin = runs[r].face_end;
+  }
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  primitive.indices = gltf::appendTriangleIndices(m, triangles);
   std::vector<float> xyz;
   // Frame 0 as it is, every later frame as its difference from frame 0 (a morph target's delta).
-  auto flatten = [&](const std::vector<std::vector<Vec3>>& values, std::size_t frame, bool bounds) {
+  auto flatten = [&](std::span<const std::vector<Vec3>> values, std::size_t frame, bool bounds) {
     xyz.clear();
     for (std::size_t i = 0; i < values[frame].size(); ++i) {
       const Vec3 d = frame == 0 ? values[0][i] : values[frame][i] - values[0][i];
@@ -83,7 +109,7 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   };
   primitive.attributes["POSITION"] = flatten(frames, 0, true);
   if (!normals.empty()) primitive.attributes["NORMAL"] = flatten(normals, 0, false);
-  if (!uvs.empty()) primitive.attributes["TEXCOORD_0"] = gltf::appendTexcoordAccessor(m, uvs);
+  if (!data.uvs.empty()) primitive.attributes["TEXCOORD_0"] = gltf::appendTexcoordAccessor(m, data.uvs);
   for (std::size_t f = 1; f < frames.size(); ++f) {
     std::map<std::string, int> target{{"POSITION", flatten(frames, f, true)}};
     if (!normals.empty()) target["NORMAL"] = flatten(normals, f, false);
@@ -91,7 +117,11 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   }
   tinygltf::Mesh mesh;
   mesh.name = "odeskin";
-  mesh.primitives.push_back(primitive);
+  for (const auto& [indices, material] : written) {
+    mesh.primitives.push_back(primitive);
+    mesh.primitives.back().indices = indices;
+    mesh.primitives.back().material = material;
+  }
   mesh.weights.assign(frames.size() - 1, 0.0);
   m.meshes.push_back(mesh);
   gltf::addSingleMeshScene(m, "odeskin");
@@ -116,6 +146,7 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
     animation.channels.push_back(channel);
     m.animations.push_back(animation);
   }
+  if (options.materials != nullptr) gltf::addMaterialLibrary(m, *options.materials);
   m.buffers[0].data.resize((m.buffers[0].data.size() + 3) / 4 * 4, 0);
 
   return writeGlbAtomically(path, m);

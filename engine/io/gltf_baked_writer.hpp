@@ -14,6 +14,7 @@
 
 #include "../core/status.hpp"
 #include "../core/types.hpp"
+#include "gltf_materials.hpp"
 
 namespace tinygltf {
 class Model;
@@ -25,19 +26,28 @@ struct BakedGlbOptions {
   bool linear = false;                   // LINEAR cross-fades instead of STEP
   std::string generator = "odeskin play";  // asset.generator
   std::string animation = "odeskin play";  // the animation's name
+  // The materials to dress the primitives with (gltf_materials.hpp), or none.
+  const gltf::MaterialLibrary* materials = nullptr;
 };
 
-// frames: F >= 1 vertex arrays of one mesh; seconds: F increasing times (seconds[0] >= 0);
-// normals: empty, or one unit normal per vertex of every frame, written as the mesh's NORMAL and
-// each target's NORMAL delta (without them a viewer shades the mesh flat, as glTF requires);
-// uvs: empty, or one texture coordinate per vertex, written as TEXCOORD_0.
+// What a baked file may carry besides the positions.
+struct BakedVertexData {
+  // Empty, or one unit normal per vertex of every frame, written as the mesh's NORMAL and each
+  // target's NORMAL delta (without them a viewer shades the mesh flat, as glTF requires).
+  std::span<const std::vector<Vec3>> normals;
+  std::span<const Vec2> uvs;                    // empty, or TEXCOORD_0 per vertex
+  // Empty (one primitive), or the input's primitives as runs of the faces, each written as its own
+  // glTF primitive over the shared vertices (those without faces are left out).
+  std::span<const RenderPrimitive> primitives;
+};
+
+// frames: F >= 1 vertex arrays of one mesh; seconds: F increasing times (seconds[0] >= 0).
 // Polygons are triangulated as fans. Written through a temporary file and rename. Errors:
 // kInvalidArgument naming the path (sizes, indices, non-finite values, positions beyond glTF's
 // float32 range: gltf::checkFloat32Positions, times not increasing), kIoError naming the path.
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                     const BakedGlbOptions& options = {}, const std::vector<std::vector<Vec3>>& normals = {},
-                     std::span<const Vec2> uvs = {});
+                     const BakedGlbOptions& options = {}, const BakedVertexData& data = {});
 
 // kInvalidArgument "baking F frames of V vertices needs 2 GiB or more" when a baked GLB of `frames`
 // x `vertices` (a float32 position and normal each) would reach 2 GiB: tinygltf reads no larger

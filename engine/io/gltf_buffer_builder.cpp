@@ -99,10 +99,12 @@ void addSingleMeshScene(tinygltf::Model& m, const std::string& name) {
   m.defaultScene = 0;
 }
 
-std::vector<std::uint32_t> fanTriangles(const FaceList& faces) {
+std::vector<std::uint32_t> fanTriangles(const FaceList& faces) { return fanTriangles(faces, 0, faces.faceCount()); }
+
+std::vector<std::uint32_t> fanTriangles(const FaceList& faces, std::size_t first_face, std::size_t end_face) {
   std::vector<std::uint32_t> triangles;
-  triangles.reserve(faces.faceCount() * 6);
-  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
+  triangles.reserve((end_face - first_face) * 6);
+  for (std::size_t f = first_face; f < end_face; ++f) {
     const std::uint32_t begin = faces.face_offsets[f];
     for (std::uint32_t k = begin + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
       triangles.insert(triangles.end(), {faces.indices[begin], faces.indices[k], faces.indices[k + 1]});

@@ -60,5 +60,7 @@ void addSingleMeshScene(tinygltf::Model& m, const std::string& name);
 
 // The polygons as triangle fans (v0, vk, vk+1), the way every odeskin GLB triangulates.
 std::vector<std::uint32_t> fanTriangles(const FaceList& faces);
+// The same of faces [first_face, end_face).
+std::vector<std::uint32_t> fanTriangles(const FaceList& faces, std::size_t first_face, std::size_t end_face);
 
 }  // namespace odeskin::gltf

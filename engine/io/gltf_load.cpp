@@ -34,6 +34,13 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
   return true;
 }
 
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                      int size, void*) {
+  image->image.assign(bytes, bytes + size);
+  image->as_is = true;
+  return true;
+}
+
 std::string trimmed(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
   return s;
@@ -239,15 +246,17 @@ Result<tinygltf::Model> runLoader(const std::string& source,
 }
 
 // A .gltf or .glb held in memory. `base_dir`: the folder external files are found in, or null for
-// bytes with no folder (every external URI refused, nothing written).
-Result<tinygltf::Model> loadBytes(const std::string& bytes, const std::string& source, const std::string* base_dir) {
+// bytes with no folder (every external URI refused, nothing written). `keep_images`: each image's
+// encoded bytes are kept (keepEncodedImage) instead of dropped.
+Result<tinygltf::Model> loadBytes(const std::string& bytes, const std::string& source, const std::string* base_dir,
+                                  bool keep_images = false) {
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
     return ioError(source + ": " + std::to_string(bytes.size()) + " bytes, over the 2 GiB tinygltf 2.7 can read");
   }
   const bool glb = isGlb(bytes);
   ODESKIN_TRY(glb ? checkGlb(bytes, source) : checkJson(bytes, false, source));
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skipImage, nullptr);
+  loader.SetImageLoader(keep_images ? keepEncodedImage : skipImage, nullptr);
   loader.SetFsCallbacks(base_dir ? tinygltf::FsCallbacks{existingFile, samePath, readRegularFile, noWrite, nullptr}
                                  : tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
   const std::string folder = base_dir ? *base_dir : std::string();
@@ -266,6 +275,13 @@ Result<tinygltf::Model> loadModel(const std::filesystem::path& path) {
   if (Status read = readWholeRegularFile(path, bytes); !read.ok()) return ioError(path.string() + ": " + read.message());
   const std::string folder = path.parent_path().string();  // where tinygltf finds external buffers
   return loadBytes(bytes, path.string(), &folder);
+}
+
+Result<tinygltf::Model> loadModelWithImages(const std::filesystem::path& path) {
+  std::string bytes;
+  if (Status read = readWholeRegularFile(path, bytes); !read.ok()) return ioError(path.string() + ": " + read.message());
+  const std::string folder = path.parent_path().string();
+  return loadBytes(bytes, path.string(), &folder, true);
 }
 
 Result<tinygltf::Model> loadModelFromMemory(const std::string& bytes, const std::string& source) {

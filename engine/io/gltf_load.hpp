@@ -22,6 +22,11 @@ namespace odeskin::gltf {
 // external file that is not a regular file, or is over 2 GiB, is not read (tinygltf's message).
 Result<tinygltf::Model> loadModel(const std::filesystem::path& path);
 
+// loadModel keeping every image it can read as its encoded bytes (Image::image, as_is), not
+// decoded: to copy a file's textures into another (gltf_materials.hpp). An image whose external
+// file is missing keeps only its uri.
+Result<tinygltf::Model> loadModelWithImages(const std::filesystem::path& path);
+
 // loadModel on bytes already in memory; `source` stands for the path in the messages. It has no
 // folder: a buffer URI other than a data: URI is refused (tinygltf's message), and no file is
 // touched. kIoError over 2 GiB.

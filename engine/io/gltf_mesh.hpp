@@ -28,6 +28,7 @@ struct MeshData {
   // empty, and `uv_warning` says why when some primitive has TEXCOORD_0 that could not be kept.
   std::vector<Vec2> uvs;
   std::string uv_warning;
+  std::vector<RenderPrimitive> primitives;       // every primitive's triangle run and material
 };
 
 // Reads mesh `mesh_index`. `quantized`: the file uses KHR_mesh_quantization, so POSITION and its

@@ -256,6 +256,8 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
     out.warnings.push_back("NORMAL of vertex " + std::to_string(unusable - mesh.normals.begin()) +
                            " is zero or not finite, so the mesh's hard edges (normal seams) are not kept");
   }
+  // One primitive without a material needs no record: that is what the empty list means.
+  if (mesh.primitives.size() > 1 || mesh.primitives.front().material >= 0) out.render.primitives = std::move(mesh.primitives);
   if (mesh.uv_warning.empty()) {
     out.render.uvs = std::move(mesh.uvs);
   } else {

@@ -210,6 +210,19 @@ Status validateDeformAsset(const DeformAsset& a) {
       }
     }
   }
+  std::uint32_t previous_end = 0;
+  for (std::size_t p = 0; p < a.render.primitives.size(); ++p) {
+    const RenderPrimitive& primitive = a.render.primitives[p];
+    if (primitive.face_end < previous_end || primitive.material < -1) {
+      return invalidArgument("deform asset: render primitive " + std::to_string(p) + " ends at face " +
+                             std::to_string(primitive.face_end) + " with material " + std::to_string(primitive.material));
+    }
+    previous_end = primitive.face_end;
+  }
+  if (!a.render.primitives.empty() && previous_end != outputFaces(a).faceCount()) {
+    return invalidArgument("deform asset: the render primitives end at face " + std::to_string(previous_end) + " of " +
+                           std::to_string(outputFaces(a).faceCount()));
+  }
   if (!a.render.uvs.empty()) {
     if (a.render.uvs.size() != outputVertexCount(a)) {
       return invalidArgument("deform asset: " + std::to_string(a.render.uvs.size()) + " render UVs for " +

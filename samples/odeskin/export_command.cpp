@@ -88,6 +88,7 @@ int runExportCommand(const ExportCommandOptions& o, Console& console, GltfExport
   options.bake_fps = o.fps.value_or(30.0);
   options.tolerance = o.tolerance;
   options.target_normals = o.target_normals;
+  options.materials = o.materials;
   const std::string reason = compactExportProblem(asset);
   if (reason.empty() && !o.bake && o.fps && !console.quiet) {
     console.err << "note: --fps applies to bakes only; " << o.asset.string()

@@ -18,6 +18,7 @@ struct ExportCommandOptions {
   std::optional<double> fps;           // frames per second of a bake (default 30)
   double tolerance = 1e-5;             // of the box: error budget of the weight keys and of the skeleton keys
   bool target_normals = true;          // NORMAL deltas in the compact form's morph targets
+  std::filesystem::path materials;     // a glTF whose materials dress the output, or empty
 };
 
 // Exit status as console.hpp: usage (2) for option errors, failure (1) for a missing or corrupt

@@ -113,6 +113,9 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
   cmd->add_option("--tolerance", o.tolerance,
                   "Position error allowed from the weight keys, and from the skeleton keys, as a fraction of the box\n"
                   "in [1e-8, 0.01] (default 1e-5)");
+  cmd->add_option("--materials", o.materials,
+                  "Dress the mesh in the materials and textures of this glTF (the file the asset was fitted from, or\n"
+                  "any file with one material)");
   cmd->add_flag("!--no-target-normals", o.target_normals,
                 "Morph targets without NORMAL deltas (about half the bytes; viewers then shade the skinned base shape)");
   return cmd;
@@ -370,6 +373,8 @@ int run(int argc, char** argv, std::string& verb) {
   t_opt->excludes(fps_opt);
   seconds_opt->needs(fps_opt);
   play_cmd->add_option("-o,--output", play.output, "OUT.obj, or a pattern with one frame number: OUT_%04d.obj");
+  play_cmd->add_option("--materials", play.materials,
+                       "With -o OUT.glb: dress it in the materials and textures of this glTF (the file it was fitted from)");
   play_cmd->add_option("--png", play.png_dir, "Also draw the frames to DIR/frame_NNNN.png and DIR/strip.png (Vulkan)");
   play_cmd->add_option("--size", play.png_size, "--png picture size WIDTHxHEIGHT");
   play_cmd->add_flag("--curves", play.png_curves, "--png: draw the iso-parametric curves");

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <system_error>
 
 #include "engine/core/number_text.hpp"
@@ -45,6 +46,7 @@ std::string usageProblem(const PlayOptions& o) {
     view.elevation_deg = o.png_elevation_deg;
     if (Status s = visual::validateViewSpec(view); !s.ok()) return "play: " + s.message();
   }
+  if (!o.materials.empty() && lowerExtension(o.output) != ".glb") return "play: --materials needs -o OUT.glb";
   if (o.output.empty()) return {};
   const std::string ext = lowerExtension(o.output);
   if (ext == ".gltf") return "play: " + o.output + ": write .glb (one self-contained binary file) or .obj";
@@ -240,6 +242,15 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
                                       "; lower --fps or --seconds, or write .obj frames");
     }
   }
+  std::optional<gltf::MaterialLibrary> materials;
+  if (!o.materials.empty()) {
+    Result<gltf::MaterialLibrary> library = gltf::readMaterialLibrary(o.materials);
+    if (!library.ok()) return reportFailure(console, library.status());
+    if (Status s = gltf::primitiveMaterials(*library, asset.render.primitives, 1).status(); !s.ok()) {
+      return reportFailure(console, s);
+    }
+    materials = std::move(library).value();
+  }
   std::vector<std::vector<Vec3>> baked, baked_normals;
 
   // --png: the device is opened before anything is written, so a missing one fails early (and
@@ -303,8 +314,10 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       kept_normals.push_back(std::move(baked_normals[f]));
       kept_seconds.push_back(seconds[f]);
     }
-    if (Status s = writeBakedGlb(o.output, outputFaces(asset), kept, kept_seconds, BakedGlbOptions{}, kept_normals,
-                                 asset.render.uvs); !s.ok()) {
+    BakedGlbOptions options;
+    options.materials = materials ? &*materials : nullptr;
+    if (Status s = writeBakedGlb(o.output, outputFaces(asset), kept, kept_seconds, options,
+                                 {kept_normals, asset.render.uvs, asset.render.primitives}); !s.ok()) {
       return reportFailure(console, s);
     }
   }

@@ -40,6 +40,7 @@ struct PlayOptions {
   std::optional<double> fps;      // a sequence at this frame rate
   std::optional<double> seconds;  // sequence length; default: (K-1) x segment_seconds
   std::string output;             // .obj file (--t) or .obj pattern (--fps), or .glb; may be empty with png_dir
+  std::filesystem::path materials;  // .glb only: a glTF whose materials dress it (gltf_materials.hpp)
   PlaybackOptions playback;
   std::filesystem::path png_dir;  // --png DIR: pictures of the frames (Vulkan; lavapipe works)
   std::string png_size = "640x480";

@@ -82,6 +82,7 @@ void expectSameAsset(const DeformAsset& a, const DeformAsset& b) {
   for (std::size_t r = 0; r < a.render.uvs.size(); ++r) {
     EXPECT_TRUE(sameBits(a.render.uvs[r].x, b.render.uvs[r].x) && sameBits(a.render.uvs[r].y, b.render.uvs[r].y)) << "UV " << r;
   }
+  EXPECT_EQ(a.render.primitives, b.render.primitives);
   ASSERT_EQ(a.bindings.size(), b.bindings.size());
   for (std::size_t i = 0; i < a.bindings.size(); ++i) {
     EXPECT_EQ(a.bindings[i].curve_a, b.bindings[i].curve_a) << i;
@@ -340,6 +341,29 @@ TEST_F(AssetFile, RenderTexcoordsAreAnOptionalSection) {
   EXPECT_NE(encodeAsset(asset).status().message().find("render UV " + std::to_string(asset.render.uvs.size() - 1) +
                                                        " is not finite"),
             std::string::npos);
+}
+
+// The input's primitives (face runs and materials) go in the optional RPRM section; runs must
+// follow each other and end at the last face.
+TEST_F(AssetFile, RenderPrimitivesAreAnOptionalSection) {
+  DeformAsset asset = *asset_;
+  const auto faces = static_cast<std::uint32_t>(outputFaces(asset).faceCount());
+  asset.render.primitives = {{faces / 2, 3}, {faces / 2, -1}, {faces, 0}};
+  Result<std::string> bytes = encodeAsset(asset);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().toString();
+  const auto parts = sections(*bytes);
+  EXPECT_EQ(std::count_if(parts.begin(), parts.end(), [](const auto& p) { return p.first == "RPRM"; }), 1);
+  Result<DeformAsset> decoded = decodeAsset(*bytes, "primitives.odsk");
+  ASSERT_TRUE(decoded.ok()) << decoded.status().toString();
+  expectSameAsset(asset, *decoded);
+
+  asset.render.primitives.back().face_end = faces - 1;
+  EXPECT_NE(encodeAsset(asset).status().message().find("the render primitives end at face " + std::to_string(faces - 1)),
+            std::string::npos);
+  asset.render.primitives = {{faces, 0}, {faces / 2, 0}};
+  EXPECT_NE(encodeAsset(asset).status().message().find("render primitive 1 ends at face"), std::string::npos);
+  asset.render.primitives = {{faces, -2}};
+  EXPECT_NE(encodeAsset(asset).status().message().find("with material -2"), std::string::npos);
 }
 
 // Face rows are checked as a whole, not only their indices: the runtime and the export walk them

@@ -760,6 +760,165 @@ TEST(GltfPipeline, TexcoordsReachTheExports) {
   }
 }
 
+// A 1 x 1 PNG (one orange pixel), for a texture.
+constexpr std::array<unsigned char, 69> kOnePixelPng{
+    0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+    0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xde, 0x00, 0x00, 0x00,
+    0x0c, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0xf8, 0xdf, 0xc0, 0x00, 0x00, 0x04, 0x01, 0x01, 0x80, 0xc5,
+    0x2a, 0x18, 0x5d, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+
+// The two-primitive tube dressed in two materials: "skin" with a PNG base colour texture placed by
+// KHR_texture_transform, and "cloth" with KHR_materials_emissive_strength; primitive p uses
+// material p. `external_image`: the PNG is a file beside the glTF rather than in its buffer.
+tinygltf::Model dressedTube(bool external_image = false) {
+  TubeOptions o;
+  o.two_primitives = true;
+  tinygltf::Model model = makeTube(o).model;
+  tinygltf::Image image;
+  image.name = "skin-colour";
+  if (external_image) {
+    image.uri = "skin-colour.png";
+  } else {
+    std::vector<unsigned char>& data = model.buffers[0].data;
+    while (data.size() % 4 != 0) data.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = data.size();
+    view.byteLength = kOnePixelPng.size();
+    data.insert(data.end(), kOnePixelPng.begin(), kOnePixelPng.end());
+    model.bufferViews.push_back(view);
+    image.bufferView = static_cast<int>(model.bufferViews.size()) - 1;
+    image.mimeType = "image/png";
+  }
+  model.images.push_back(image);
+  tinygltf::Sampler sampler;
+  sampler.magFilter = TINYGLTF_TEXTURE_FILTER_NEAREST;
+  model.samplers.push_back(sampler);
+  tinygltf::Texture texture;
+  texture.source = 0;
+  texture.sampler = 0;
+  model.textures.push_back(texture);
+  tinygltf::Material skin;
+  skin.name = "skin";
+  skin.pbrMetallicRoughness.baseColorTexture.index = 0;
+  tinygltf::Value::Object transform;
+  transform["scale"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(2.0), tinygltf::Value(2.0)});
+  skin.pbrMetallicRoughness.baseColorTexture.extensions["KHR_texture_transform"] = tinygltf::Value(transform);
+  tinygltf::Material cloth;
+  cloth.name = "cloth";
+  cloth.emissiveFactor = {1.0, 0.5, 0.0};
+  tinygltf::Value::Object strength;
+  strength["emissiveStrength"] = tinygltf::Value(4.0);
+  cloth.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(strength);
+  model.materials = {skin, cloth};
+  model.extensionsUsed = {"KHR_texture_transform", "KHR_materials_emissive_strength"};
+  for (std::size_t p = 0; p < model.meshes[0].primitives.size(); ++p) model.meshes[0].primitives[p].material = static_cast<int>(p);
+  return model;
+}
+
+tinygltf::Model loadWritten(const fs::path& path) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, path.string())) << err;
+  return model;
+}
+
+// The input's primitives and their materials survive the fit and the .odsk file, and
+// `--materials` puts the input's materials, textures and images back on them in both forms of the
+// export, image bytes unchanged.
+TEST(GltfPipeline, MaterialsDressTheExports) {
+  const fs::path source = write(dressedTube(), "dressed.glb", true);
+  const auto examples = read(source, {0.5, 1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  const std::vector<RenderPrimitive> expected{{static_cast<std::uint32_t>(2 * (kColumns - 1)), 0},
+                                              {static_cast<std::uint32_t>(4 * (kColumns - 1)), 1}};
+  EXPECT_EQ(examples->render.primitives, expected);
+  Result<PipelineResult> fit = runFitPipeline(*examples, PipelineOptions{});
+  ASSERT_TRUE(fit.ok()) << fit.status().toString();
+  Result<std::string> bytes = encodeAsset(fit->asset);
+  ASSERT_TRUE(bytes.ok());
+  Result<DeformAsset> loaded = decodeAsset(*bytes, "dressed.odsk");
+  ASSERT_TRUE(loaded.ok()) << loaded.status().toString();
+  EXPECT_EQ(loaded->render.primitives, expected);
+  for (const bool bake : {false, true}) {
+    GltfExportOptions options;
+    options.bake = bake;
+    options.materials = source;
+    const fs::path out = tempDir() / (bake ? "dressed-baked.glb" : "dressed-export.glb");
+    Result<GltfExportReport> report = exportGltf(*loaded, out, options);
+    ASSERT_TRUE(report.ok()) << report.status().toString();
+    const tinygltf::Model written = loadWritten(out);
+    ASSERT_EQ(written.meshes.at(0).primitives.size(), 2u) << out;
+    EXPECT_EQ(written.meshes[0].primitives[0].material, 0);
+    EXPECT_EQ(written.meshes[0].primitives[1].material, 1);
+    EXPECT_EQ(written.meshes[0].primitives[0].attributes, written.meshes[0].primitives[1].attributes)
+        << "the primitives share their vertices";
+    ASSERT_EQ(written.materials.size(), 2u);
+    EXPECT_EQ(written.materials[0].name, "skin");
+    EXPECT_EQ(written.materials[1].name, "cloth");
+    EXPECT_EQ(written.materials[0].pbrMetallicRoughness.baseColorTexture.extensions.count("KHR_texture_transform"), 1u);
+    EXPECT_EQ(written.materials[1].extensions.count("KHR_materials_emissive_strength"), 1u);
+    EXPECT_EQ(written.extensionsUsed, (std::vector<std::string>{"KHR_texture_transform", "KHR_materials_emissive_strength"}));
+    ASSERT_EQ(written.images.size(), 1u);
+    EXPECT_EQ(written.images[0].mimeType, "image/png");
+    EXPECT_EQ(written.images[0].name, "skin-colour");
+    const tinygltf::BufferView& view = written.bufferViews.at(static_cast<std::size_t>(written.images[0].bufferView));
+    const auto* data = written.buffers[0].data.data() + view.byteOffset;
+    EXPECT_TRUE(view.byteLength == kOnePixelPng.size() && std::equal(kOnePixelPng.begin(), kOnePixelPng.end(), data));
+    ASSERT_EQ(written.textures.size(), 1u);
+    EXPECT_EQ(written.samplers.at(0).magFilter, TINYGLTF_TEXTURE_FILTER_NEAREST);
+  }
+  // The same file written without materials still splits the mesh as the input did.
+  const fs::path plain = tempDir() / "undressed.glb";
+  ASSERT_TRUE(exportGltf(*loaded, plain, GltfExportOptions{}).ok());
+  const tinygltf::Model written = loadWritten(plain);
+  ASSERT_EQ(written.meshes.at(0).primitives.size(), 2u);
+  EXPECT_EQ(written.meshes[0].primitives[0].material, -1);
+  EXPECT_TRUE(written.materials.empty() && written.images.empty());
+}
+
+// What --materials cannot use is refused before anything is written, naming the file.
+TEST(GltfPipeline, MaterialsThatDoNotFitAreRefused) {
+  const fs::path source = write(dressedTube(), "two-materials.glb", true);
+  const auto examples = read(source, {0.5, 1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  Result<PipelineResult> fit = runFitPipeline(*examples, PipelineOptions{});
+  ASSERT_TRUE(fit.ok()) << fit.status().toString();
+  auto refused = [](const DeformAsset& asset, const fs::path& materials, const std::string& message) {
+    GltfExportOptions options;
+    options.materials = materials;
+    const fs::path out = tempDir() / "refused.glb";
+    Result<GltfExportReport> report = exportGltf(asset, out, options);
+    ASSERT_FALSE(report.ok());
+    EXPECT_NE(report.status().message().find(message), std::string::npos) << report.status().message();
+    EXPECT_FALSE(fs::exists(out));
+  };
+  // A file with fewer materials than the asset's primitives used.
+  tinygltf::Model one = dressedTube();
+  one.materials.pop_back();
+  refused(fit->asset, write(one, "one-material.glb", true),
+          "one-material.glb: has 1 materials, but the asset's primitive 1 used material 1");
+  // An asset that recorded no materials (fitted from OBJ, or before odeskin kept them) takes a
+  // file's only material, and no choice among several.
+  DeformAsset unrecorded = fit->asset;
+  unrecorded.render.primitives.clear();
+  refused(unrecorded, source, "two-materials.glb: has 2 materials, and the asset does not record which its primitives used");
+  const fs::path out = tempDir() / "one.glb";
+  GltfExportOptions options;
+  options.materials = tempDir() / "one-material.glb";
+  ASSERT_TRUE(exportGltf(unrecorded, out, options).ok());
+  EXPECT_EQ(loadWritten(out).meshes.at(0).primitives.at(0).material, 0);
+  // No materials at all; an image whose file is missing.
+  tinygltf::Model none = dressedTube();
+  none.materials.clear();
+  for (auto& p : none.meshes[0].primitives) p.material = -1;
+  refused(fit->asset, write(none, "no-materials.glb", true), "no-materials.glb: has no materials to copy");
+  refused(fit->asset, write(dressedTube(true), "external-image.gltf", false),
+          "external-image.gltf: image 0 (skin-colour.png) cannot be read");
+  refused(fit->asset, tempDir() / "absent.glb", "absent.glb");
+}
+
 struct WeightCase {
   int joint_type;
   int weight_type;

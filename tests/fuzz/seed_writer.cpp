@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
   if (Status s = saveAsset(folder / "odsk" / "arm.odsk", *asset); !s.ok()) return fail(s.toString());
   // The same with a render layout whose bind normals put vertex 0 on a hard edge (the optional
   // RNRM section): its first face takes a second copy of it, with another normal; and with
-  // texture coordinates (RUV0), the copy on the other side of a UV seam.
+  // texture coordinates (RUV0), the copy on the other side of a UV seam, and two primitives with
+  // materials (RPRM).
   DeformAsset hard = *asset;
   for (std::uint32_t i = 0; i < hard.vertexCount(); ++i) hard.render.topology_of_render.push_back(i);
   hard.render.topology_of_render.push_back(hard.faces.indices[0]);
@@ -58,6 +59,8 @@ int main(int argc, char** argv) {
   hard.render.normals.assign(hard.render.topology_of_render.size(), Vec3(0.0, 0.0, 1.0));
   hard.render.normals.back() = Vec3(1.0, 0.0, 0.0);
   for (std::uint32_t r = 0; r < hard.render.topology_of_render.size(); ++r) hard.render.uvs.emplace_back(r / 64.0, 0.5);
+  const auto faces = static_cast<std::uint32_t>(hard.render.faces.faceCount());
+  hard.render.primitives = {{faces / 2, 0}, {faces, -1}};
   if (Status s = saveAsset(folder / "odsk" / "arm-hard-edges.odsk", hard); !s.ok()) return fail(s.toString());
 
   GltfExportOptions compact;

@@ -202,6 +202,9 @@ TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   cases.push_back({atTime(0.5, dir / "x.gltf"), "write .glb"});
   cases.push_back({atTime(0.5, dir / "x.ply"), "unknown output format"});
   cases.push_back({atTime(0.5, ""), "-o OUT is required"});
+  PlayOptions dressed = atTime(0.5, dir / "x.obj");
+  dressed.materials = dir / "look.glb";
+  cases.push_back({dressed, "--materials needs -o OUT.glb"});
   PlayOptions both = atTime(0.5, dir / "x.obj");
   both.fps = 30.0;
   cases.push_back({both, "either --t T"});
