@@ -23,6 +23,24 @@ Status checkIndexRange(const PackedDeformData& p, std::size_t preset_count) {
   return okStatus();
 }
 
+// The primitives as runs of the faces' fan triangles (renderTriangleIndices' order).
+std::vector<RuntimeAsset::DrawRange> drawRanges(const FaceList& faces, std::span<const RenderPrimitive> primitives) {
+  const RenderPrimitive whole{static_cast<std::uint32_t>(faces.faceCount()), -1};
+  const std::span<const RenderPrimitive> runs = primitives.empty() ? std::span<const RenderPrimitive>(&whole, 1) : primitives;
+  std::vector<RuntimeAsset::DrawRange> out;
+  std::uint32_t index = 0;
+  std::size_t f = 0;
+  for (const RenderPrimitive& run : runs) {
+    const std::uint32_t first = index;
+    for (; f < run.face_end; ++f) {
+      const std::uint32_t corners = faces.face_offsets[f + 1] - faces.face_offsets[f];
+      if (corners >= 3) index += 3 * (corners - 2);
+    }
+    if (index > first) out.push_back({first, index - first, run.material});
+  }
+  return out;
+}
+
 }  // namespace
 
 MaterialPreset staticPreset() { return MaterialPreset{"static", {staticMaterial()}}; }
@@ -85,6 +103,7 @@ Result<RuntimeAsset> RuntimeAsset::create(const DeformAsset& asset, const Runtim
   r.bone_paths_ = boneKeyPaths(asset);
   buildCorners(asset.faces, asset.vertexCount(), r.triangles_, r.corner_offsets_, r.corners_);
   appendFanTriangles(asset.render.faces, r.render_triangles_);
+  r.draw_ranges_ = drawRanges(outputFaces(asset), asset.render.primitives);
   if (!options.render_tangents.empty()) {
     ODESKIN_ASSIGN_OR_RETURN(r.tangents_, buildTangentLayout(asset.rest_positions, r.corner_offsets_, r.corners_,
                                                              asset.render.topology_of_render, options.render_tangents));

@@ -112,6 +112,16 @@ class RuntimeAsset {
   // input) they are the topology vertices: renderTopology() is empty, the count and triangles are
   // vertexCount() and triangleIndices().
   std::uint32_t renderVertexCount() const;
+  // One draw per glTF primitive of the input (RenderPrimitive): a run of renderTriangleIndices()
+  // and the input's material, so an engine binds each primitive's material and draws
+  // [first_index, first_index + index_count) over the one output buffer. One range with material
+  // -1 when the asset records no primitives; primitives without triangles are left out.
+  struct DrawRange {
+    std::uint32_t first_index = 0;
+    std::uint32_t index_count = 0;
+    std::int32_t material = -1;
+  };
+  std::span<const DrawRange> renderDrawRanges() const { return draw_ranges_; }
   std::span<const std::uint32_t> renderTopology() const { return asset_.render.topology_of_render; }
   std::span<const std::uint32_t> renderTriangleIndices() const {
     return asset_.render.empty() ? std::span<const std::uint32_t>(triangles_) : render_triangles_;
@@ -151,6 +161,7 @@ class RuntimeAsset {
   std::uint32_t basis_entries_ = 0;
   std::vector<std::uint32_t> triangles_;
   std::vector<std::uint32_t> render_triangles_;  // fans of the render faces; empty without a render layout
+  std::vector<DrawRange> draw_ranges_;
   std::vector<std::uint32_t> corner_offsets_;   // V + 1
   std::vector<gpu::Corner> corners_;            // 3 per triangle
   TangentLayout tangents_;                       // per render vertex, when render_tangents were given

@@ -48,6 +48,32 @@ TEST(RuntimeAsset, RenderVerticesOfAGltfLikeAsset) {
   }
 }
 
+// One draw per input primitive, so an engine binds each one's material over the one output buffer.
+TEST(RuntimeAsset, DrawRangesFollowTheInputsPrimitives) {
+  const RuntimeAsset plain = makeAsset(testing::cylinderAsset());
+  ASSERT_EQ(plain.renderDrawRanges().size(), 1u);
+  EXPECT_EQ(plain.renderDrawRanges()[0].first_index, 0u);
+  EXPECT_EQ(plain.renderDrawRanges()[0].index_count, plain.renderTriangleIndices().size());
+  EXPECT_EQ(plain.renderDrawRanges()[0].material, -1);
+
+  DeformAsset source = withSeams(testing::cylinderAsset());
+  const FaceList& faces = source.render.faces;
+  const auto third = static_cast<std::uint32_t>(faces.faceCount() / 3);
+  source.render.primitives = {{third, 2}, {third, 7}, {static_cast<std::uint32_t>(faces.faceCount()), -1}};
+  ASSERT_TRUE(validateDeformAsset(source).ok());
+  const RuntimeAsset asset = makeAsset(source);
+  std::uint32_t first_run = 0;  // indices of the first third of the faces, counted corner by corner
+  for (std::uint32_t f = 0; f < third; ++f) first_run += 3 * (faces.face_offsets[f + 1] - faces.face_offsets[f] - 2);
+  const std::span<const RuntimeAsset::DrawRange> ranges = asset.renderDrawRanges();
+  ASSERT_EQ(ranges.size(), 2u) << "the empty primitive has no draw";
+  EXPECT_EQ(ranges[0].first_index, 0u);
+  EXPECT_EQ(ranges[0].index_count, first_run);
+  EXPECT_EQ(ranges[0].material, 2);
+  EXPECT_EQ(ranges[1].first_index, first_run);
+  EXPECT_EQ(ranges[1].index_count, asset.renderTriangleIndices().size() - first_run);
+  EXPECT_EQ(ranges[1].material, -1);
+}
+
 // 1 instance (spread over the threads), 5 (four whole rounds of one per thread, then one spread).
 TEST(CpuRuntime, RenderLayoutGathersEachRenderVertexFromItsTopologyVertex) {
   const tbb::global_control four(tbb::global_control::max_allowed_parallelism, 4);
