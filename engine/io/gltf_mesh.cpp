@@ -176,6 +176,10 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
     const auto first = static_cast<std::uint32_t>(out.positions.size());
     for (std::size_t i = 0; i < n; ++i) out.positions.emplace_back(positions.at(i, 0), positions.at(i, 1), positions.at(i, 2));
     ODESKIN_TRY(readTriangles(model, prim, where, n, first, out.triangles, budget));
+    if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size())) {
+      return parseError(where + " uses material " + std::to_string(prim.material) + " of " +
+                        std::to_string(model.materials.size()));
+    }
     out.primitives.push_back({static_cast<std::uint32_t>(out.triangles.size() / 3), prim.material});
     if (normals) {
       const std::span<const AccessorFormat> normal_formats =

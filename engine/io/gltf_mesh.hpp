@@ -35,7 +35,8 @@ struct MeshData {
 // deltas may be (normalized) byte or short. kParseError naming the mesh, primitive and accessor: no
 // primitives, a mode other than TRIANGLES (4), no POSITION, an index count not a multiple of 3 or
 // an index >= the primitive's vertex count, JOINTS_n without WEIGHTS_n (or the reverse) or sets
-// that differ between primitives, primitives with different morph-target counts, any readAccessor
+// that differ between primitives, primitives with different morph-target counts, a material that
+// does not exist, any readAccessor
 // error, or more decoded values (accessors, unindexed triangles, zero deltas) than `budget` has left.
 Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool quantized, DecodeBudget& budget);
 

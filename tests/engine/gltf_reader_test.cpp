@@ -919,6 +919,15 @@ TEST(GltfPipeline, MaterialsThatDoNotFitAreRefused) {
   refused(fit->asset, tempDir() / "absent.glb", "absent.glb");
 }
 
+TEST(GltfReaderErrors, MaterialThatDoesNotExist) {
+  tinygltf::Model model = dressedTube();
+  model.meshes[0].primitives[1].material = 9;
+  const auto examples = read(write(model, "bad-material.glb", true), {1.0});
+  ASSERT_FALSE(examples.ok());
+  EXPECT_NE(examples.status().message().find("bad-material.glb: mesh 0 primitive 1 uses material 9 of 2"), std::string::npos)
+      << examples.status().message();
+}
+
 struct WeightCase {
   int joint_type;
   int weight_type;
