@@ -46,6 +46,7 @@ AssetStats assetStats(const DeformAsset& asset, std::uintmax_t file_bytes) {
     s.hard_edge_vertices = smoothingGroups(asset.render.topology_of_render, asset.vertexCount(), asset.render.normals).hard_vertices;
   }
   s.texcoords = !asset.render.uvs.empty();
+  s.primitives = asset.render.primitives.size();
   s.curves = asset.curveCount();
   std::set<std::uint32_t> parts;
   for (const IsoCurve& curve : asset.curves) parts.insert(curve.part);
@@ -78,6 +79,7 @@ void printAssetStats(std::ostream& out, const std::filesystem::path& path, const
     out << ")";
   }
   if (s.texcoords) out << "; with the input's TEXCOORD_0";
+  if (s.primitives > 0) out << "; " << s.primitives << " glTF primitive" << (s.primitives == 1 ? "" : "s") << " with their materials";
   out << "\nfaces:          " << s.faces << "\n";
   out << "curves:         " << s.curves << "\n";
   out << "parts:          " << s.parts << (s.curves > 0 && s.parts == 0 ? " (curves not stored)" : "") << "\n";

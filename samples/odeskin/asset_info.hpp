@@ -19,6 +19,7 @@ struct AssetStats {
   std::size_t render_vertices = 0;    // glTF render vertices (== V without a render layout)
   std::size_t hard_edge_vertices = 0; // topology vertices the input's normals put on a hard edge
   bool texcoords = false;             // the input's TEXCOORD_0 travels to the exports
+  std::size_t primitives = 0;         // the input's glTF primitives it records (0: none recorded)
   std::size_t faces = 0;
   std::size_t curves = 0;             // C
   std::size_t parts = 0;              // distinct IsoCurve::part values (0 when curves are not stored)

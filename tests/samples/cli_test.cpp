@@ -315,6 +315,18 @@ TEST_F(Cli, InfoNumbers) {
   printAssetStats(hard_text, "seamed.odsk", h);
   EXPECT_NE(hard_text.str().find("(" + std::to_string(v + 1) + " render vertices, 1 on hard edges)"), std::string::npos)
       << hard_text.str();
+  // With the input's texture coordinates and its two primitives.
+  seamed.render.uvs.assign(v + 1, Vec2(0.5));
+  const auto faces = static_cast<std::uint32_t>(seamed.render.faces.faceCount());
+  seamed.render.primitives = {{faces / 2, 0}, {faces, 1}};
+  const AssetStats dressed = assetStats(seamed, bytes);
+  EXPECT_TRUE(dressed.texcoords);
+  EXPECT_EQ(dressed.primitives, 2u);
+  std::ostringstream dressed_text;
+  printAssetStats(dressed_text, "dressed.odsk", dressed);
+  EXPECT_NE(dressed_text.str().find("; with the input's TEXCOORD_0; 2 glTF primitives with their materials"),
+            std::string::npos)
+      << dressed_text.str();
 }
 
 class CliOnGpu : public testing::GpuTest {};
