@@ -64,6 +64,19 @@ std::vector<unsigned char> pack(const std::vector<double>& values, int component
   return out;
 }
 
+// A 4-byte aligned bufferView over `bytes` appended to buffer 0.
+int appendBufferView(tinygltf::Model& model, const std::vector<unsigned char>& bytes) {
+  std::vector<unsigned char>& data = model.buffers[0].data;
+  while (data.size() % 4 != 0) data.push_back(0);
+  tinygltf::BufferView v;
+  v.buffer = 0;
+  v.byteOffset = data.size();
+  v.byteLength = bytes.size();
+  data.insert(data.end(), bytes.begin(), bytes.end());
+  model.bufferViews.push_back(v);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
 std::size_t componentsOf(int type) {
   return type == TINYGLTF_TYPE_MAT4 ? 16 : static_cast<std::size_t>(tinygltf::GetNumComponentsInType(type));
 }
@@ -78,17 +91,7 @@ struct Builder {
     model.asset.generator = "odeskin gltf_reader_test";
   }
 
-  int view(const std::vector<unsigned char>& bytes) {
-    std::vector<unsigned char>& data = model.buffers[0].data;
-    while (data.size() % 4 != 0) data.push_back(0);
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = data.size();
-    v.byteLength = bytes.size();
-    data.insert(data.end(), bytes.begin(), bytes.end());
-    model.bufferViews.push_back(v);
-    return static_cast<int>(model.bufferViews.size()) - 1;
-  }
+  int view(const std::vector<unsigned char>& bytes) { return appendBufferView(model, bytes); }
 
   // An accessor over a new bufferView holding `values` (all components, element after element).
   int accessor(const std::vector<double>& values, int component_type, int type, bool normalized = false) {
@@ -782,15 +785,7 @@ tinygltf::Model dressedTube(bool external_image = false) {
   if (external_image) {
     image.uri = "skin-colour.png";
   } else {
-    std::vector<unsigned char>& data = model.buffers[0].data;
-    while (data.size() % 4 != 0) data.push_back(0);
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = data.size();
-    view.byteLength = kOnePixelPng.size();
-    data.insert(data.end(), kOnePixelPng.begin(), kOnePixelPng.end());
-    model.bufferViews.push_back(view);
-    image.bufferView = static_cast<int>(model.bufferViews.size()) - 1;
+    image.bufferView = appendBufferView(model, std::vector<unsigned char>(kOnePixelPng.begin(), kOnePixelPng.end()));
     image.mimeType = "image/png";
   }
   model.images.push_back(image);
