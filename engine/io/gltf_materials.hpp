@@ -2,7 +2,7 @@
 // The look of a glTF file (its materials with the textures, samplers and images they use) read
 // to dress a mesh odeskin writes: `export --materials` and `play --materials` give a fitted
 // character back the materials of the file it was fitted from. Images travel as their encoded
-// bytes (PNG, JPEG, KTX2, WebP), never decoded.
+// bytes (PNG, JPEG, KTX2, WebP, AVIF), never decoded.
 #pragma once
 
 #include <filesystem>
@@ -19,7 +19,7 @@ namespace odeskin::gltf {
 
 struct EncodedImage {
   std::string name;
-  std::string mime_type;  // "image/png", "image/jpeg", "image/ktx2" or "image/webp"
+  std::string mime_type;  // "image/png", "image/jpeg", "image/ktx2", "image/webp" or "image/avif"
   std::vector<unsigned char> bytes;
 };
 

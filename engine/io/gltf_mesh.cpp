@@ -22,6 +22,10 @@ constexpr std::array kQuantizedNormals{kFloat, kByteNorm, kShortNorm};
 constexpr std::array kTexcoords{kFloat, kUByteNorm, kUShortNorm};
 constexpr std::array kQuantizedTexcoords{kFloat, kUByteNorm, kUShortNorm, kByteNorm, kShortNorm};
 
+constexpr std::array kIndexFormats{kUByte, kUShort, kUInt};
+constexpr std::array kJointFormats{kUByte, kUShort};
+constexpr std::array kWeightFormats{kFloat, kUByteNorm, kUShortNorm};
+
 // Why the mesh's TEXCOORD_0 cannot be kept, or empty when every primitive has it in a form read.
 std::string texcoordProblem(const tinygltf::Model& model, const tinygltf::Mesh& mesh, bool quantized) {
   const std::span<const AccessorFormat> formats =
@@ -47,9 +51,6 @@ std::string texcoordProblem(const tinygltf::Model& model, const tinygltf::Mesh& 
   if (any && !all) return "some primitives have no TEXCOORD_0";
   return {};
 }
-constexpr std::array kIndexFormats{kUByte, kUShort, kUInt};
-constexpr std::array kJointFormats{kUByte, kUShort};
-constexpr std::array kWeightFormats{kFloat, kUByteNorm, kUShortNorm};
 
 bool has(const std::map<std::string, int>& attributes, const std::string& name) {
   return attributes.find(name) != attributes.end();
