@@ -132,7 +132,11 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
 }
 
 Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces,
-                const std::string& comment) {
+                const std::string& comment, std::span<const Vec2> uvs) {
+  if (!uvs.empty() && uvs.size() != positions.size()) {
+    return invalidArgument(path.string() + ": " + std::to_string(uvs.size()) + " texture coordinates for " +
+                           std::to_string(positions.size()) + " vertices");
+  }
   std::string text;
   text.reserve(positions.size() * 40 + faces.indices.size() * 8 + 64);
   if (!comment.empty()) text += "# " + comment + "\n";
@@ -150,6 +154,16 @@ Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positio
     }
     text += '\n';
   }
+  for (std::size_t i = 0; i < uvs.size(); ++i) {
+    if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y)) {
+      return invalidArgument(path.string() + ": texture coordinate " + std::to_string(i) + " is not finite");
+    }
+    text += "vt ";
+    appendNumber(text, uvs[i].x, 9);
+    text += ' ';
+    appendNumber(text, 1.0 - uvs[i].y, 9);
+    text += '\n';
+  }
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {
     text += 'f';
     for (std::uint32_t k = faces.face_offsets[f]; k < faces.face_offsets[f + 1]; ++k) {
@@ -159,6 +173,7 @@ Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positio
       }
       text += ' ';
       text += std::to_string(faces.indices[k] + 1);
+      if (!uvs.empty()) text += '/' + std::to_string(faces.indices[k] + 1);
     }
     text += '\n';
   }

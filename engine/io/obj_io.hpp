@@ -14,10 +14,12 @@
 
 namespace odeskin {
 
-// kInvalidArgument for an index >= positions.size() or a non-finite coordinate; kIoError naming
-// the path when the file cannot be written.
+// `uvs`: empty, or one texture coordinate per vertex, written as `vt` lines with faces `f i/i ...`
+// (a glTF input's TEXCOORD_0, whose v runs down the image: OBJ's runs up, so v is written 1 - v).
+// kInvalidArgument for an index >= positions.size(), a non-finite coordinate or a uvs count that
+// is not the vertex count; kIoError naming the path when the file cannot be written.
 Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces,
-                const std::string& comment = {});
+                const std::string& comment = {}, std::span<const Vec2> uvs = {});
 
 // Writes `content` to `path` through a temporary file and rename (kIoError naming the path). A
 // symbolic link is followed: the link stays and its target is replaced, keeping its permission

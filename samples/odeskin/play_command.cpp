@@ -294,7 +294,8 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       continue;
     }
     const std::string comment = "odeskin play " + o.asset.filename().string() + " t = " + numberText(times[f]);
-    if (Status s = writeObj(files[f], outputPositions(asset, positions), outputFaces(asset), comment); !s.ok()) {
+    if (Status s = writeObj(files[f], outputPositions(asset, positions), outputFaces(asset), comment, asset.render.uvs);
+        !s.ok()) {
       return reportFailure(console, s);
     }
     bar.step(f + 1);

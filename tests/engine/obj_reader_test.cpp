@@ -281,6 +281,30 @@ TEST_F(ObjSequenceTempDir, WrittenCopiesRoundTrip) {
   EXPECT_EQ(set->poses[1].size(), 420u);
 }
 
+// Texture coordinates go out as `vt` (v flipped from glTF's downward to OBJ's upward) with faces
+// `f i/i`, and the file reads back as the same mesh.
+TEST_F(ObjSequenceTempDir, TexcoordsAreWrittenAsVtAndReadBack) {
+  std::vector<Vec2> uvs;
+  for (std::size_t i = 0; i < a_.positions.size(); ++i) uvs.emplace_back(static_cast<double>(i) / 512.0, 0.25);
+  const fs::path path = dir_ / "textured.obj";
+  ASSERT_TRUE(writeObj(path, a_.positions, a_.faces, "frame 0", uvs).ok());
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\nvt 0 0.75\nvt 0.001953125 0.75\n"), std::string::npos);
+  const std::uint32_t first = a_.faces.indices[0] + 1;
+  EXPECT_NE(text.find("\nf " + std::to_string(first) + "/" + std::to_string(first) + " "), std::string::npos);
+  const Result<ObjMesh> back = readObj(path);
+  ASSERT_TRUE(back.ok()) << back.status().toString();
+  EXPECT_EQ(back->positions, a_.positions);
+  EXPECT_EQ(back->faces.indices, a_.faces.indices);
+  EXPECT_EQ(back->faces.face_offsets, a_.faces.face_offsets);
+
+  uvs.pop_back();
+  const Status wrong = writeObj(dir_ / "wrong.obj", a_.positions, a_.faces, {}, uvs);
+  EXPECT_NE(wrong.message().find("419 texture coordinates for 420 vertices"), std::string::npos) << wrong.message();
+  EXPECT_FALSE(fs::exists(dir_ / "wrong.obj"));
+}
+
 TEST_F(ObjSequenceTempDir, ChangedFaceIndexNamesFileFaceAndBothVersions) {
   ObjMesh bad = b_;
   // Face 17 (1-based): give it another third corner.
