@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// `odeskin export ASSET -o OUT.glb [--bake [--fps F]] [--tolerance T] [--no-target-normals]`: a .odsk asset as one glTF
-// 2.0 binary that any viewer plays with the player's motion (exportGltf, engine/export/).
+// `odeskin export ASSET -o OUT.glb [--bake [--fps F]] [--tolerance T] [--no-target-normals]
+// [--materials SOURCE.glb]`: a .odsk asset as one glTF 2.0 binary that any viewer plays with the
+// player's motion (exportGltf, engine/export/).
 #pragma once
 
 #include <filesystem>
