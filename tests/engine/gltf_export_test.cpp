@@ -3,7 +3,8 @@
 // implementation of the glTF 2.0 specification (accessors with sparse substitution, LINEAR / STEP /
 // CUBICSPLINE samplers with quaternion normalisation, node hierarchy, morph targets then linear
 // skinning with joint matrix = world(joint) * IBM, the skinned mesh node's own transform ignored),
-// and compared with odeskin's player (DeformPlayer + the reference kernel) at keys and mid-segment.
+// and compared with odeskin's player (DeformPlayer + the reference kernel) at keys and mid-segment:
+// positions, and the normals the NORMAL deltas give before skinning against the player's shape's.
 #include "engine/export/gltf_export.hpp"
 
 #include <algorithm>
