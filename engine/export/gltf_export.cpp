@@ -72,10 +72,14 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
     ODESKIN_TRY(gltf::primitiveMaterials(*materials, asset.render.primitives, 1).status());
   }
   const gltf::MaterialLibrary* library = materials ? &*materials : nullptr;
+  GltfExportReport report;
+  if (library != nullptr) {
+    report.materials = library->materials.size();
+    report.images = library->images.size();
+  }
   auto progress = [&](std::string_view stage, double fraction) {
     if (o.progress) o.progress(stage, fraction);
   };
-  GltfExportReport report;
   std::vector<Vec3> base(asset.vertexCount());
   for (std::size_t i = 0; i < base.size(); ++i) base[i] = asset.rest_positions[i] + asset.segments.front().base_residuals[i];
   report.box = longestBoxSide(base);

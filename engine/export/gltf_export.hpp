@@ -50,6 +50,8 @@ struct GltfExportReport {
   std::size_t vertices = 0;        // written (render vertices for a glTF-fitted asset)
   std::size_t morph_targets = 0;
   std::uintmax_t bytes = 0;        // of the written file
+  std::size_t materials = 0;       // copied from options.materials (0 without)
+  std::size_t images = 0;          // embedded with them
   // Compact form only:
   std::size_t sparse_targets = 0;  // written as sparse accessors
   std::size_t merged_fields = 0;   // (material, mode) fields merged into a target with the same curve

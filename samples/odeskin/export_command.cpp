@@ -38,6 +38,12 @@ double stageStart(std::string_view stage) {
   return 0.0;
 }
 
+void printMaterials(std::ostream& out, const ExportCommandOptions& o, const GltfExportReport& r) {
+  if (o.materials.empty()) return;
+  out << "glTF materials: " << r.materials << " with " << r.images << " image" << (r.images == 1 ? "" : "s") << " from "
+      << o.materials.string() << "\n";
+}
+
 void printSummary(std::ostream& out, const ExportCommandOptions& o, const DeformAsset& asset, const GltfExportReport& r,
                   double fps) {
   const std::size_t segments = asset.segments.size();
@@ -45,6 +51,7 @@ void printSummary(std::ostream& out, const ExportCommandOptions& o, const Deform
     out << "baked " << o.asset.filename().string() << " -> " << o.output.string() << " (" << r.bytes << " bytes): "
         << r.frames << " frames at " << numberText(fps) << " fps, " << r.vertices
         << " vertices, one morph target per frame, LINEAR cross-fades\n";
+    printMaterials(out, o, r);
     return;
   }
   out << "exported " << o.asset.filename().string() << " -> " << o.output.string() << " (" << r.bytes << " bytes): "
@@ -67,6 +74,7 @@ void printSummary(std::ostream& out, const ExportCommandOptions& o, const Deform
       << scientific(r.skeleton_position_error) << " of the box\n";
   out << "mid-segment deviation from the player: <= " << scientific(r.player_deviation)
       << " of the box (key corrections where the fit stored no remainder)\n";
+  printMaterials(out, o, r);
   if (r.pruned_vertices == 0) {
     out << "influences: at most " << r.max_influences << " per vertex, written as they are\n";
   } else {

@@ -846,6 +846,8 @@ TEST(GltfPipeline, MaterialsDressTheExports) {
     const fs::path out = tempDir() / (bake ? "dressed-baked.glb" : "dressed-export.glb");
     Result<GltfExportReport> report = exportGltf(*loaded, out, options);
     ASSERT_TRUE(report.ok()) << report.status().toString();
+    EXPECT_EQ(report->materials, 2u);
+    EXPECT_EQ(report->images, 1u);
     const tinygltf::Model written = loadWritten(out);
     ASSERT_EQ(written.meshes.at(0).primitives.size(), 2u) << out;
     EXPECT_EQ(written.meshes[0].primitives[0].material, 0);
