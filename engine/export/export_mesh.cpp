@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "../core/render_primitives.hpp"
 #include "../io/gltf_buffer_builder.hpp"
 
 namespace odeskin {
@@ -64,12 +65,8 @@ Result<ExportMesh> buildExportMesh(const DeformAsset& asset, std::span<const Vec
   } else {
     mesh.source_vertex = asset.render.topology_of_render;
   }
-  const std::vector<RenderPrimitive> primitives =
-      asset.render.primitives.empty()
-          ? std::vector<RenderPrimitive>{{static_cast<std::uint32_t>(faces.faceCount()), -1}}
-          : asset.render.primitives;
   std::size_t first_face = 0;
-  for (const RenderPrimitive& primitive : primitives) {
+  for (const RenderPrimitive& primitive : primitiveRuns(asset.render.primitives, faces.faceCount())) {
     const std::vector<std::uint32_t> run = gltf::fanTriangles(faces, first_face, primitive.face_end);
     first_face = primitive.face_end;
     mesh.triangles.insert(mesh.triangles.end(), run.begin(), run.end());

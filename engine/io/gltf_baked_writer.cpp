@@ -9,6 +9,7 @@
 
 #include <tiny_gltf.h>
 
+#include "../core/render_primitives.hpp"
 #include "gltf_buffer_builder.hpp"
 #include "obj_io.hpp"
 
@@ -57,14 +58,8 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
   for (std::uint32_t index : faces.indices) {
     if (index >= v_count) return invalidArgument("baked glTF: a face uses vertex " + std::to_string(index));
   }
-  std::uint32_t end = 0;
-  for (const RenderPrimitive& p : data.primitives) {
-    if (p.face_end < end) return invalidArgument("baked glTF: primitives out of face order");
-    end = p.face_end;
-  }
-  if (!data.primitives.empty() && end != faces.faceCount()) {
-    return invalidArgument("baked glTF: the primitives end at face " + std::to_string(end) + " of " +
-                           std::to_string(faces.faceCount()));
+  if (const std::string problem = primitiveRunProblem(data.primitives, faces.faceCount()); !problem.empty()) {
+    return invalidArgument("baked glTF: " + problem);
   }
   return okStatus();
 }
@@ -79,8 +74,7 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   tinygltf::Model m = gltf::newModel(options.generator);
 
   // One index accessor per primitive with faces, over the vertices they all share.
-  const RenderPrimitive whole{static_cast<std::uint32_t>(faces.faceCount()), -1};
-  const std::span<const RenderPrimitive> runs = data.primitives.empty() ? std::span<const RenderPrimitive>(&whole, 1) : data.primitives;
+  const std::vector<RenderPrimitive> runs = primitiveRuns(data.primitives, faces.faceCount());
   std::vector<int> materials(runs.size(), -1);
   if (options.materials != nullptr) {
     Result<std::vector<int>> chosen = gltf::primitiveMaterials(*options.materials, data.primitives, runs.size());

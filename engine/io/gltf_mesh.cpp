@@ -26,10 +26,9 @@ constexpr std::array kIndexFormats{kUByte, kUShort, kUInt};
 constexpr std::array kJointFormats{kUByte, kUShort};
 constexpr std::array kWeightFormats{kFloat, kUByteNorm, kUShortNorm};
 
-// Why the mesh's TEXCOORD_0 cannot be kept, or empty when every primitive has it in a form read.
-std::string texcoordProblem(const tinygltf::Model& model, const tinygltf::Mesh& mesh, bool quantized) {
-  const std::span<const AccessorFormat> formats =
-      quantized ? std::span<const AccessorFormat>(kQuantizedTexcoords) : std::span<const AccessorFormat>(kTexcoords);
+// Why the mesh's TEXCOORD_0 cannot be kept, or empty when every primitive has it in one of `formats`.
+std::string texcoordProblem(const tinygltf::Model& model, const tinygltf::Mesh& mesh,
+                            std::span<const AccessorFormat> formats) {
   bool any = false, all = true;
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
     const auto uv = mesh.primitives[p].attributes.find("TEXCOORD_0");
@@ -153,7 +152,9 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
   // has it, since a primitive without it has no normals to compare.
   bool normals = true;
   for (const tinygltf::Primitive& prim : mesh.primitives) normals = normals && has(prim.attributes, "NORMAL");
-  out.uv_warning = texcoordProblem(model, mesh, quantized);
+  const std::span<const AccessorFormat> uv_formats =
+      quantized ? std::span<const AccessorFormat>(kQuantizedTexcoords) : std::span<const AccessorFormat>(kTexcoords);
+  out.uv_warning = texcoordProblem(model, mesh, uv_formats);
   const bool uvs = out.uv_warning.empty() && has(mesh.primitives.front().attributes, "TEXCOORD_0");
   const std::size_t target_count = mesh.primitives.front().targets.size();
   out.target_deltas.resize(target_count);
@@ -194,8 +195,6 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
       for (std::size_t i = 0; i < n; ++i) out.normals.emplace_back(read.at(i, 0), read.at(i, 1), read.at(i, 2));
     }
     if (uvs) {
-      const std::span<const AccessorFormat> uv_formats =
-          quantized ? std::span<const AccessorFormat>(kQuantizedTexcoords) : std::span<const AccessorFormat>(kTexcoords);
       ODESKIN_ASSIGN_OR_RETURN(AccessorData read, readAccessor(model, prim.attributes.at("TEXCOORD_0"),
                                                                {where + " TEXCOORD_0", TINYGLTF_TYPE_VEC2, uv_formats, n},
                                                                budget));

@@ -9,6 +9,7 @@
 
 #include "../core/float32_range.hpp"
 #include "../core/number_text.hpp"
+#include "../core/render_primitives.hpp"
 #include "../core/smoothing_groups.hpp"
 #include "../kernels/fourier_deform_job.hpp"
 
@@ -210,18 +211,8 @@ Status validateDeformAsset(const DeformAsset& a) {
       }
     }
   }
-  std::uint32_t previous_end = 0;
-  for (std::size_t p = 0; p < a.render.primitives.size(); ++p) {
-    const RenderPrimitive& primitive = a.render.primitives[p];
-    if (primitive.face_end < previous_end || primitive.material < -1) {
-      return invalidArgument("deform asset: render primitive " + std::to_string(p) + " ends at face " +
-                             std::to_string(primitive.face_end) + " with material " + std::to_string(primitive.material));
-    }
-    previous_end = primitive.face_end;
-  }
-  if (!a.render.primitives.empty() && previous_end != outputFaces(a).faceCount()) {
-    return invalidArgument("deform asset: the render primitives end at face " + std::to_string(previous_end) + " of " +
-                           std::to_string(outputFaces(a).faceCount()));
+  if (const std::string problem = primitiveRunProblem(a.render.primitives, outputFaces(a).faceCount()); !problem.empty()) {
+    return invalidArgument("deform asset: " + problem);
   }
   if (!a.render.uvs.empty()) {
     if (a.render.uvs.size() != outputVertexCount(a)) {

@@ -3,6 +3,7 @@
 
 #include <limits>
 
+#include "../core/render_primitives.hpp"
 #include "../io/asset_file.hpp"
 #include "../offline/residual_fit.hpp"
 #include "instance_outputs.hpp"
@@ -25,12 +26,10 @@ Status checkIndexRange(const PackedDeformData& p, std::size_t preset_count) {
 
 // The primitives as runs of the faces' fan triangles (renderTriangleIndices' order).
 std::vector<RuntimeAsset::DrawRange> drawRanges(const FaceList& faces, std::span<const RenderPrimitive> primitives) {
-  const RenderPrimitive whole{static_cast<std::uint32_t>(faces.faceCount()), -1};
-  const std::span<const RenderPrimitive> runs = primitives.empty() ? std::span<const RenderPrimitive>(&whole, 1) : primitives;
   std::vector<RuntimeAsset::DrawRange> out;
   std::uint32_t index = 0;
   std::size_t f = 0;
-  for (const RenderPrimitive& run : runs) {
+  for (const RenderPrimitive& run : primitiveRuns(primitives, faces.faceCount())) {
     const std::uint32_t first = index;
     for (; f < run.face_end; ++f) {
       const std::uint32_t corners = faces.face_offsets[f + 1] - faces.face_offsets[f];

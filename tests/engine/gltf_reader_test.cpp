@@ -722,12 +722,17 @@ TEST(GltfPipeline, HardEdgesSurviveTheFitAndTheAssetFile) {
   }
 }
 
-// The float VEC2 TEXCOORD_0 of mesh 0's first primitive in a written .glb.
-std::vector<Vec2> writtenTexcoords(const fs::path& path) {
+tinygltf::Model loadWritten(const fs::path& path) {
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   std::string err, warn;
   EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, path.string())) << err;
+  return model;
+}
+
+// The float VEC2 TEXCOORD_0 of mesh 0's first primitive in a written .glb.
+std::vector<Vec2> writtenTexcoords(const fs::path& path) {
+  const tinygltf::Model model = loadWritten(path);
   const tinygltf::Primitive& prim = model.meshes.at(0).primitives.at(0);
   if (prim.attributes.count("TEXCOORD_0") == 0) return {};
   const tinygltf::Accessor& a = model.accessors.at(static_cast<std::size_t>(prim.attributes.at("TEXCOORD_0")));
@@ -811,14 +816,6 @@ tinygltf::Model dressedTube(bool external_image = false) {
   model.materials = {skin, cloth};
   model.extensionsUsed = {"KHR_texture_transform", "KHR_materials_emissive_strength"};
   for (std::size_t p = 0; p < model.meshes[0].primitives.size(); ++p) model.meshes[0].primitives[p].material = static_cast<int>(p);
-  return model;
-}
-
-tinygltf::Model loadWritten(const fs::path& path) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, path.string())) << err;
   return model;
 }
 
