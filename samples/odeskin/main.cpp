@@ -358,13 +358,17 @@ int run(int argc, char** argv, std::string& verb) {
   double play_fps = 0.0;
   double play_seconds = 0.0;
   std::string play_backend = "cpu";
-  CLI::App* play_cmd = app.add_subcommand("play", "Evaluate an asset at a time or over a sequence and write OBJ files");
+  CLI::App* play_cmd =
+      app.add_subcommand("play", "Evaluate an asset at a time or over a sequence: OBJ frames, a baked GLB or a PC2 cache");
   play_cmd->footer(
       "T runs over [0, K-1] for K example poses: integer T is example pose T, T = 1.5 the middle of the\n"
       "second segment. A sequence maps seconds to T = seconds / segment length.\n"
       "Examples: odeskin play arm.odsk --t 0.5 -o mid.obj\n"
       "          odeskin play arm.odsk --fps 30 --seconds 1 -o frames/arm_%04d.obj --backend vulkan\n"
-      "          odeskin play horse.odsk --fps 8 --png preview --size 480x360");
+      "          odeskin play horse.odsk --fps 8 --png preview --size 480x360\n"
+      "          odeskin play horse.odsk --t 0 -o base.obj && odeskin play horse.odsk --fps 24 -o horse.pc2\n"
+      "A .pc2 point cache (sample k at scene frame k) animates the mesh --t 0 writes, vertex for\n"
+      "vertex: Blender's Mesh Cache modifier, 3ds Max's Point Cache, Houdini.");
   play_cmd->add_option("asset", play.asset, "The .odsk asset")->required();
   CLI::Option* t_opt = play_cmd->add_option("--t", play_t, "One frame at global time T in [0, K-1]");
   CLI::Option* fps_opt = play_cmd->add_option("--fps", play_fps, "A sequence at this frame rate");
@@ -372,7 +376,8 @@ int run(int argc, char** argv, std::string& verb) {
       play_cmd->add_option("--seconds", play_seconds, "Sequence length in seconds (default: the whole asset)");
   t_opt->excludes(fps_opt);
   seconds_opt->needs(fps_opt);
-  play_cmd->add_option("-o,--output", play.output, "OUT.obj, or a pattern with one frame number: OUT_%04d.obj");
+  play_cmd->add_option("-o,--output", play.output,
+                       "OUT.obj, a pattern with one frame number (OUT_%04d.obj), OUT.glb (baked) or OUT.pc2 (point cache)");
   play_cmd->add_option("--materials", play.materials,
                        "With -o OUT.glb: dress it in the materials and textures of this glTF (the file it was fitted from)");
   play_cmd->add_option("--png", play.png_dir, "Also draw the frames to DIR/frame_NNNN.png and DIR/strip.png (Vulkan)");

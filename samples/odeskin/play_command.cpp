@@ -13,6 +13,7 @@
 #include "engine/io/asset_file.hpp"
 #include "engine/io/gltf_baked_writer.hpp"
 #include "engine/io/obj_io.hpp"
+#include "engine/io/point_cache.hpp"
 #include "engine/visual/compose.hpp"
 #include "engine/visual/png_writer.hpp"
 #include "file_extension.hpp"
@@ -31,7 +32,9 @@ constexpr std::size_t kMaxPatternWidth = 32;
 std::string usageProblem(const PlayOptions& o) {
   if (o.t.has_value() == o.fps.has_value()) return "play: give either --t T (one frame) or --fps F (a sequence)";
   if (o.seconds && !o.fps) return "play: --seconds needs --fps";
-  if (o.output.empty() && o.png_dir.empty()) return "play: -o OUT is required (.obj or .glb), or --png DIR for pictures only";
+  if (o.output.empty() && o.png_dir.empty()) {
+    return "play: -o OUT is required (.obj, .glb or .pc2), or --png DIR for pictures only";
+  }
   if (o.t && !std::isfinite(*o.t)) return "play: --t must be a number in [0, K-1]";
   if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0)) return "play: --fps must be positive, got " + numberText(*o.fps);
   if (o.seconds && !(std::isfinite(*o.seconds) && *o.seconds >= 0.0)) {
@@ -49,8 +52,10 @@ std::string usageProblem(const PlayOptions& o) {
   if (!o.materials.empty() && lowerExtension(o.output) != ".glb") return "play: --materials needs -o OUT.glb";
   if (o.output.empty()) return {};
   const std::string ext = lowerExtension(o.output);
-  if (ext == ".gltf") return "play: " + o.output + ": write .glb (one self-contained binary file) or .obj";
-  if (ext != ".obj" && ext != ".glb") return "play: " + o.output + ": unknown output format '" + ext + "' (expected .obj or .glb)";
+  if (ext == ".gltf") return "play: " + o.output + ": write .glb (one self-contained binary file), .obj or .pc2";
+  if (ext != ".obj" && ext != ".glb" && ext != ".pc2") {
+    return "play: " + o.output + ": unknown output format '" + ext + "' (expected .obj, .glb or .pc2)";
+  }
   if (o.fps && ext == ".obj") {
     Result<FramePattern> pattern = FramePattern::parse(o.output);
     if (!pattern.ok()) return "play: " + pattern.status().message();
@@ -225,23 +230,32 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       return reportUsage(console, "play: --fps " + numberText(*o.fps) + " for " + numberText(seconds) +
                                       " s is more than " + std::to_string(kMaxFrames) + " frames");
     }
-    const bool glb = lowerExtension(o.output) == ".glb";
-    const FramePattern pattern = glb || !write_meshes ? FramePattern{} : *FramePattern::parse(o.output);
+    const bool one_file = lowerExtension(o.output) != ".obj";
+    const FramePattern pattern = one_file || !write_meshes ? FramePattern{} : *FramePattern::parse(o.output);
     for (std::size_t f = 0; f < clock.size(); ++f) {
       if (write_meshes) {
-        files.emplace_back(glb ? std::filesystem::path(o.output) : std::filesystem::path(pattern.format(f)));
+        files.emplace_back(one_file ? std::filesystem::path(o.output) : std::filesystem::path(pattern.format(f)));
       }
       times.push_back(std::clamp(clock[f] / asset.segment_seconds, 0.0, t_end));
     }
   }
   // .glb: every frame goes into one file (morph target per frame, STEP weights animation).
   const bool glb = lowerExtension(o.output) == ".glb";
+  // .pc2: every frame's positions in one point cache (point_cache.hpp), for the mesh --t 0 writes.
+  const bool pc2 = lowerExtension(o.output) == ".pc2";
   if (glb && write_meshes) {
     if (Status s = checkBakedSize(times.size(), outputVertexCount(asset)); !s.ok()) {
       return reportUsage(console, "play: " + o.output + ": " + s.message() +
                                       "; lower --fps or --seconds, or write .obj frames");
     }
   }
+  if (pc2) {
+    if (const std::string problem = pc2SizeProblem(times.size(), outputVertexCount(asset)); !problem.empty()) {
+      return reportUsage(console, "play: " + o.output + ": " + problem + "; lower --fps or --seconds");
+    }
+  }
+  std::optional<Pc2Builder> cache;
+  if (pc2) cache.emplace(outputVertexCount(asset), times.size());
   std::optional<gltf::MaterialLibrary> materials;
   if (!o.materials.empty()) {
     Result<gltf::MaterialLibrary> library = gltf::readMaterialLibrary(o.materials);
@@ -287,6 +301,13 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       continue;
     }
     if (Status s = ensureParentDirectory(files[f], last_directory); !s.ok()) return reportFailure(console, s);
+    if (pc2) {
+      if (Status s = cache->add(outputPositions(asset, positions)); !s.ok()) {
+        return reportError(console, "play: " + o.output + ": " + s.message(), kExitFailure);
+      }
+      bar.step(f + 1);
+      continue;
+    }
     if (glb) {
       baked.push_back(outputPositions(asset, positions));
       baked_normals.push_back(outputNormals(asset, positions));
@@ -323,6 +344,11 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     }
   }
 
+  // Sample k is scene frame k: at --fps F, a scene at F frames per second plays it in time.
+  if (pc2) {
+    if (Status s = cache->write(o.output); !s.ok()) return reportFailure(console, s);
+  }
+
   std::vector<std::filesystem::path> pictures;
   if (!o.png_dir.empty()) {
     if (Status s = playPictures(o, asset, *playback, *session, times, framing, console, pictures); !s.ok()) {
@@ -334,17 +360,25 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   if (!console.quiet) {
     char timing[64];
     std::snprintf(timing, sizeof timing, "%.3f ms", 1e3 * mean);
+    const std::string pc2_note = " (point cache of " + std::to_string(outputVertexCount(asset)) +
+                                 " vertices for the mesh `play --t 0 -o BASE.obj` writes)";
     if (o.t) {
       const auto segment = static_cast<std::size_t>(std::min(std::floor(*o.t), std::max(t_end - 1.0, 0.0)));
       console.out << "t = " << numberText(*o.t) << " (segment " << segment << ", tau " << numberText(*o.t - static_cast<double>(segment))
-                  << ") -> " << (write_meshes ? files.front().string() : pictures.front().string()) << "\n";
+                  << ") -> " << (write_meshes ? files.front().string() : pictures.front().string())
+                  << (pc2 ? pc2_note : std::string()) << "\n";
     } else {
       console.out << times.size() << " frame" << (times.size() == 1 ? "" : "s") << " at " << numberText(*o.fps)
                   << " fps (t " << numberText(times.front()) << " to " << numberText(times.back()) << ")";
       if (write_meshes) {
-        console.out << " -> "
-                    << (glb ? files.front().string() + " (one morph target per frame)"
-                            : files.front().string() + " ... " + files.back().string());
+        console.out << " -> ";
+        if (glb) {
+          console.out << files.front().string() << " (one morph target per frame)";
+        } else if (pc2) {
+          console.out << files.front().string() << pc2_note;
+        } else {
+          console.out << files.front().string() << " ... " << files.back().string();
+        }
       }
       console.out << "\n";
     }
@@ -354,7 +388,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     }
   }
   if (report) {
-    if (glb && write_meshes) files.assign(1, o.output);
+    if ((glb || pc2) && write_meshes) files.assign(1, o.output);
     report->files = std::move(files);
     report->pictures = std::move(pictures);
     report->times = std::move(times);

@@ -3,7 +3,9 @@
 // and saved to a temporary .odsk; plus the option parsers behind play and fit.
 #include <filesystem>
 #include <fstream>
+#include <cstring>
 #include <functional>
+#include <iterator>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -165,6 +167,52 @@ TEST_F(Cli, PlaySequenceToGlbHoldsEveryFrameAsAMorphTarget) {
   EXPECT_EQ(read->render.normals.size(), read->render.topology_of_render.size());
 }
 
+TEST_F(Cli, PlaySequenceToPc2HoldsEveryFrame) {
+  const fs::path dir = scratch("pc2");
+  PlayOptions o;
+  o.asset = assetPath();
+  o.fps = 4.0;
+  o.output = (dir / "frames" / "arm_%03d.obj").string();
+  Captured io;
+  PlayReport frames;
+  ASSERT_EQ(play(o, io, &frames), kExitOk) << io.err.str();
+  o.output = (dir / "cache" / "arm.pc2").string();
+  PlayReport cached;
+  ASSERT_EQ(play(o, io, &cached), kExitOk) << io.err.str();
+  ASSERT_EQ(cached.files, std::vector<fs::path>{dir / "cache" / "arm.pc2"});
+  EXPECT_NE(io.out.str().find("arm.pc2 (point cache of " + std::to_string(asset_->vertexCount()) + " vertices"),
+            std::string::npos) << io.out.str();
+
+  std::ifstream in(cached.files.front(), std::ios::binary);
+  const std::string b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::size_t v = asset_->vertexCount();
+  ASSERT_EQ(b.size(), 32 + frames.files.size() * v * 12);
+  auto f32 = [&b](std::size_t at) {
+    float x = 0.0F;
+    std::memcpy(&x, b.data() + at, 4);  // x86 and ARM are little-endian, as PC2 is
+    return x;
+  };
+  std::uint32_t samples = 0;
+  std::memcpy(&samples, b.data() + 28, 4);
+  EXPECT_EQ(samples, frames.files.size());
+  EXPECT_EQ(f32(20), 0.0F);  // sample k at frame k
+  EXPECT_EQ(f32(24), 1.0F);
+  for (std::size_t k = 0; k < frames.files.size(); ++k) {
+    const std::vector<Vec3> frame = readPositions(frames.files[k]);
+    ASSERT_EQ(frame.size(), v);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < v; ++i) {
+      for (int axis = 0; axis < 3; ++axis) {
+        worst = std::max(worst, std::abs(f32(32 + (k * v + i) * 12 + axis * 4) - frame[i][axis]));
+      }
+    }
+    EXPECT_LE(worst, 1e-6 * box()) << "frame " << k;  // float32 against OBJ's printed doubles
+  }
+  // --t writes a one-sample cache.
+  ASSERT_EQ(play(atTime(0.5, dir / "one.pc2"), io), kExitOk) << io.err.str();
+  EXPECT_EQ(fs::file_size(dir / "one.pc2"), 32 + v * 12);
+}
+
 TEST_F(Cli, PlayUsesTheSegmentLengthAndTheRenderLayout) {
   const fs::path dir = scratch("layout");
   DeformAsset asset = *asset_;
@@ -231,6 +279,9 @@ TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   fps.output = (dir / "x.glb").string();
   cases.push_back({fps, "x.glb: baking 100001 frames of " + std::to_string(arm_->start_positions.size()) +
                             " vertices needs 2 GiB or more; lower --fps or --seconds, or write .obj frames"});
+  fps.output = (dir / "x.pc2").string();
+  fps.seconds = 999.0;
+  cases.push_back({fps, "x.pc2: 999001 frames of " + std::to_string(asset_->vertexCount()) + " vertices need"});
   testing::expectRejected(cases, [](const PlayOptions& o, Captured& io) { return play(o, io); }, kExitUsage, "play");
   EXPECT_TRUE(fs::is_empty(dir)) << "a rejected command wrote something";
 }
