@@ -179,11 +179,11 @@ Result<int> normalAccessor(ModelBuilder& b, const ExportMesh& mesh, const Sparse
   return deltaAccessor(b, mesh.positions.size(), delta.vertices, std::move(values), false, sparse);
 }
 
-int sampler(tinygltf::Animation& animation, int input, int output) {
+int sampler(tinygltf::Animation& animation, int input, int output, KeyInterpolation interpolation) {
   tinygltf::AnimationSampler s;
   s.input = input;
   s.output = output;
-  s.interpolation = "CUBICSPLINE";
+  s.interpolation = std::string(gltfInterpolationName(interpolation));
   animation.samplers.push_back(s);
   return static_cast<int>(animation.samplers.size() - 1);
 }
@@ -202,16 +202,22 @@ Status writeWeightsAnimation(ModelBuilder& b, const GlbContents& in, tinygltf::A
   if (targets == 0) return okStatus();
   const double per_second = 1.0 / in.asset->segment_seconds;
   ODESKIN_ASSIGN_OR_RETURN(const int input, timeAccessor(b, w.times, in.asset->segment_seconds, "weight"));
+  const bool cubic = w.interpolation == KeyInterpolation::kCubicSpline;
   std::vector<float> output;
-  output.reserve(w.times.size() * targets * 3);
+  output.reserve(w.times.size() * targets * (cubic ? 3 : 1));
   for (std::size_t k = 0; k < w.times.size(); ++k) {
-    for (std::size_t j = 0; j < targets; ++j) output.push_back(static_cast<float>(w.in_tangents[k * targets + j] * per_second));
-    for (std::size_t j = 0; j < targets; ++j) output.push_back(static_cast<float>(w.values[k * targets + j]));
-    for (std::size_t j = 0; j < targets; ++j) output.push_back(static_cast<float>(w.out_tangents[k * targets + j] * per_second));
+    const std::size_t row = k * targets;
+    if (cubic) {
+      for (std::size_t j = 0; j < targets; ++j) output.push_back(static_cast<float>(w.in_tangents[row + j] * per_second));
+    }
+    for (std::size_t j = 0; j < targets; ++j) output.push_back(static_cast<float>(w.values[row + j]));
+    if (cubic) {
+      for (std::size_t j = 0; j < targets; ++j) output.push_back(static_cast<float>(w.out_tangents[row + j] * per_second));
+    }
   }
   if (!allFinite(output)) return invalidArgument("export: a morph weight key is not finite");
   const int out = b.floats(output, TINYGLTF_TYPE_SCALAR, 1, 0, false);
-  channel(animation, sampler(animation, input, out), 0, "weights");
+  channel(animation, sampler(animation, input, out, w.interpolation), 0, "weights");
   return okStatus();
 }
 
@@ -220,10 +226,16 @@ Status writeSkeletonAnimation(ModelBuilder& b, const GlbContents& in, int first_
   const std::size_t bones = in.asset->bone_count;
   const double per_second = 1.0 / in.asset->segment_seconds;
   ODESKIN_ASSIGN_OR_RETURN(const int input, timeAccessor(b, s.times, in.asset->segment_seconds, "skeleton"));
+  const bool cubic = s.interpolation == KeyInterpolation::kCubicSpline;
   for (std::size_t bone = 0; bone < bones; ++bone) {
     std::vector<float> translation, rotation;
     for (std::size_t k = 0; k < s.times.size(); ++k) {
       const std::size_t at = k * bones + bone;
+      if (!cubic) {
+        putVec3(translation, s.translations[at]);
+        putQuat(rotation, s.rotations[at]);
+        continue;
+      }
       putVec3(translation, s.translation_in[at] * per_second);
       putVec3(translation, s.translations[at]);
       putVec3(translation, s.translation_out[at] * per_second);
@@ -235,8 +247,10 @@ Status writeSkeletonAnimation(ModelBuilder& b, const GlbContents& in, int first_
       return invalidArgument("export: the animation of bone " + std::to_string(bone) + " is not finite");
     }
     const int node = first_joint + static_cast<int>(bone);
-    channel(animation, sampler(animation, input, b.floats(translation, TINYGLTF_TYPE_VEC3, 3, 0, false)), node, "translation");
-    channel(animation, sampler(animation, input, b.floats(rotation, TINYGLTF_TYPE_VEC4, 4, 0, false)), node, "rotation");
+    const int translations = b.floats(translation, TINYGLTF_TYPE_VEC3, 3, 0, false);
+    const int rotations = b.floats(rotation, TINYGLTF_TYPE_VEC4, 4, 0, false);
+    channel(animation, sampler(animation, input, translations, s.interpolation), node, "translation");
+    channel(animation, sampler(animation, input, rotations, s.interpolation), node, "rotation");
   }
   return okStatus();
 }

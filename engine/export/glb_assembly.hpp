@@ -3,9 +3,9 @@
 // at the scene root with identity transform (the spec ignores its transform; the validator warns on
 // any), a skeleton root node holding the joint nodes, the skin with inverse bind matrices J_b^-1,
 // morph targets (float POSITION deltas with min/max, NORMAL deltas when given, sparse where that
-// is smaller, names in mesh.extras.targetNames), and one animation "odeskin": the CUBICSPLINE
-// "weights" channel of the mesh node and CUBICSPLINE translation and rotation channels of every
-// joint, times in seconds (t * segment_seconds) and tangents per second.
+// is smaller, names in mesh.extras.targetNames), and one animation "odeskin": the "weights" channel
+// of the mesh node and translation and rotation channels of every joint, CUBICSPLINE or LINEAR as
+// the keys were placed, times in seconds (t * segment_seconds) and tangents per second.
 #pragma once
 
 #include <filesystem>

@@ -111,12 +111,14 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   WeightKeyOptions weight_options;
   weight_options.position_tolerance = o.tolerance * box;
   weight_options.min_key_gap = minKeyGap(asset);
+  weight_options.interpolation = o.interpolation;
   ODESKIN_ASSIGN_OR_RETURN(const WeightKeys weights,
                            placeWeightKeys(targets, static_cast<std::uint32_t>(asset.segments.size()), weight_options));
   progress("skeleton keys", 0.0);
   SkeletonKeyOptions skeleton_options;
   skeleton_options.position_tolerance = o.tolerance * box;
   skeleton_options.min_key_gap = weight_options.min_key_gap;
+  skeleton_options.interpolation = o.interpolation;
   ODESKIN_ASSIGN_OR_RETURN(const SkeletonKeys skeleton, placeSkeletonKeys(asset, player, skeleton_options));
   const std::vector<std::vector<BoneTransform>> key_bones = keyBones(asset);
   ODESKIN_ASSIGN_OR_RETURN(const ExportMesh mesh, buildExportMesh(asset, base, key_bones));
@@ -130,6 +132,7 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   report.morph_targets = summary.morph_targets;
   report.sparse_targets = summary.sparse_targets;
   report.merged_fields = targets.merged_fields;
+  report.interpolation = o.interpolation;
   report.weight_keys = weights.weightCount() > 0 ? weights.times.size() : 0;
   report.skeleton_keys = skeleton.times.size();
   report.joints = asset.bone_count;

@@ -6,7 +6,7 @@
 // X + r^0, its skin (joints, inverse bind matrices, at most 4 influences per vertex), the skeletal
 // animation of the player's bone transforms, and the analytic deformation as morph targets (one per
 // segment, material, mode and gamma/psi, plus one key correction per segment, mode_targets.hpp)
-// whose weights follow the time basis as CUBICSPLINE keys in [0, 1] (weight_keys.hpp). glTF applies
+// whose weights follow the time basis as CUBICSPLINE (or LINEAR) keys in [0, 1] (weight_keys.hpp). glTF applies
 // morph targets before skinning and skins linearly, which is exactly the reference kernel's
 // bind-space form; a posed-space residual or dual-quaternion skinning cannot be written that way.
 //
@@ -22,6 +22,7 @@
 
 #include "../core/result.hpp"
 #include "../offline/deform_asset.hpp"
+#include "key_interpolation.hpp"
 
 namespace odeskin {
 
@@ -30,6 +31,9 @@ struct GltfExportOptions {
   // the skeleton, each as a fraction of the base shape's longest bounding-box side.
   double tolerance = 1e-5;
   bool bake = false;        // write the baked form even when the compact one is possible
+  // Compact form: the weight and skeleton keys' interpolation (key_interpolation.hpp). LINEAR keys
+  // meet the same tolerance with more keys, for importers that drop CUBICSPLINE tangents.
+  KeyInterpolation interpolation = KeyInterpolation::kCubicSpline;
   // Compact form: NORMAL deltas in every morph target (target_normals.hpp), so viewers shade the
   // corrective deformation; without them they shade the skinned base shape. About doubles the
   // targets' bytes.
@@ -55,6 +59,7 @@ struct GltfExportReport {
   // Compact form only:
   std::size_t sparse_targets = 0;  // written as sparse accessors
   std::size_t merged_fields = 0;   // (material, mode) fields merged into a target with the same curve
+  KeyInterpolation interpolation = KeyInterpolation::kCubicSpline;
   std::size_t weight_keys = 0;
   std::size_t skeleton_keys = 0;
   std::size_t joints = 0;

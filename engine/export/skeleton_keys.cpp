@@ -175,21 +175,39 @@ Result<SkeletonKeys> placeSkeletonKeys(const DeformAsset& asset, const DeformPla
     return invalidArgument("export: the skeleton tolerance and key gap must be positive");
   }
   SkeletonKeys out;
+  out.interpolation = o.interpolation;
   out.parents = asset.bone_parents.empty() ? std::vector<std::int32_t>(asset.bone_count, -1) : asset.bone_parents;
   ODESKIN_ASSIGN_OR_RETURN(const std::vector<std::uint32_t> order, parentsFirst(out.parents));
   SkeletonSampler sampler(asset, player, out.parents);
   const std::vector<Sphere> spheres = influenceSpheres(asset);
   const std::size_t bone_count = asset.bone_count;
 
+  // The interpolated local frame between two keys (aligned quaternions). A LINEAR key's rotation is
+  // glTF's slerp, or the normalized component-wise blend (`nlerp`) some importers play instead.
+  enum class Rotation { kHermite, kSlerp, kNlerp };
+  auto interpolate = [](const LocalKey& k0, const LocalKey& k1, double h, double s, Rotation rotation) {
+    Frame local;
+    switch (rotation) {
+      case Rotation::kHermite:
+        local.q = glm::normalize(hermiteQ(k0.value.q, k0.dq_right, k1.value.q, k1.dq_left, h, s));
+        local.t = hermite3(k0.value.t, k0.dt_right, k1.value.t, k1.dt_left, h, s);
+        return local;
+      case Rotation::kSlerp: local.q = glm::normalize(glm::slerp(k0.value.q, k1.value.q, s)); break;
+      case Rotation::kNlerp: local.q = glm::normalize((1.0 - s) * k0.value.q + s * k1.value.q); break;
+    }
+    local.t = (1.0 - s) * k0.value.t + s * k1.value.t;
+    return local;
+  };
+  const bool linear = o.interpolation == KeyInterpolation::kLinear;
+  const std::vector<Rotation> rotations =
+      linear ? std::vector<Rotation>{Rotation::kSlerp, Rotation::kNlerp} : std::vector<Rotation>{Rotation::kHermite};
+
   // Worst vertex error of the interpolated skeleton at one time, relative to the tolerance.
-  auto errorAt = [&](std::uint32_t segment, double a, const Key& ka, double b, const Key& kb, double s) {
+  auto errorAt = [&](std::uint32_t segment, double a, const Key& ka, double b, const Key& kb, double s,
+                     Rotation rotation) {
     std::vector<Frame> approx(bone_count);
     for (std::uint32_t bone : order) {
-      const LocalKey& k0 = ka[bone];
-      const LocalKey& k1 = kb[bone];
-      Frame local;
-      local.q = glm::normalize(hermiteQ(k0.value.q, k0.dq_right, k1.value.q, k1.dq_left, b - a, s));
-      local.t = hermite3(k0.value.t, k0.dt_right, k1.value.t, k1.dt_left, b - a, s);
+      const Frame local = interpolate(ka[bone], kb[bone], b - a, s, rotation);
       const std::int32_t p = out.parents[bone];
       if (p < 0) {
         approx[bone] = local;
@@ -214,7 +232,11 @@ Result<SkeletonKeys> placeSkeletonKeys(const DeformAsset& asset, const DeformPla
   auto intervalError = [&](std::uint32_t segment, double a, const Key& ka, double b, const Key& kb, int checks) {
     const Key kb_aligned = alignedTo(kb, ka);
     double worst = 0.0;
-    for (int c = 1; c <= checks; ++c) worst = std::max(worst, errorAt(segment, a, ka, b, kb_aligned, static_cast<double>(c) / (checks + 1)));
+    for (const Rotation rotation : rotations) {
+      for (int c = 1; c <= checks; ++c) {
+        worst = std::max(worst, errorAt(segment, a, ka, b, kb_aligned, static_cast<double>(c) / (checks + 1), rotation));
+      }
+    }
     return worst;
   };
 

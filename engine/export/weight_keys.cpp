@@ -125,7 +125,8 @@ Result<SegmentKeys> placeSegment(const ModeTargetSet& set, std::uint32_t segment
     for (const Part& p : seg.parts) keys.push_back(partAt(set.targets[p.source].curve, p.sign, tau, p.zero));
     return keys;
   };
-  // Worst |Hermite - exact| / tolerance over `checks` interior points; records errors when asked.
+  const bool linear = o.interpolation == KeyInterpolation::kLinear;
+  // Worst |interpolated - exact| / tolerance over `checks` interior points; records errors when asked.
   auto intervalError = [&](double a, const std::vector<PartKey>& ka, double b, const std::vector<PartKey>& kb,
                            int checks, bool record) {
     double worst = 0.0;
@@ -135,7 +136,9 @@ Result<SegmentKeys> placeSegment(const ModeTargetSet& set, std::uint32_t segment
       for (int c = 1; c <= checks; ++c) {
         const double s = static_cast<double>(c) / (checks + 1);
         const double exact = partValue(curve, part.sign, a + s * (b - a));
-        const double error = std::abs(cubicHermite(ka[p].value, ka[p].right, kb[p].value, kb[p].left, b - a, s) - exact);
+        const double keyed = linear ? (1.0 - s) * ka[p].value + s * kb[p].value
+                                    : cubicHermite(ka[p].value, ka[p].right, kb[p].value, kb[p].left, b - a, s);
+        const double error = std::abs(keyed - exact);
         worst = std::max(worst, error / part.tolerance);
         if (record) part.error = std::max(part.error, error);
       }
@@ -169,6 +172,7 @@ Result<WeightKeys> placeWeightKeys(const ModeTargetSet& set, std::uint32_t segme
   }
   std::vector<SegmentKeys> segments;
   WeightKeys out;
+  out.interpolation = o.interpolation;
   for (std::uint32_t s = 0; s < segment_count; ++s) {
     ODESKIN_ASSIGN_OR_RETURN(SegmentKeys seg, placeSegment(set, s, o));
     double position_error = seg.dropped_error;

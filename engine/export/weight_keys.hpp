@@ -1,18 +1,20 @@
 // SPDX-License-Identifier: MIT
 // The "weights" animation of the compact export: every target's weight curve as CUBICSPLINE keys
-// with the analytic derivatives as tangents (glTF 2.0 appendix C), keys shared by all targets (the
-// channel has one sampler). Weights are kept in [0, 1] (Blender clamps negative shape-key values,
+// with the analytic derivatives as tangents (glTF 2.0 appendix C), or as LINEAR keys
+// (key_interpolation.hpp), keys shared by all targets (the channel has one sampler). Weights are kept in [0, 1] (Blender clamps negative shape-key values,
 // ECOSYSTEM.md 2.3): a field whose curve g goes negative is split into a "+" target with weight
 // max(g, 0) / scale and a "-" target with weight max(-g, 0) / scale, each displacement multiplied by
 // its sign and scale = max of its part over the segment. Keys sit at both ends of every segment and
 // at every zero crossing of every curve (where max(g, 0) has a kink: CUBICSPLINE keys have separate
-// in- and out-tangents), and intervals are halved until the Hermite cubic matches every weight.
+// in- and out-tangents; a LINEAR key's kink is free), and intervals are halved until the
+// interpolant matches every weight.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "../core/result.hpp"
+#include "key_interpolation.hpp"
 #include "mode_targets.hpp"
 
 namespace odeskin {
@@ -31,16 +33,19 @@ struct WeightKeyOptions {
   // time basis even where a target moves the mesh too little for the position tolerance to matter.
   double weight_tolerance = 1e-4;
   double min_key_gap = 1e-5;  // in t: intervals are not halved below this (float32 times stay increasing)
+  KeyInterpolation interpolation = KeyInterpolation::kCubicSpline;
 };
 
 struct WeightKeys {
   std::vector<SplitTarget> targets;
+  KeyInterpolation interpolation = KeyInterpolation::kCubicSpline;
   std::vector<double> times;  // global t of every key (0 .. segment count), strictly increasing
-  // keys x targets, key-major: each target's in-tangent, value and out-tangent (tangents are d/dt).
+  // keys x targets, key-major: each target's in-tangent, value and out-tangent (tangents are d/dt;
+  // LINEAR keys leave them unused).
   std::vector<double> in_tangents;
   std::vector<double> values;
   std::vector<double> out_tangents;
-  double max_weight_error = 0.0;    // max |Hermite - exact| of any target's weight (dense check)
+  double max_weight_error = 0.0;    // max |interpolated - exact| of any target's weight (dense check)
   double max_position_error = 0.0;  // max over segments of sum_j weight error_j * max |displacement_j|
   std::size_t weightCount() const { return targets.size(); }
 };

@@ -26,6 +26,9 @@ std::string usageProblem(const ExportCommandOptions& o) {
   if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0 && *o.fps <= 1000.0)) {
     return "export: --fps must be in (0, 1000], got " + numberText(*o.fps);
   }
+  if (!parseKeyInterpolation(o.interpolation)) {
+    return "export: --interpolation must be cubic or linear, got '" + o.interpolation + "'";
+  }
   return {};
 }
 
@@ -68,9 +71,10 @@ void printSummary(std::ostream& out, const ExportCommandOptions& o, const Deform
   } else {
     out << "target normals: none (viewers shade the skinned base shape)\n";
   }
-  out << "weight keys: " << r.weight_keys << " CUBICSPLINE, max weight error " << scientific(r.max_weight_error)
+  const std::string_view keys = gltfInterpolationName(r.interpolation);
+  out << "weight keys: " << r.weight_keys << " " << keys << ", max weight error " << scientific(r.max_weight_error)
       << " (position error <= " << scientific(r.weight_position_error) << " of the box)\n";
-  out << "skeleton keys: " << r.skeleton_keys << " CUBICSPLINE, position error <= "
+  out << "skeleton keys: " << r.skeleton_keys << " " << keys << ", position error <= "
       << scientific(r.skeleton_position_error) << " of the box\n";
   out << "mid-segment deviation from the player: <= " << scientific(r.player_deviation)
       << " of the box (key corrections where the fit stored no remainder)\n";
@@ -97,6 +101,7 @@ int runExportCommand(const ExportCommandOptions& o, Console& console, GltfExport
   options.tolerance = o.tolerance;
   options.target_normals = o.target_normals;
   options.materials = o.materials;
+  options.interpolation = *parseKeyInterpolation(o.interpolation);
   const std::string reason = compactExportProblem(asset);
   if (reason.empty() && !o.bake && o.fps && !console.quiet) {
     console.err << "note: --fps applies to bakes only; " << o.asset.string()

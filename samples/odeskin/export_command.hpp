@@ -18,6 +18,7 @@ struct ExportCommandOptions {
   bool bake = false;                   // one morph target per frame even when the compact form works
   std::optional<double> fps;           // frames per second of a bake (default 30)
   double tolerance = 1e-5;             // of the box: error budget of the weight keys and of the skeleton keys
+  std::string interpolation = "cubic";  // of the compact form's keys: cubic (CUBICSPLINE) or linear
   bool target_normals = true;          // NORMAL deltas in the compact form's morph targets
   std::filesystem::path materials;     // a glTF whose materials dress the output, or empty
 };

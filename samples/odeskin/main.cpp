@@ -100,12 +100,15 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
   CLI::App* cmd = app.add_subcommand("export", "Write a .odsk asset as a glTF 2.0 binary (.glb) any viewer plays");
   cmd->footer(
       "The mesh, its skin and skeletal animation, and the analytic deformation as morph targets (one per\n"
-      "segment, material and mode) whose CUBICSPLINE weights follow the time basis; time in seconds is\n"
+      "segment, material and mode) whose CUBICSPLINE (or LINEAR) weights follow the time basis; time in seconds is\n"
       "T x segment length. Assets with a posed-space residual or dual-quaternion skinning are baked instead\n"
       "(one morph target per frame), as --bake does for any asset.\n"
       "Examples: odeskin export horse.odsk -o horse.glb\n"
       "          odeskin export horse.odsk -o horse.glb --tolerance 1e-6\n"
-      "          odeskin export horse.odsk -o horse-baked.glb --bake --fps 60");
+      "          odeskin export horse.odsk -o horse-baked.glb --bake --fps 60\n"
+      "          odeskin export horse.odsk -o horse-blender.glb --interpolation linear\n"
+      "Blender 3.4's importer drops CUBICSPLINE tangents (glTF-Blender-IO#419): export with\n"
+      "--interpolation linear for Blender.");
   cmd->add_option("asset", o.asset, "The .odsk asset")->required();
   cmd->add_option("-o,--output", o.output, "The .glb file to write")->required();
   cmd->add_flag("--bake", o.bake, "One morph target per frame (LINEAR cross-fades) instead of per-mode targets");
@@ -116,6 +119,9 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
   cmd->add_option("--materials", o.materials,
                   "Dress the mesh in the materials and textures of this glTF (the file the asset was fitted from, or\n"
                   "any file with one material)");
+  cmd->add_option("--interpolation", o.interpolation,
+                  "cubic (CUBICSPLINE keys with tangents, the default) or linear (LINEAR keys, more of them, played\n"
+                  "as written by importers that drop tangents)");
   cmd->add_flag("!--no-target-normals", o.target_normals,
                 "Morph targets without NORMAL deltas (about half the bytes; viewers then shade the skinned base shape)");
   return cmd;

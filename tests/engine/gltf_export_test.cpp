@@ -117,8 +117,10 @@ struct Channel {
   std::vector<double> input, output;
 };
 
-// One sampler at time `t` (spec 3.11 and appendix C): `n` components per element.
-std::vector<double> sample(const Channel& c, double t, std::size_t n) {
+// One sampler at time `t` (spec 3.11 and appendix C): `n` components per element. `nlerp`: a LINEAR
+// rotation as importers that keep quaternions as four curves play it (Blender): blended component
+// by component, with no hemisphere check, then normalised.
+std::vector<double> sample(const Channel& c, double t, std::size_t n, bool nlerp = false) {
   const bool cubic = c.interpolation == "CUBICSPLINE";
   const std::size_t per_key = cubic ? 3 * n : n;
   const std::size_t value_offset = cubic ? n : 0;
@@ -137,6 +139,11 @@ std::vector<double> sample(const Channel& c, double t, std::size_t n) {
   std::vector<double> v0 = value(k), v1 = value(k + 1);
   if (c.interpolation == "STEP") return v0;
   if (c.interpolation == "LINEAR") {
+    if (c.path == "rotation" && nlerp) {
+      const glm::dquat a(v0[3], v0[0], v0[1], v0[2]), b(v1[3], v1[0], v1[1], v1[2]);
+      const glm::dquat q = glm::normalize((1.0 - s) * a + s * b);
+      return {q.x, q.y, q.z, q.w};
+    }
     if (c.path == "rotation") {
       glm::dquat a(v0[3], v0[0], v0[1], v0[2]), b(v1[3], v1[0], v1[1], v1[2]);
       double d = glm::dot(a, b);
@@ -226,6 +233,8 @@ class GltfPlayback {
   const std::vector<double>& inverseBinds() const { return ibm_; }
 
   bool hasTargetNormals() const { return !normal_targets_.empty(); }
+  // Plays LINEAR rotations as Blender does (sample's `nlerp`) instead of glTF's slerp.
+  void playRotationsAsNlerp(bool on) { nlerp_rotations_ = on; }
 
   std::vector<Vec3> positionsAt(double seconds) const {
     const Pose pose = poseAt(seconds);
@@ -293,7 +302,7 @@ class GltfPlayback {
       const auto node = static_cast<std::size_t>(c.node);
       if (c.path == "weights") pose.morph = sample(c, seconds, targets_.size());
       if (c.path == "translation") t[node] = sample(c, seconds, 3);
-      if (c.path == "rotation") r[node] = sample(c, seconds, 4);
+      if (c.path == "rotation") r[node] = sample(c, seconds, 4, nlerp_rotations_);
       if (c.path == "scale") s[node] = sample(c, seconds, 3);
     }
     std::vector<glm::dmat4> world(model_.nodes.size());
@@ -334,6 +343,7 @@ class GltfPlayback {
   std::vector<int> joint_nodes_;
   std::vector<double> ibm_, joints_, weights_;
   std::vector<Channel> channels_;
+  bool nlerp_rotations_ = false;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -410,9 +420,10 @@ class GltfExportTest : public testing::TempDirTest {
   GltfExportTest() : TempDirTest("odeskin_gltf_export_") {}
 
   // Exports `asset`, reads it back and compares with the player at keys and inside segments.
-  GltfExportReport exportAndCompare(const DeformAsset& asset, const std::string& name) {
+  GltfExportReport exportAndCompare(const DeformAsset& asset, const std::string& name,
+                                    const GltfExportOptions& options = {}, bool nlerp_rotations = false) {
     const fs::path path = dir_ / (name + ".glb");
-    Result<GltfExportReport> report = exportGltf(asset, path, GltfExportOptions{});
+    Result<GltfExportReport> report = exportGltf(asset, path, options);
     EXPECT_TRUE(report.ok()) << report.status().toString();
     if (!report.ok()) return {};
     EXPECT_FALSE(report->baked);
@@ -420,8 +431,9 @@ class GltfExportTest : public testing::TempDirTest {
     EXPECT_FALSE(fs::exists(fs::path(path.string() + ".partial")));
     GltfPlayback gltf(path);
     if (!gltf.ok()) return *report;
+    gltf.playRotationsAsNlerp(nlerp_rotations);
     expectSkinRules(gltf, asset.bone_count);
-    expectWeightKeysInUnitRange(gltf);
+    expectWeightKeysInUnitRange(gltf, options.interpolation);
     const double box = report->box;
     const double t_end = static_cast<double>(asset.segments.size());
     double worst = 0.0, worst_t = 0.0, worst_key = 0.0;
@@ -554,18 +566,21 @@ class GltfExportTest : public testing::TempDirTest {
     }
   }
 
-  static void expectWeightKeysInUnitRange(const GltfPlayback& gltf) {
+  // Also: every channel, the joints' too, has the interpolation asked for.
+  static void expectWeightKeysInUnitRange(const GltfPlayback& gltf, KeyInterpolation interpolation) {
     const std::size_t targets = gltf.model().meshes[0].primitives[0].targets.size();
+    const bool cubic = interpolation == KeyInterpolation::kCubicSpline;
+    const std::size_t per_key = cubic ? 3 * targets : targets;
     for (const Channel& c : gltf.channels()) {
+      EXPECT_EQ(c.interpolation, gltfInterpolationName(interpolation)) << c.path;
       if (c.path != "weights") continue;
-      EXPECT_EQ(c.interpolation, "CUBICSPLINE");
-      EXPECT_EQ(c.output.size(), 3 * targets * c.input.size());
+      EXPECT_EQ(c.output.size(), per_key * c.input.size());
       for (std::size_t k = 0; k < c.input.size(); ++k) {
         if (k > 0) {
           EXPECT_GT(c.input[k], c.input[k - 1]);
         }
         for (std::size_t j = 0; j < targets; ++j) {
-          const double w = c.output[k * 3 * targets + targets + j];
+          const double w = c.output[k * per_key + (cubic ? targets : 0) + j];
           EXPECT_GE(w, 0.0);
           EXPECT_LE(w, 1.0);
         }
@@ -719,6 +734,27 @@ TEST_F(GltfExportTest, HorseFourKeysAutoRigSkin) {
   const GltfExportReport report = exportAndCompare(asset, "horse");
   EXPECT_LT(report.weight_position_error, 1e-5);
   EXPECT_LT(report.skeleton_position_error, 1e-5);
+
+  // LINEAR keys meet the same bounds with more keys, played with glTF's slerp or Blender's nlerp.
+  GltfExportOptions linear;
+  linear.interpolation = KeyInterpolation::kLinear;
+  for (const bool nlerp : {false, true}) {
+    const GltfExportReport lin = exportAndCompare(asset, nlerp ? "horse_linear_nlerp" : "horse_linear", linear, nlerp);
+    EXPECT_EQ(lin.interpolation, KeyInterpolation::kLinear);
+    EXPECT_LT(lin.weight_position_error, 1e-5);
+    EXPECT_LT(lin.skeleton_position_error, 1e-5);
+    EXPECT_GT(lin.weight_keys, report.weight_keys);
+    EXPECT_GT(lin.skeleton_keys, report.skeleton_keys);
+  }
+}
+
+// Three segments whose weights and joints turn at the joins: LINEAR keys follow them too.
+TEST_F(GltfExportTest, CylinderWithLinearKeys) {
+  GltfExportOptions linear;
+  linear.interpolation = KeyInterpolation::kLinear;
+  const DeformAsset skin = fitted(testing::cylinderWithRig(true, true), skinMaterial());
+  exportAndCompare(skin, "cylinder_skin_linear", linear, false);
+  exportAndCompare(skin, "cylinder_skin_linear_nlerp", linear, true);
 }
 
 // Without NORMAL deltas every target has POSITION only, the file is smaller, and a segment whose
