@@ -13,6 +13,7 @@ packages=(
   clang clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and the sanitizers
   cppcheck clang-tidy
   nodejs chromium
+  blender python3-numpy  # tests/interop: odeskin's outputs opened in Blender (its glTF importer needs numpy)
 )
 # Debian's npm package conflicts with a nodejs that bundles npm (NodeSource builds): ask for it only
 # when no npm is on the PATH.

@@ -1,0 +1,205 @@
+# SPDX-License-Identifier: MIT
+# Opens odeskin's outputs in Blender, headless, and checks that Blender plays them with odeskin's
+# motion: the deformed vertices Blender evaluates are compared with `odeskin play --t` at the same
+# times. Registered in CTest by tests/interop/CMakeLists.txt; run by hand as
+#
+#   blender -b --factory-startup --python tests/interop/blender_check.py -- CHECK \
+#       --odeskin build/samples/odeskin --asset horse.odsk --out DIR
+#
+# CHECK is one of
+#   compact  `odeskin export --interpolation linear` (or --interpolation cubic): skin, skeletal
+#            animation and per-mode morph targets whose weights Blender imports as shape-key F-curves;
+#   baked    `odeskin play --fps F -o OUT.glb`: a morph target per frame, STEP weights;
+#   pc2      `odeskin play --fps F -o OUT.pc2` on the mesh `play --t 0` writes, through Blender's
+#            Mesh Cache modifier.
+# Exits 1 on any failure (a missing odeskin, an import error, a vertex off by more than the
+# tolerance); nothing is skipped.
+import argparse
+import re
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import bpy
+import numpy
+
+# Debian 12's Blender 3.4 glTF importer still uses numpy.bool, which Debian's numpy 1.24 removed:
+# every glTF import fails with AttributeError without this alias (the importer means the builtin).
+if "bool" not in numpy.__dict__:
+    numpy.bool = bool
+
+# Blender evaluates in float32; the compact export's keys and fit add up to about 5e-5 of the box
+# between keys (odeskin export prints its bounds).
+TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6}
+
+
+class CheckFailure(Exception):
+    pass
+
+
+def log(message):
+    print(f"blender-check: {message}", flush=True)
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
+    parser = argparse.ArgumentParser(prog="blender_check.py")
+    parser.add_argument("check", choices=sorted(TOLERANCE))
+    parser.add_argument("--odeskin", required=True)
+    parser.add_argument("--asset", required=True)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--times", default="0,0.37,0.51,1,1.52,1.99,2",
+                        help="compact: key times T (odeskin play --t) to compare")
+    parser.add_argument("--fps", type=int, default=24, help="baked and pc2: frames per second")
+    parser.add_argument("--interpolation", default="linear", choices=["linear", "cubic"],
+                        help="compact: odeskin export --interpolation (Blender drops cubic tangents)")
+    return parser.parse_args(argv)
+
+
+def odeskin(options, *args):
+    done = subprocess.run([options.odeskin, *args, "--quiet"], capture_output=True, text=True)
+    if done.returncode != 0:
+        raise CheckFailure(f"odeskin {' '.join(args)} exited {done.returncode}: {done.stderr.strip()}")
+
+
+def segment_seconds(options):
+    done = subprocess.run([options.odeskin, "info", options.asset], capture_output=True, text=True)
+    # "key poses:      3 (2 segments, 2 s)"
+    found = re.search(r"^key poses:\s+\d+ \((\d+) segments?, ([0-9.e+-]+) s\)", done.stdout, re.MULTILINE)
+    if done.returncode != 0 or not found:
+        raise CheckFailure(f"odeskin info {options.asset} did not give the segment length: {done.stderr.strip()}")
+    return float(found.group(2)) / int(found.group(1))
+
+
+def obj_positions(path):
+    """Positions of an OBJ odeskin wrote, turned from glTF's y-up to Blender's z-up as its importers do."""
+    points = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("v "):
+                x, y, z = (float(v) for v in line.split()[1:4])
+                points.append((x, -z, y))
+    return numpy.array(points)
+
+
+def reset_scene(fps):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    bpy.context.scene.render.fps = fps  # importers turn glTF seconds into frames at the scene's rate
+    bpy.context.scene.render.fps_base = 1.0
+
+
+def only_mesh():
+    meshes = [o for o in bpy.context.scene.objects if o.type == "MESH"]
+    if len(meshes) != 1:
+        raise CheckFailure(f"expected one mesh object after import, found {len(meshes)}")
+    return meshes[0]
+
+
+def evaluated_positions(obj, frame):
+    bpy.context.scene.frame_set(frame)
+    evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get())
+    mesh = evaluated.to_mesh()
+    local = numpy.empty(len(mesh.vertices) * 3)
+    mesh.vertices.foreach_get("co", local)
+    evaluated.to_mesh_clear()
+    matrix = numpy.array(obj.matrix_world)
+    local = local.reshape(-1, 3)
+    return local @ matrix[:3, :3].T + matrix[:3, 3]
+
+
+failures = []  # every time is compared and printed before the check fails
+
+
+def compare(label, shown, reference, tolerance):
+    if shown.shape != reference.shape:
+        raise CheckFailure(f"{label}: Blender has {len(shown)} vertices, odeskin play {len(reference)}")
+    box = float((reference.max(axis=0) - reference.min(axis=0)).max())
+    distance = numpy.linalg.norm(shown - reference, axis=1)
+    worst = int(distance.argmax())
+    relative = float(distance[worst]) / box
+    log(f"{label}: {len(shown)} vertices, largest difference {relative:.2e} of the box (vertex {worst})")
+    if not relative <= tolerance:
+        failures.append(f"{label}: vertex {worst} is {relative:.2e} of the box from odeskin play "
+                        f"(tolerance {tolerance:.0e})")
+
+
+def check_compact(options, out):
+    glb = out / "compact.glb"
+    odeskin(options, "export", options.asset, "-o", str(glb), "--interpolation", options.interpolation)
+    seconds = segment_seconds(options)
+    # A scene at 100 fps puts T = 0.37 on a whole frame: Blender's sub-frames are not needed.
+    fps = 100
+    reset_scene(fps)
+    bpy.ops.import_scene.gltf(filepath=str(glb))
+    obj = only_mesh()
+    if not any(m.type == "ARMATURE" for m in obj.modifiers):
+        raise CheckFailure("the imported mesh has no armature modifier: the skin was lost")
+    keys = obj.data.shape_keys
+    if keys is None or len(keys.key_blocks) < 2:
+        raise CheckFailure("the imported mesh has no shape keys: the morph targets were lost")
+    curves = keys.animation_data.action.fcurves if keys.animation_data and keys.animation_data.action else []
+    if len(curves) != len(keys.key_blocks) - 1:
+        raise CheckFailure(f"{len(curves)} shape-key F-curves for {len(keys.key_blocks) - 1} shape keys")
+    log(f"{glb.name}: {len(keys.key_blocks) - 1} shape keys, each with its F-curve")
+    for t in (float(x) for x in options.times.split(",")):
+        frame = t * seconds * fps
+        if abs(frame - round(frame)) > 1e-6:
+            raise CheckFailure(f"--times {t}: {t * seconds} s is not a whole frame at {fps} fps")
+        reference = out / f"compact-t{t}.obj"
+        odeskin(options, "play", options.asset, "--t", str(t), "-o", str(reference))
+        compare(f"compact t {t}", evaluated_positions(obj, round(frame)), obj_positions(reference),
+                TOLERANCE["compact"])
+
+
+def frame_references(options, out, stem):
+    odeskin(options, "play", options.asset, "--fps", str(options.fps), "-o", str(out / f"{stem}_%04d.obj"))
+    return sorted(out.glob(f"{stem}_*.obj"))
+
+
+def check_baked(options, out):
+    glb = out / "baked.glb"
+    odeskin(options, "play", options.asset, "--fps", str(options.fps), "-o", str(glb))
+    frames = frame_references(options, out, "baked")
+    reset_scene(options.fps)
+    bpy.ops.import_scene.gltf(filepath=str(glb))
+    obj = only_mesh()
+    for k, reference in enumerate(frames):
+        compare(f"baked frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE["baked"])
+
+
+def check_pc2(options, out):
+    base, cache = out / "base.obj", out / "cache.pc2"
+    odeskin(options, "play", options.asset, "--t", "0", "-o", str(base))
+    odeskin(options, "play", options.asset, "--fps", str(options.fps), "-o", str(cache))
+    frames = frame_references(options, out, "pc2")
+    reset_scene(options.fps)
+    bpy.ops.wm.obj_import(filepath=str(base))
+    obj = only_mesh()
+    modifier = obj.modifiers.new("odeskin", "MESH_CACHE")
+    modifier.cache_format = "PC2"
+    modifier.filepath = str(cache)
+    for k, reference in enumerate(frames):
+        compare(f"pc2 frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE["pc2"])
+
+
+def main():
+    options = parse_args()
+    out = Path(options.out)
+    out.mkdir(parents=True, exist_ok=True)
+    log(f"Blender {bpy.app.version_string}, check {options.check}, asset {options.asset}")
+    try:
+        with tempfile.TemporaryDirectory(dir=out) as scratch:
+            {"compact": check_compact, "baked": check_baked, "pc2": check_pc2}[options.check](options, Path(scratch))
+        if failures:
+            raise CheckFailure(f"{len(failures)} comparison(s) over the tolerance; first: {failures[0]}")
+    except CheckFailure as failure:
+        log(f"FAILED: {failure}")
+        sys.exit(1)
+    except Exception as error:  # an importer's own exception is a failure too, not a crash of the test
+        log(f"FAILED: {type(error).__name__}: {error}")
+        sys.exit(1)
+    log("passed")
+
+
+main()
