@@ -11,7 +11,9 @@
 #            animation and per-mode morph targets whose weights Blender imports as shape-key F-curves;
 #   baked    `odeskin play --fps F -o OUT.glb`: a morph target per frame, STEP weights;
 #   pc2      `odeskin play --fps F -o OUT.pc2` on the mesh `play --t 0` writes, through Blender's
-#            Mesh Cache modifier.
+#            Mesh Cache modifier;
+#   rig      `odeskin rig MESH -o OUT.tgf --gltf OUT.glb` (--mesh instead of --asset): an armature
+#            whose bones start at the .tgf's joints, one vertex group per bone, and the mesh at rest.
 # Exits 1 on any failure (a missing odeskin, an import error, a vertex off by more than the
 # tolerance); nothing is skipped.
 import argparse
@@ -31,7 +33,7 @@ if "bool" not in numpy.__dict__:
 
 # Blender evaluates in float32; the compact export's keys and fit add up to about 5e-5 of the box
 # between keys (odeskin export prints its bounds).
-TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6}
+TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "rig": 1e-6}
 
 
 class CheckFailure(Exception):
@@ -47,7 +49,8 @@ def parse_args():
     parser = argparse.ArgumentParser(prog="blender_check.py")
     parser.add_argument("check", choices=sorted(TOLERANCE))
     parser.add_argument("--odeskin", required=True)
-    parser.add_argument("--asset", required=True)
+    parser.add_argument("--asset", help="the fitted .odsk (compact, baked, pc2)")
+    parser.add_argument("--mesh", help="rig: the OBJ mesh to rig")
     parser.add_argument("--out", required=True)
     parser.add_argument("--times", default="0,0.37,0.51,1,1.52,1.99,2",
                         help="compact: key times T (odeskin play --t) to compare")
@@ -183,14 +186,66 @@ def check_pc2(options, out):
         compare(f"pc2 frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE["pc2"])
 
 
+def tgf_bones(path):
+    """The joints (x, y, z) and bones (first joint, second joint) of a libigl .tgf, joints turned z-up."""
+    joints, bones, in_edges = {}, [], False
+    with open(path) as f:
+        for line in f:
+            fields = line.split()
+            if not fields:
+                continue
+            if fields[0] == "#":
+                in_edges = True
+            elif in_edges:
+                bones.append((int(fields[0]), int(fields[1])))
+            else:
+                x, y, z = (float(v) for v in fields[1:4])
+                joints[int(fields[0])] = (x, -z, y)
+    return joints, bones
+
+
+def check_rig(options, out):
+    tgf, glb = out / "rig.tgf", out / "rig.glb"
+    odeskin(options, "rig", options.mesh, "-o", str(tgf), "--gltf", str(glb))
+    joints, bones = tgf_bones(tgf)
+    reset_scene(24)
+    bpy.ops.import_scene.gltf(filepath=str(glb))
+    armatures = [o for o in bpy.context.scene.objects if o.type == "ARMATURE"]
+    if len(armatures) != 1:
+        raise CheckFailure(f"expected one armature after import, found {len(armatures)}")
+    armature = armatures[0]
+    obj = only_mesh()
+    if len(armature.data.bones) != len(bones):
+        raise CheckFailure(f"Blender has {len(armature.data.bones)} bones, {tgf.name} {len(bones)}")
+    if len(obj.vertex_groups) != len(bones):
+        raise CheckFailure(f"{len(obj.vertex_groups)} vertex groups for {len(bones)} bones")
+    reference = numpy.array([p for _, p in sorted(joints.items())])
+    box = float((reference.max(axis=0) - reference.min(axis=0)).max())
+    heads = numpy.array([tuple(armature.matrix_world @ b.head_local) for b in armature.data.bones])
+    starts = numpy.array([joints[first] for first, _ in bones])
+    # Bone names are not the .tgf's indices: every head must sit on a bone's first joint, and the
+    # other way round.
+    head_to_start = max(numpy.linalg.norm(starts - h, axis=1).min() for h in heads) / box
+    start_to_head = max(numpy.linalg.norm(heads - p, axis=1).min() for p in starts) / box
+    log(f"{glb.name}: {len(bones)} bones and vertex groups; bone heads within {max(head_to_start, start_to_head):.2e} "
+        f"of the box of the .tgf's joints")
+    if not max(head_to_start, start_to_head) <= TOLERANCE["rig"]:
+        failures.append(f"a bone head is {max(head_to_start, start_to_head):.2e} of the box from its .tgf joint")
+    compare("rig at rest", evaluated_positions(obj, 0), obj_positions(options.mesh), TOLERANCE["rig"])
+
+
 def main():
     options = parse_args()
     out = Path(options.out)
     out.mkdir(parents=True, exist_ok=True)
-    log(f"Blender {bpy.app.version_string}, check {options.check}, asset {options.asset}")
+    log(f"Blender {bpy.app.version_string}, check {options.check}, input {options.mesh or options.asset}")
+    if (options.check == "rig") != (options.mesh is not None) or (options.check != "rig") != (options.asset is not None):
+        log("FAILED: give --mesh for the rig check and --asset for the others")
+        sys.exit(1)
     try:
         with tempfile.TemporaryDirectory(dir=out) as scratch:
-            {"compact": check_compact, "baked": check_baked, "pc2": check_pc2}[options.check](options, Path(scratch))
+            checks = {"compact": check_compact, "baked": check_baked, "pc2": check_pc2, "rig": check_rig}
+            checks[options.check](options, Path(scratch))
         if failures:
             raise CheckFailure(f"{len(failures)} comparison(s) over the tolerance; first: {failures[0]}")
     except CheckFailure as failure:
