@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "point_cache.hpp"
 
-#include <bit>
 #include <cmath>
 #include <limits>
 
 #include "../core/number_text.hpp"
+#include "little_endian.hpp"
 #include "obj_io.hpp"
 
 namespace odeskin {
@@ -14,12 +14,6 @@ namespace {
 constexpr char kSignature[12] = "POINTCACHE2";  // with its terminating zero: 12 bytes
 constexpr std::uint32_t kVersion = 1;
 constexpr double kFloatMax = std::numeric_limits<float>::max();
-
-// PC2 is little-endian whatever the machine writing it.
-void appendU32(std::string& out, std::uint32_t v) {
-  for (int shift = 0; shift < 32; shift += 8) out.push_back(static_cast<char>((v >> shift) & 0xFFU));
-}
-void appendF32(std::string& out, float v) { appendU32(out, std::bit_cast<std::uint32_t>(v)); }
 
 }  // namespace
 
@@ -54,7 +48,7 @@ Status Pc2Builder::add(std::span<const Vec3> positions) {
         return invalidArgument("point cache frame " + std::to_string(samples_) + ", vertex " + std::to_string(v) +
                                ": " + messageNumber(x) + " is not a finite float32 coordinate");
       }
-      appendF32(data_, static_cast<float>(x));
+      appendLittleEndianF32(data_, static_cast<float>(x));
     }
   }
   ++samples_;
@@ -75,11 +69,11 @@ Status Pc2Builder::write(const std::filesystem::path& path, double start_frame, 
   // The header is built apart and copied over the body's reserved first bytes, so a cache of
   // gigabytes is never copied whole.
   std::string header(kSignature, sizeof kSignature);
-  appendU32(header, kVersion);
-  appendU32(header, static_cast<std::uint32_t>(vertices_));
-  appendF32(header, static_cast<float>(start_frame));
-  appendF32(header, static_cast<float>(sample_frames));
-  appendU32(header, static_cast<std::uint32_t>(samples_));
+  appendLittleEndianU32(header, kVersion);
+  appendLittleEndianU32(header, static_cast<std::uint32_t>(vertices_));
+  appendLittleEndianF32(header, static_cast<float>(start_frame));
+  appendLittleEndianF32(header, static_cast<float>(sample_frames));
+  appendLittleEndianU32(header, static_cast<std::uint32_t>(samples_));
   data_.replace(0, kPc2HeaderBytes, header);
   return writeFileAtomically(path, data_);
 }

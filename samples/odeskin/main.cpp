@@ -23,6 +23,7 @@
 #include "play_command.hpp"
 #include "progress.hpp"
 #include "reconstruct_command.hpp"
+#include "compare_command.hpp"
 #include "render_command.hpp"
 #include "surface_command.hpp"
 #include "rig_command.hpp"
@@ -283,6 +284,32 @@ CLI::App* addReconstructCommand(CLI::App& app, odeskin::ReconstructCommandOption
   return cmd;
 }
 
+struct CompareCliValues {
+  double t = 0.0;
+  double heat_max = 0.0;
+  CLI::Option* t_opt = nullptr;
+  CLI::Option* heat_max_opt = nullptr;
+};
+
+CLI::App* addCompareCommand(CLI::App& app, odeskin::CompareOptions& o, CompareCliValues& v) {
+  CLI::App* cmd = app.add_subcommand("compare", "Per-vertex error of a mesh against a reference, and a PLY heat map");
+  cmd->footer(
+      "MESH and REFERENCE have the same vertices (.obj, .glb/.gltf, or a .odsk played at --t). Errors are\n"
+      "distances over REFERENCE's longest bounding-box side, as odeskin evaluate measures them: the largest\n"
+      "(MVE) and its vertex, the mean, the RMS and the 99th percentile. -o OUT.ply writes MESH with a heat\n"
+      "colour per vertex (blue 0 to red at --heat-max, default the MVE) and the error as its quality, for\n"
+      "MeshLab or Blender; give several comparisons one --heat-max to share a scale.\n"
+      "Examples: odeskin compare horse.odsk horse-03.obj --t 0.5\n"
+      "          odeskin compare horse.odsk horse-03.obj --t 0.5 -o error.ply --heat-max 0.01 --json error.json");
+  cmd->add_option("mesh", o.mesh, "The mesh to score")->required();
+  cmd->add_option("reference", o.reference, "The reference with the same vertices (ground truth)")->required();
+  v.t_opt = cmd->add_option("--t", v.t, "MESH's time: global T in [0, K-1] for .odsk, seconds for .glb/.gltf");
+  cmd->add_option("-o,--output", o.ply, "MESH coloured by its error (.ply)");
+  v.heat_max_opt = cmd->add_option("--heat-max", v.heat_max, "Top of the colour range, a fraction of the box (default: the MVE)");
+  cmd->add_option("--json", o.json, "Write the figures here (.json)");
+  return cmd;
+}
+
 struct RenderCliValues {
   double t = 0.0;
   double heat_max = 0.0;
@@ -427,6 +454,10 @@ int run(int argc, char** argv, std::string& verb) {
   odeskin::ReconstructCommandOptions reconstruct_options;
   CLI::App* reconstruct_cmd = addReconstructCommand(app, reconstruct_options);
 
+  odeskin::CompareOptions compare_options;
+  CompareCliValues compare_values;
+  CLI::App* compare_cmd = addCompareCommand(app, compare_options, compare_values);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -503,6 +534,11 @@ int run(int argc, char** argv, std::string& verb) {
     return odeskin::runSurfaceCommand(surface_options, console);
   }
   if (reconstruct_cmd->parsed()) return odeskin::runReconstructCommand(reconstruct_options, console);
+  if (compare_cmd->parsed()) {
+    if (compare_values.t_opt->count() > 0) compare_options.t = compare_values.t;
+    if (compare_values.heat_max_opt->count() > 0) compare_options.heat_max = compare_values.heat_max;
+    return odeskin::runCompareCommand(compare_options, console);
+  }
   return 2;
 }
 

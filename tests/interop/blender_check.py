@@ -14,9 +14,13 @@
 #            Mesh Cache modifier;
 #   rig      `odeskin rig MESH -o OUT.tgf --gltf OUT.glb` (--mesh instead of --asset): an armature
 #            whose bones start at the .tgf's joints, one vertex group per bone, and the mesh at rest.
+#   ply      `odeskin compare ASSET --t T REFERENCE -o OUT.ply` (--reference): the heat map's errors
+#            and colours recomputed here from odeskin play and the reference, and Blender's PLY
+#            importer showing the same vertices and colours.
 # Exits 1 on any failure (a missing odeskin, an import error, a vertex off by more than the
 # tolerance); nothing is skipped.
 import argparse
+import json
 import re
 import subprocess
 import sys
@@ -33,7 +37,7 @@ if "bool" not in numpy.__dict__:
 
 # Blender evaluates in float32; the compact export's keys and fit add up to about 5e-5 of the box
 # between keys (odeskin export prints its bounds).
-TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "rig": 1e-6}
+TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "rig": 1e-6, "ply": 1e-6}
 
 
 class CheckFailure(Exception):
@@ -51,6 +55,8 @@ def parse_args():
     parser.add_argument("--odeskin", required=True)
     parser.add_argument("--asset", help="the fitted .odsk (compact, baked, pc2)")
     parser.add_argument("--mesh", help="rig: the OBJ mesh to rig")
+    parser.add_argument("--reference", help="ply: the ground-truth OBJ the asset is compared with")
+    parser.add_argument("--t", default="0.5", help="ply: the asset's time T")
     parser.add_argument("--out", required=True)
     parser.add_argument("--times", default="0,0.37,0.51,1,1.52,1.99,2",
                         help="compact: key times T (odeskin play --t) to compare")
@@ -234,6 +240,69 @@ def check_rig(options, out):
     compare("rig at rest", evaluated_positions(obj, 0), obj_positions(options.mesh), TOLERANCE["rig"])
 
 
+def heat_colour(s):
+    """engine/visual/render_shading.h's heatColour, written again: blue, cyan, green, yellow, red."""
+    stops = numpy.array([(0.17, 0.30, 0.80), (0.16, 0.68, 0.90), (0.40, 0.80, 0.36), (0.98, 0.80, 0.18),
+                         (0.86, 0.16, 0.13)])
+    x = numpy.clip(s, 0.0, 1.0) * 4.0
+    k = numpy.minimum(x.astype(int), 3)
+    f = (x - k)[:, None]
+    return (1.0 - f) * stops[k] + f * stops[k + 1]
+
+
+def read_ply(path):
+    """The vertex records odeskin's PLY writer makes: float x y z, uchar r g b, float quality."""
+    data = path.read_bytes()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode()
+    if "binary_little_endian" not in header or "property float quality" not in header:
+        raise CheckFailure(f"{path.name}: not the PLY layout expected:\n{header}")
+    count = int(re.search(r"element vertex (\d+)", header).group(1))
+    heat_max = float(re.search(r"colour = error / ([0-9.e+-]+) of the box", header).group(1))
+    record = numpy.dtype([("p", "<f4", 3), ("rgb", "u1", 3), ("quality", "<f4")])
+    return numpy.frombuffer(data, record, count, end), heat_max
+
+
+def check_ply(options, out):
+    ply, mesh, report = out / "error.ply", out / "mesh.obj", out / "error.json"
+    odeskin(options, "compare", options.asset, options.reference, "--t", options.t, "-o", str(ply), "--json", str(report))
+    odeskin(options, "play", options.asset, "--t", options.t, "-o", str(mesh))
+    vertices, heat_max = read_ply(ply)
+    played, truth = obj_positions(mesh), obj_positions(options.reference)
+    box = float((truth.max(axis=0) - truth.min(axis=0)).max())
+    errors = numpy.linalg.norm(played - truth, axis=1) / box
+    figures = json.loads(report.read_text())
+    log(f"{ply.name}: {len(vertices)} vertices, MVE {figures['max']['relative']:.4f} of the box at vertex "
+        f"{figures['max']['vertex']}, colours up to {heat_max:.4f}")
+    if len(vertices) != len(played):
+        raise CheckFailure(f"{ply.name} has {len(vertices)} vertices, odeskin play {len(played)}")
+    if abs(figures["max"]["relative"] - errors.max()) > 1e-6 or figures["max"]["vertex"] != int(errors.argmax()):
+        failures.append(f"the report's MVE {figures['max']} is not {errors.max():.6f} at vertex {errors.argmax()}")
+    if abs(figures["mean"] - errors.mean()) > 1e-6:
+        failures.append(f"the report's mean {figures['mean']} is not {errors.mean():.6f}")
+    if numpy.abs(vertices["quality"] - errors).max() > 1e-6:
+        failures.append("the PLY's quality is not each vertex's error over the box")
+    expected = numpy.rint(heat_colour(errors / heat_max) * 255.0)
+    if numpy.abs(vertices["rgb"] - expected).max() > 1:
+        failures.append("the PLY's colours are not the heat map of the errors")
+    # The same file through Blender's PLY importer: vertices as written, and a corner colour attribute.
+    reset_scene(24)
+    bpy.ops.import_mesh.ply(filepath=str(ply))
+    obj = only_mesh()
+    shown = evaluated_positions(obj, 0)
+    compare("ply in Blender", shown, vertices["p"].astype(float), TOLERANCE["ply"])
+    colours = obj.data.color_attributes[0] if len(obj.data.color_attributes) else None
+    if colours is None:
+        raise CheckFailure(f"Blender read no colours from {ply.name}")
+    loops = numpy.empty(len(obj.data.loops), dtype=int)
+    obj.data.loops.foreach_get("vertex_index", loops)
+    srgb = numpy.array([tuple(c.color_srgb)[:3] for c in colours.data])
+    worst = float(numpy.abs(srgb * 255.0 - vertices["rgb"][loops]).max())
+    log(f"ply colours in Blender ({colours.domain.lower()} domain): largest difference {worst:.2f} of 255")
+    if worst > 1.0:
+        failures.append(f"Blender shows colours up to {worst:.1f}/255 away from the file's")
+
+
 def main():
     options = parse_args()
     out = Path(options.out)
@@ -242,9 +311,13 @@ def main():
     if (options.check == "rig") != (options.mesh is not None) or (options.check != "rig") != (options.asset is not None):
         log("FAILED: give --mesh for the rig check and --asset for the others")
         sys.exit(1)
+    if (options.check == "ply") != (options.reference is not None):
+        log("FAILED: give --reference for the ply check, and only for it")
+        sys.exit(1)
     try:
         with tempfile.TemporaryDirectory(dir=out) as scratch:
-            checks = {"compact": check_compact, "baked": check_baked, "pc2": check_pc2, "rig": check_rig}
+            checks = {"compact": check_compact, "baked": check_baked, "pc2": check_pc2, "rig": check_rig,
+                      "ply": check_ply}
             checks[options.check](options, Path(scratch))
         if failures:
             raise CheckFailure(f"{len(failures)} comparison(s) over the tolerance; first: {failures[0]}")

@@ -450,6 +450,7 @@ TEST_F(BadInputCli, BadMeshesPosesAndWeightsFailNamingTheFile) {
        {"unbound1.obj: vertex 421 is in no face"}},
       {"render_empty", {"render", in("empty.obj"), "-o", "{out}"}, "x.png", 1, {"empty.obj: no vertices"}},
       {"render_nan", {"render", in("nan.obj"), "-o", "{out}"}, "x.png", 1, {"nan.obj:", "finite"}},
+      {"compare_nan", {"compare", in("nan.obj"), in("good1.obj"), "-o", "{out}"}, "x.ply", 1, {"nan.obj:", "finite"}},
   };
   runTable(cases, dir() / "meshes");
 }
@@ -467,6 +468,8 @@ TEST_F(BadInputCli, DamagedAssetsFailOnEveryVerbThatReadsThem) {
     cases.push_back({"export_" + stem, {"export", in(file), "-o", "{out}"}, "x.glb", 1, {file + ": ", problem}});
     cases.push_back({"info_" + stem, {"info", in(file)}, "untouched.txt", 1, {file + ": ", problem}});
     cases.push_back({"render_" + stem, {"render", in(file), "-o", "{out}"}, "x.png", 1, {file + ": ", problem}});
+    cases.push_back({"compare_" + stem, {"compare", in("good1.obj"), in(file), "-o", "{out}"}, "x.ply", 1,
+                     {file + ": ", problem}});
   }
   runTable(cases, dir() / "assets");
 }

@@ -13,11 +13,14 @@
 #include "engine/io/gltf_reader.hpp"
 
 #include "engine/io/asset_file.hpp"
+#include "engine/io/obj_io.hpp"
 #include "engine/io/obj_reader.hpp"
+#include "engine/io/text_tokens.hpp"
 #include "engine/offline/procedural_arm.hpp"
 #include "host/gpu_test_support.hpp"
 #include "samples/command_test_support.hpp"
 #include "samples/odeskin/asset_info.hpp"
+#include "samples/odeskin/compare_command.hpp"
 #include "samples/odeskin/fit_options.hpp"
 #include "samples/odeskin/material_options.hpp"
 #include "samples/odeskin/play_command.hpp"
@@ -284,6 +287,89 @@ TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   cases.push_back({fps, "x.pc2: 999001 frames of " + std::to_string(asset_->vertexCount()) + " vertices need"});
   testing::expectRejected(cases, [](const PlayOptions& o, Captured& io) { return play(o, io); }, kExitUsage, "play");
   EXPECT_TRUE(fs::is_empty(dir)) << "a rejected command wrote something";
+}
+
+// `odeskin compare`: the asset at its last key against that example pose, then against the first
+// pose with a heat-map PLY and a JSON report, and the refusals.
+TEST_F(Cli, CompareScoresAnAssetAgainstAPose) {
+  const fs::path dir = scratch("compare");
+  ASSERT_TRUE(writeObj(dir / "end.obj", arm_->end_positions, asset_->faces).ok());
+  CompareOptions o;
+  o.mesh = assetPath();
+  o.reference = dir / "end.obj";
+  o.t = 1.0;
+  Captured io;
+  CompareReport report;
+  ASSERT_EQ(runCompareCommand(o, io.console, &report), kExitOk) << io.err.str();
+  EXPECT_EQ(report.vertices, asset_->vertexCount());
+  EXPECT_NEAR(report.box, box(), 1e-6 * box());  // the reference went through OBJ text
+  EXPECT_LE(report.max_error, kKeyTolerance);
+  EXPECT_LE(report.mean_error, report.rms_error);
+  EXPECT_LE(report.rms_error, report.max_error);
+  EXPECT_LE(report.p99_error, report.max_error);
+  EXPECT_NE(io.out.str().find("max error (MVE): "), std::string::npos) << io.out.str();
+
+  // At t = 0 the asset is the start pose: far from the end pose, the worst vertex where it says.
+  o.t = 0.0;
+  o.ply = dir / "heat" / "start.ply";
+  o.json = dir / "start.json";
+  o.heat_max = 0.5;
+  ASSERT_EQ(runCompareCommand(o, io.console, &report), kExitOk) << io.err.str();
+  const double worst = maxDistance(arm_->start_positions, arm_->end_positions) / box();
+  EXPECT_NEAR(report.max_error, worst, kKeyTolerance);
+  EXPECT_NEAR(glm::length(arm_->start_positions[report.max_vertex] - arm_->end_positions[report.max_vertex]) / box(),
+              worst, kKeyTolerance);
+  EXPECT_EQ(report.heat_max, 0.5);
+  std::ifstream ply(o.ply, std::ios::binary);
+  std::string header;
+  std::getline(ply, header);
+  EXPECT_EQ(header, "ply");
+  const std::string text{std::istreambuf_iterator<char>(ply), std::istreambuf_iterator<char>()};
+  EXPECT_NE(text.find("element vertex " + std::to_string(asset_->vertexCount()) + "\n"), std::string::npos);
+  EXPECT_NE(text.find("colour = error / 0.5 of the box"), std::string::npos);
+  Result<std::string> json = readTextFile(o.json);
+  ASSERT_TRUE(json.ok());
+  EXPECT_NE(json->find("\"p99\""), std::string::npos) << *json;
+  EXPECT_NE(json->find("\"heat_max\": 0.5"), std::string::npos) << *json;
+
+  // A reference with other vertices fails, naming both counts.
+  std::vector<Vec3> fewer = arm_->end_positions;
+  fewer.pop_back();
+  FaceList triangle;
+  triangle.indices = {0, 1, 2};
+  triangle.face_offsets = {0, 3};
+  ASSERT_TRUE(writeObj(dir / "fewer.obj", fewer, triangle).ok());
+  CompareOptions mismatch;
+  mismatch.mesh = assetPath();
+  mismatch.reference = dir / "fewer.obj";
+  Captured failed;
+  EXPECT_EQ(runCompareCommand(mismatch, failed.console), kExitFailure);
+  EXPECT_NE(failed.err.str().find(std::to_string(asset_->vertexCount()) + " vertices but the reference has " +
+                                  std::to_string(fewer.size())), std::string::npos) << failed.err.str();
+
+  const fs::path usage = scratch("compare_usage");
+  std::vector<CommandCase<CompareOptions>> cases;
+  CompareOptions base = mismatch;
+  base.reference = dir / "end.obj";
+  CompareOptions c = base;
+  c.heat_max = 0.1;
+  cases.push_back({c, "--heat-max needs -o OUT.ply"});
+  c.ply = usage / "x.ply";
+  c.heat_max = -1.0;
+  cases.push_back({c, "--heat-max must be a positive fraction of the box"});
+  c = base;
+  c.ply = usage / "x.obj";
+  cases.push_back({c, "write .ply"});
+  c = base;
+  c.json = usage / "x.txt";
+  cases.push_back({c, "write .json"});
+  c = base;
+  c.ply = dir / "folder.ply";
+  fs::create_directories(c.ply);
+  cases.push_back({c, "folder.ply is a folder"});
+  testing::expectRejected(cases, [](const CompareOptions& options, Captured& out) { return runCompareCommand(options, out.console); },
+                          kExitUsage, "compare");
+  EXPECT_TRUE(fs::is_empty(usage)) << "a rejected command wrote something";
 }
 
 TEST_F(Cli, MissingOrCorruptAssetFailsWithExitCode1) {
