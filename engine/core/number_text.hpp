@@ -40,6 +40,11 @@ inline std::string fixedText(double x, int decimals) {
   return number_text_detail::formatted(x, decimals, std::chars_format::fixed);
 }
 
+// "1.23%": a fraction (0.0123) as a percentage to 3 significant digits, as errors over the box are read.
+inline std::string percentText(double fraction) {
+  return number_text_detail::formatted(100.0 * fraction, 3, std::chars_format::general) + "%";
+}
+
 // "%.9g", for values in error messages: enough digits to tell a sum of 1.000001 from 1.
 inline std::string messageNumber(double x) { return number_text_detail::formatted(x, 9, std::chars_format::general); }
 

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <system_error>
 #include <vector>
 
@@ -22,12 +21,6 @@
 
 namespace odeskin {
 namespace {
-
-std::string percent(double fraction) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * fraction);
-  return text;
-}
 
 std::string usageProblem(const CompareOptions& o) {
   if (o.heat_max && !(std::isfinite(*o.heat_max) && *o.heat_max > 0.0)) {
@@ -140,12 +133,12 @@ int runCompareCommand(const CompareOptions& o, Console& console, CompareReport* 
   if (!console.quiet) {
     console.out << mesh->label << " against " << reference->label << ": " << r.vertices << " vertices, box "
                 << numberText(r.box) << " (longest side)\n";
-    console.out << "max error (MVE): " << percent(r.max_error) << " of the box (" << numberText(r.max_error * r.box)
+    console.out << "max error (MVE): " << percentText(r.max_error) << " of the box (" << numberText(r.max_error * r.box)
                 << ") at vertex " << r.max_vertex << "\n";
-    console.out << "mean " << percent(r.mean_error) << ", RMS " << percent(r.rms_error) << ", 99% of vertices within "
-                << percent(r.p99_error) << "\n";
+    console.out << "mean " << percentText(r.mean_error) << ", RMS " << percentText(r.rms_error) << ", 99% of vertices within "
+                << percentText(r.p99_error) << "\n";
     if (!o.ply.empty()) {
-      console.out << "wrote " << o.ply.string() << " (colours from 0 to " << percent(r.heat_max) << " of the box)\n";
+      console.out << "wrote " << o.ply.string() << " (colours from 0 to " << percentText(r.heat_max) << " of the box)\n";
     }
   }
   if (report) *report = r;

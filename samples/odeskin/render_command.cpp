@@ -9,6 +9,7 @@
 #include <system_error>
 #include <tuple>
 
+#include "engine/core/number_text.hpp"
 #include "engine/core/position_box.hpp"
 #include "engine/visual/compose.hpp"
 #include "engine/visual/png_writer.hpp"
@@ -27,12 +28,6 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxTurntable = 3600;
 constexpr std::uint32_t kStripColumns = 6;
 constexpr std::uint32_t kStripWidth = 1536;  // pixels across a contact sheet row at most
-
-std::string percentText(double fraction) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * fraction);
-  return text;
-}
 
 bool hasPngExtension(const std::string& name) {
   return lowerExtension(name) == ".png";
