@@ -17,6 +17,10 @@
 #   ply      `odeskin compare ASSET --t T REFERENCE -o OUT.ply` (--reference): the heat map's errors
 #            and colours recomputed here from odeskin play and the reference, and Blender's PLY
 #            importer showing the same vertices and colours.
+#   roundtrip  Blender makes a character from --poses OBJ files (shape keys, smooth shading, UVs, a
+#            textured material) and exports it as glTF; `odeskin fit` reads it, `odeskin export
+#            --materials` writes it back, and Blender imports that: the same vertices, UVs and
+#            material, moving as `odeskin play` does.
 # Exits 1 on any failure (a missing odeskin, an import error, a vertex off by more than the
 # tolerance); nothing is skipped.
 import argparse
@@ -37,7 +41,7 @@ if "bool" not in numpy.__dict__:
 
 # Blender evaluates in float32; the compact export's keys and fit add up to about 5e-5 of the box
 # between keys (odeskin export prints its bounds).
-TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "rig": 1e-6, "ply": 1e-6}
+TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "rig": 1e-6, "ply": 1e-6, "roundtrip": 1e-4}
 
 
 class CheckFailure(Exception):
@@ -57,6 +61,7 @@ def parse_args():
     parser.add_argument("--mesh", help="rig: the OBJ mesh to rig")
     parser.add_argument("--reference", help="ply: the ground-truth OBJ the asset is compared with")
     parser.add_argument("--t", default="0.5", help="ply: the asset's time T")
+    parser.add_argument("--poses", nargs="+", help="roundtrip: OBJ files of one mesh, the first the base")
     parser.add_argument("--out", required=True)
     parser.add_argument("--times", default="0,0.37,0.51,1,1.52,1.99,2",
                         help="compact: key times T (odeskin play --t) to compare")
@@ -303,13 +308,90 @@ def check_ply(options, out):
         failures.append(f"Blender shows colours up to {worst:.1f}/255 away from the file's")
 
 
+def make_character(poses, glb):
+    """A textured character with one shape key per further pose, exported by Blender's glTF exporter."""
+    reset_scene(24)
+    bpy.ops.wm.obj_import(filepath=poses[0])
+    obj = only_mesh()
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+    obj.shape_key_add(name="Basis")
+    for pose in poses[1:]:
+        key = obj.shape_key_add(name=Path(pose).stem)
+        # The importer turned the object, not its vertices: shape keys take the OBJ's coordinates.
+        with open(pose) as f:
+            coords = [tuple(float(v) for v in line.split()[1:4]) for line in f if line.startswith("v ")]
+        if len(coords) != len(key.data):
+            raise CheckFailure(f"{pose} has {len(coords)} vertices, {poses[0]} {len(key.data)}")
+        key.data.foreach_set("co", numpy.array(coords).ravel())
+    bpy.ops.object.shade_smooth()
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.mesh.select_all(action="SELECT")
+    bpy.ops.uv.smart_project(angle_limit=1.15)  # UV islands: seams that split glTF vertices
+    bpy.ops.object.mode_set(mode="OBJECT")
+    image = bpy.data.images.new("odeskin-grid", 64, 64)
+    image.generated_type = "COLOR_GRID"
+    image.pack()
+    material = bpy.data.materials.new("odeskin-skin")
+    material.use_nodes = True
+    texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    material.node_tree.links.new(texture.outputs["Color"], material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+    obj.data.materials.append(material)
+    bpy.ops.export_scene.gltf(filepath=str(glb), export_format="GLB", export_morph=True)
+
+
+def imported_look(glb, fps):
+    """Blender's reading of a glTF: the mesh object, its UVs per face corner and its material's image."""
+    reset_scene(fps)
+    bpy.ops.import_scene.gltf(filepath=str(glb))
+    obj = only_mesh()
+    if not obj.data.uv_layers:
+        raise CheckFailure(f"{glb.name}: the imported mesh has no UVs")
+    uvs = numpy.empty(len(obj.data.loops) * 2)
+    obj.data.uv_layers[0].data.foreach_get("uv", uvs)
+    materials = [m for m in obj.data.materials if m is not None]
+    images = [n.image for m in materials if m.node_tree for n in m.node_tree.nodes if n.type == "TEX_IMAGE" and n.image]
+    if len(materials) != 1 or len(images) != 1:
+        raise CheckFailure(f"{glb.name}: {len(materials)} materials with {len(images)} images, expected one of each")
+    return obj, uvs.reshape(-1, 2), materials[0].name, tuple(images[0].size)
+
+
+def check_roundtrip(options, out):
+    source, asset, glb = out / "character.glb", out / "character.odsk", out / "exported.glb"
+    make_character(options.poses, source)
+    odeskin(options, "fit", str(source), "--targets", ",".join(str(k) for k in range(len(options.poses) - 1)),
+            "-o", str(asset))
+    odeskin(options, "export", str(asset), "--materials", str(source), "--interpolation", "linear", "-o", str(glb))
+    _, source_uvs, source_material, source_image = imported_look(source, 100)
+    obj, uvs, material, image = imported_look(glb, 100)
+    log(f"{glb.name}: {len(obj.data.vertices)} vertices, {len(uvs)} face corners, material '{material}' "
+        f"with a {image[0]}x{image[1]} image")
+    if (material, image) != (source_material, source_image):
+        failures.append(f"material '{material}' {image} is not the source's '{source_material}' {source_image}")
+    if uvs.shape != source_uvs.shape:
+        raise CheckFailure(f"{len(uvs)} face corners with UVs, the source {len(source_uvs)}")
+    uv_error = float(numpy.abs(uvs - source_uvs).max())
+    log(f"UVs: largest difference {uv_error:.2e} from the source's, corner by corner")
+    if uv_error > 1e-6:
+        failures.append(f"UVs differ from the source's by {uv_error:.2e}")
+    seconds = segment_seconds(argparse.Namespace(odeskin=options.odeskin, asset=str(asset)))
+    for t in (0.0, 0.37, 1.0, 1.52, float(len(options.poses) - 1)):
+        reference = out / f"roundtrip-t{t}.obj"
+        odeskin(options, "play", str(asset), "--t", str(t), "-o", str(reference))
+        compare(f"roundtrip t {t}", evaluated_positions(obj, round(t * seconds * 100)), obj_positions(reference),
+                TOLERANCE["roundtrip"])
+
+
 def main():
     options = parse_args()
     out = Path(options.out)
     out.mkdir(parents=True, exist_ok=True)
-    log(f"Blender {bpy.app.version_string}, check {options.check}, input {options.mesh or options.asset}")
-    if (options.check == "rig") != (options.mesh is not None) or (options.check != "rig") != (options.asset is not None):
-        log("FAILED: give --mesh for the rig check and --asset for the others")
+    log(f"Blender {bpy.app.version_string}, check {options.check}, input {options.mesh or options.asset or options.poses}")
+    needs = {"rig": "mesh", "roundtrip": "poses"}.get(options.check, "asset")
+    given = [name for name in ("mesh", "poses", "asset") if getattr(options, name) is not None]
+    if given != [needs] or (options.check == "roundtrip" and len(options.poses) < 2):
+        log(f"FAILED: the {options.check} check takes --{needs}" + (" with two or more poses" if needs == "poses" else ""))
         sys.exit(1)
     if (options.check == "ply") != (options.reference is not None):
         log("FAILED: give --reference for the ply check, and only for it")
@@ -317,7 +399,7 @@ def main():
     try:
         with tempfile.TemporaryDirectory(dir=out) as scratch:
             checks = {"compact": check_compact, "baked": check_baked, "pc2": check_pc2, "rig": check_rig,
-                      "ply": check_ply}
+                      "ply": check_ply, "roundtrip": check_roundtrip}
             checks[options.check](options, Path(scratch))
         if failures:
             raise CheckFailure(f"{len(failures)} comparison(s) over the tolerance; first: {failures[0]}")
