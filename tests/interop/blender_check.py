@@ -17,6 +17,8 @@
 #   ply      `odeskin compare ASSET --t T REFERENCE -o OUT.ply` (--reference): the heat map's errors
 #            and colours recomputed here from odeskin play and the reference, and Blender's PLY
 #            importer showing the same vertices and colours.
+#   surface  `odeskin surface NETWORK -o OUT.glb --obj` (--network): the same vertices as the OBJ,
+#            and the weld intact in Blender: only the rim edges the command reports have one face.
 #   roundtrip  Blender makes a character from --poses OBJ files (shape keys, smooth shading, UVs, a
 #            textured material) and exports it as glTF; `odeskin fit` reads it, `odeskin export
 #            --materials` writes it back, and Blender imports that: the same vertices, UVs and
@@ -31,6 +33,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+import bmesh
 import bpy
 import numpy
 
@@ -41,7 +44,7 @@ if "bool" not in numpy.__dict__:
 
 # Blender evaluates in float32; the compact export's keys and fit add up to about 5e-5 of the box
 # between keys (odeskin export prints its bounds).
-TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "rig": 1e-6, "ply": 1e-6, "roundtrip": 1e-4}
+TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "rig": 1e-6, "ply": 1e-6, "roundtrip": 1e-4, "surface": 1e-6}
 
 
 class CheckFailure(Exception):
@@ -62,6 +65,7 @@ def parse_args():
     parser.add_argument("--reference", help="ply: the ground-truth OBJ the asset is compared with")
     parser.add_argument("--t", default="0.5", help="ply: the asset's time T")
     parser.add_argument("--poses", nargs="+", help="roundtrip: OBJ files of one mesh, the first the base")
+    parser.add_argument("--network", help="surface: a curve network (.json) for odeskin surface")
     parser.add_argument("--out", required=True)
     parser.add_argument("--times", default="0,0.37,0.51,1,1.52,1.99,2",
                         help="compact: key times T (odeskin play --t) to compare")
@@ -383,13 +387,38 @@ def check_roundtrip(options, out):
                 TOLERANCE["roundtrip"])
 
 
+def check_surface(options, out):
+    glb = out / "surface.glb"
+    done = subprocess.run([options.odeskin, "surface", options.network, "-o", str(glb), "--obj"], capture_output=True,
+                          text=True)
+    # "welded; 256 rim edges, ..." or "welded; closed (no rim), ..."
+    rims = re.search(r"welded; (?:(\d+) rim edges|closed \(no rim\))", done.stdout)
+    if done.returncode != 0 or not rims:
+        raise CheckFailure(f"odeskin surface {options.network} exited {done.returncode}, or printed no weld line: "
+                           f"{done.stderr.strip() or done.stdout.strip()}")
+    rim_edges = int(rims.group(1) or 0)
+    reset_scene(24)
+    bpy.ops.import_scene.gltf(filepath=str(glb))
+    obj = only_mesh()
+    compare("surface", evaluated_positions(obj, 0), obj_positions(glb.with_suffix(".obj")), TOLERANCE["surface"])
+    mesh = bmesh.new()
+    mesh.from_mesh(obj.data)
+    boundary = sum(1 for e in mesh.edges if len(e.link_faces) == 1)
+    non_manifold = sum(1 for e in mesh.edges if len(e.link_faces) > 2)
+    mesh.free()
+    log(f"{glb.name}: {boundary} edges with one face (odeskin reports {rim_edges} rim edges), "
+        f"{non_manifold} with more than two")
+    if boundary != rim_edges or non_manifold:
+        failures.append(f"Blender sees {boundary} open and {non_manifold} non-manifold edges, odeskin {rim_edges} rim edges")
+
+
 def main():
     options = parse_args()
     out = Path(options.out)
     out.mkdir(parents=True, exist_ok=True)
-    log(f"Blender {bpy.app.version_string}, check {options.check}, input {options.mesh or options.asset or options.poses}")
-    needs = {"rig": "mesh", "roundtrip": "poses"}.get(options.check, "asset")
-    given = [name for name in ("mesh", "poses", "asset") if getattr(options, name) is not None]
+    log(f"Blender {bpy.app.version_string}, check {options.check}, input {options.mesh or options.asset or options.network or options.poses}")
+    needs = {"rig": "mesh", "roundtrip": "poses", "surface": "network"}.get(options.check, "asset")
+    given = [name for name in ("mesh", "poses", "asset", "network") if getattr(options, name) is not None]
     if given != [needs] or (options.check == "roundtrip" and len(options.poses) < 2):
         log(f"FAILED: the {options.check} check takes --{needs}" + (" with two or more poses" if needs == "poses" else ""))
         sys.exit(1)
@@ -399,7 +428,7 @@ def main():
     try:
         with tempfile.TemporaryDirectory(dir=out) as scratch:
             checks = {"compact": check_compact, "baked": check_baked, "pc2": check_pc2, "rig": check_rig,
-                      "ply": check_ply, "roundtrip": check_roundtrip}
+                      "ply": check_ply, "roundtrip": check_roundtrip, "surface": check_surface}
             checks[options.check](options, Path(scratch))
         if failures:
             raise CheckFailure(f"{len(failures)} comparison(s) over the tolerance; first: {failures[0]}")
