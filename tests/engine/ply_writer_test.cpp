@@ -62,7 +62,7 @@ TEST_F(PlyWriter, WritesColoursQualityAndFaces) {
     EXPECT_EQ(f32At(b, at + 15), quality[i]);
   }
   EXPECT_EQ(static_cast<std::uint8_t>(b[at]), 4);  // the quad
-  for (std::uint32_t k = 0; k < 4; ++k) EXPECT_EQ(u32At(b, at + 1 + 4 * k), k);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(u32At(b, at + 1 + 4 * k), k);
   at += 17;
   EXPECT_EQ(static_cast<std::uint8_t>(b[at]), 3);
   EXPECT_EQ(u32At(b, at + 9), 4u);
@@ -75,7 +75,7 @@ TEST_F(PlyWriter, PositionsOnly) {
   EXPECT_EQ(b.find("red"), std::string::npos);
   EXPECT_EQ(b.find("quality"), std::string::npos);
   EXPECT_EQ(b.find("comment"), std::string::npos);
-  EXPECT_EQ(b.size(), b.find("end_header\n") + 11 + 5 * 12 + 17 + 13);
+  EXPECT_EQ(b.size(), b.find("end_header\n") + 11 + std::size_t{5} * 12 + 17 + 13);
 }
 
 TEST_F(PlyWriter, RefusesWhatItCannotWrite) {

@@ -46,7 +46,7 @@ TEST_F(PointCache, WritesTheLayoutOtherToolsRead) {
   ASSERT_TRUE(cache.write(dir_ / "out.pc2", 1.0, 0.5).ok());
 
   const std::string b = bytes("out.pc2");
-  ASSERT_EQ(b.size(), kPc2HeaderBytes + 2 * 2 * 12);
+  ASSERT_EQ(b.size(), kPc2HeaderBytes + std::size_t{2} * 2 * 12);
   EXPECT_EQ(std::memcmp(b.data(), "POINTCACHE2\0", 12), 0);
   EXPECT_EQ(u32At(b, 12), 1u);     // version
   EXPECT_EQ(u32At(b, 16), 2u);     // vertices

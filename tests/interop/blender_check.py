@@ -13,12 +13,12 @@
 #   pc2      `odeskin play --fps F -o OUT.pc2` on the mesh `play --t 0` writes, through Blender's
 #            Mesh Cache modifier;
 #   rig      `odeskin rig MESH -o OUT.tgf --gltf OUT.glb` (--mesh instead of --asset): an armature
-#            whose bones start at the .tgf's joints, one vertex group per bone, and the mesh at rest.
+#            whose bones start at the .tgf's joints, one vertex group per bone, and the mesh at rest;
 #   ply      `odeskin compare ASSET --t T REFERENCE -o OUT.ply` (--reference): the heat map's errors
 #            and colours recomputed here from odeskin play and the reference, and Blender's PLY
-#            importer showing the same vertices and colours.
+#            importer showing the same vertices and colours;
 #   surface  `odeskin surface NETWORK -o OUT.glb --obj` (--network): the same vertices as the OBJ,
-#            and the weld intact in Blender: only the rim edges the command reports have one face.
+#            and the weld intact in Blender: only the rim edges the command reports have one face;
 #   roundtrip  Blender makes a character from --poses OBJ files (shape keys, smooth shading, UVs, a
 #            textured material) and exports it as glTF; `odeskin fit` reads it, `odeskin export
 #            --materials` writes it back, and Blender imports that: the same vertices, UVs and
@@ -131,14 +131,14 @@ failures = []  # every time is compared and printed before the check fails
 
 def compare(label, shown, reference, tolerance):
     if shown.shape != reference.shape:
-        raise CheckFailure(f"{label}: Blender has {len(shown)} vertices, odeskin play {len(reference)}")
+        raise CheckFailure(f"{label}: Blender has {len(shown)} vertices, odeskin's file {len(reference)}")
     box = float((reference.max(axis=0) - reference.min(axis=0)).max())
     distance = numpy.linalg.norm(shown - reference, axis=1)
     worst = int(distance.argmax())
     relative = float(distance[worst]) / box
     log(f"{label}: {len(shown)} vertices, largest difference {relative:.2e} of the box (vertex {worst})")
     if not relative <= tolerance:
-        failures.append(f"{label}: vertex {worst} is {relative:.2e} of the box from odeskin play "
+        failures.append(f"{label}: vertex {worst} is {relative:.2e} of the box from odeskin's "
                         f"(tolerance {tolerance:.0e})")
 
 

@@ -206,7 +206,7 @@ TEST_F(Cli, PlaySequenceToPc2HoldsEveryFrame) {
     double worst = 0.0;
     for (std::size_t i = 0; i < v; ++i) {
       for (int axis = 0; axis < 3; ++axis) {
-        worst = std::max(worst, std::abs(f32(32 + (k * v + i) * 12 + axis * 4) - frame[i][axis]));
+        worst = std::max(worst, std::abs(f32(32 + (k * v + i) * 12 + std::size_t(axis) * 4) - frame[i][axis]));
       }
     }
     EXPECT_LE(worst, 1e-6 * box()) << "frame " << k;  // float32 against OBJ's printed doubles
