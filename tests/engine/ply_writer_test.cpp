@@ -3,15 +3,13 @@
 // refusals that keep a broken mesh from being written.
 #include "engine/io/ply_writer.hpp"
 
-#include <bit>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "little_endian_reading.hpp"
 #include "temp_dir_test.hpp"
 
 namespace odeskin {
@@ -21,18 +19,11 @@ class PlyWriter : public testing::TempDirTest {
  protected:
   PlyWriter() : TempDirTest("odeskin_ply_writer_test_") {}
 
-  std::string bytes(const std::string& name) const {
-    std::ifstream in(dir_ / name, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
+  std::string bytes(const std::string& name) const { return testing::fileBytes(dir_ / name); }
 };
 
-std::uint32_t u32At(const std::string& b, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<std::uint8_t>(b[at + static_cast<std::size_t>(i)]);
-  return v;
-}
-float f32At(const std::string& b, std::size_t at) { return std::bit_cast<float>(u32At(b, at)); }
+using testing::f32At;
+using testing::u32At;
 
 FaceList quadAndTriangle() {
   FaceList faces;

@@ -3,17 +3,15 @@
 // reader of our own), and the refusals that keep a wrong cache from being written at all.
 #include "engine/io/point_cache.hpp"
 
-#include <bit>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "little_endian_reading.hpp"
 #include "temp_dir_test.hpp"
 
 namespace odeskin {
@@ -23,18 +21,11 @@ class PointCache : public testing::TempDirTest {
  protected:
   PointCache() : TempDirTest("odeskin_point_cache_test_") {}
 
-  std::string bytes(const std::string& name) const {
-    std::ifstream in(dir_ / name, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
+  std::string bytes(const std::string& name) const { return testing::fileBytes(dir_ / name); }
 };
 
-std::uint32_t u32At(const std::string& b, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<std::uint8_t>(b[at + static_cast<std::size_t>(i)]);
-  return v;  // little-endian, whatever this machine is
-}
-float f32At(const std::string& b, std::size_t at) { return std::bit_cast<float>(u32At(b, at)); }
+using testing::f32At;
+using testing::u32At;
 
 TEST_F(PointCache, WritesTheLayoutOtherToolsRead) {
   const std::vector<Vec3> first{{0.0, 1.0, 2.0}, {-3.5, 4.25, 1e-3}};

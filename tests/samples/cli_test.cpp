@@ -78,6 +78,14 @@ class Cli : public ::testing::Test {
   static int play(const PlayOptions& options, Captured& io, PlayReport* report = nullptr) {
     return runPlayCommand(options, io.console, report);
   }
+  // The asset played at 4 fps into dir/frames/arm_NNN.obj: the frames other outputs are checked against.
+  static PlayOptions sequenceAt4Fps(const fs::path& dir) {
+    PlayOptions o;
+    o.asset = assetPath();
+    o.fps = 4.0;
+    o.output = (dir / "frames" / "arm_%03d.obj").string();
+    return o;
+  }
   static PlayOptions atTime(double t, const fs::path& output) {
     PlayOptions o;
     o.asset = assetPath();
@@ -116,10 +124,7 @@ TEST_F(Cli, PlayAtKeyTimesReproducesTheExamplePoses) {
 
 TEST_F(Cli, PlaySequenceMapsSecondsToKeyTime) {
   const fs::path dir = scratch("sequence");
-  PlayOptions o;
-  o.asset = assetPath();
-  o.fps = 4.0;
-  o.output = (dir / "frames" / "arm_%03d.obj").string();
+  PlayOptions o = sequenceAt4Fps(dir);
   Captured io;
   PlayReport report;
   ASSERT_EQ(play(o, io, &report), kExitOk) << io.err.str();
@@ -145,10 +150,7 @@ TEST_F(Cli, PlaySequenceMapsSecondsToKeyTime) {
 
 TEST_F(Cli, PlaySequenceToGlbHoldsEveryFrameAsAMorphTarget) {
   const fs::path dir = scratch("glb");
-  PlayOptions o;
-  o.asset = assetPath();
-  o.fps = 4.0;
-  o.output = (dir / "frames" / "arm_%03d.obj").string();
+  PlayOptions o = sequenceAt4Fps(dir);
   Captured io;
   PlayReport frames;
   ASSERT_EQ(play(o, io, &frames), kExitOk) << io.err.str();
@@ -172,10 +174,7 @@ TEST_F(Cli, PlaySequenceToGlbHoldsEveryFrameAsAMorphTarget) {
 
 TEST_F(Cli, PlaySequenceToPc2HoldsEveryFrame) {
   const fs::path dir = scratch("pc2");
-  PlayOptions o;
-  o.asset = assetPath();
-  o.fps = 4.0;
-  o.output = (dir / "frames" / "arm_%03d.obj").string();
+  PlayOptions o = sequenceAt4Fps(dir);
   Captured io;
   PlayReport frames;
   ASSERT_EQ(play(o, io, &frames), kExitOk) << io.err.str();
