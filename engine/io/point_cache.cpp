@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "point_cache.hpp"
 
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -11,17 +12,27 @@
 namespace odeskin {
 namespace {
 
-constexpr char kSignature[12] = "POINTCACHE2";  // with its terminating zero: 12 bytes
-constexpr std::uint32_t kVersion = 1;
+constexpr char kPc2Signature[12] = "POINTCACHE2";  // with its terminating zero: 12 bytes
+constexpr std::uint32_t kPc2Version = 1;
 constexpr double kFloatMax = std::numeric_limits<float>::max();
+
+// MDD is big-endian whatever the machine writing it.
+void appendBigEndianU32(std::string& out, std::uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<char>((v >> shift) & 0xFFU));
+}
+
+void appendF32(std::string& out, float v, PointCacheFormat format) {
+  const auto bits = std::bit_cast<std::uint32_t>(v);
+  format == PointCacheFormat::kMdd ? appendBigEndianU32(out, bits) : appendLittleEndianU32(out, bits);
+}
 
 }  // namespace
 
-std::string pc2SizeProblem(std::size_t samples, std::size_t vertices) {
+std::string pointCacheSizeProblem(std::size_t samples, std::size_t vertices) {
   if (vertices == 0) return "a point cache needs at least one vertex";
   if (samples == 0) return "a point cache needs at least one frame";
   const long double bytes = static_cast<long double>(samples) * static_cast<long double>(vertices) * 12.0L;
-  if (bytes > static_cast<long double>(kMaxPc2DataBytes)) {
+  if (bytes > static_cast<long double>(kMaxPointCacheDataBytes)) {
     return std::to_string(samples) + " frames of " + std::to_string(vertices) + " vertices need " +
            numberText(static_cast<double>(bytes / (1024.0L * 1024.0L * 1024.0L))) +
            " GiB, over the 4 GiB one point cache holds";
@@ -29,12 +40,13 @@ std::string pc2SizeProblem(std::size_t samples, std::size_t vertices) {
   return {};
 }
 
-Pc2Builder::Pc2Builder(std::size_t vertices, std::size_t samples) : vertices_(vertices) {
-  if (pc2SizeProblem(samples, vertices).empty()) data_.reserve(kPc2HeaderBytes + samples * vertices * 12);
-  data_.resize(kPc2HeaderBytes);  // write() fills it in
+PointCacheBuilder::PointCacheBuilder(PointCacheFormat format, std::size_t vertices, std::size_t samples)
+    : format_(format), vertices_(vertices) {
+  // Room for the header too, so that write() inserts it without taking the memory again.
+  if (pointCacheSizeProblem(samples, vertices).empty()) data_.reserve(kPc2HeaderBytes + 4 * samples + samples * vertices * 12);
 }
 
-Status Pc2Builder::add(std::span<const Vec3> positions) {
+Status PointCacheBuilder::add(std::span<const Vec3> positions) {
   if (positions.size() != vertices_) {
     return invalidArgument("point cache frame " + std::to_string(samples_) + " has " +
                            std::to_string(positions.size()) + " vertices, the cache " + std::to_string(vertices_));
@@ -48,34 +60,46 @@ Status Pc2Builder::add(std::span<const Vec3> positions) {
         return invalidArgument("point cache frame " + std::to_string(samples_) + ", vertex " + std::to_string(v) +
                                ": " + messageNumber(x) + " is not a finite float32 coordinate");
       }
-      appendLittleEndianF32(data_, static_cast<float>(x));
+      appendF32(data_, static_cast<float>(x), format_);
     }
   }
   ++samples_;
   return okStatus();
 }
 
-Status Pc2Builder::write(const std::filesystem::path& path, double start_frame, double sample_frames) {
+Status PointCacheBuilder::write(const std::filesystem::path& path, const PointCacheTiming& timing) {
   const std::string where = path.string() + ": ";
-  if (const std::string problem = pc2SizeProblem(samples_, vertices_); !problem.empty()) {
+  if (const std::string problem = pointCacheSizeProblem(samples_, vertices_); !problem.empty()) {
     return invalidArgument(where + problem);
   }
-  if (!(std::abs(start_frame) <= kFloatMax)) {
-    return invalidArgument(where + "the first frame " + messageNumber(start_frame) + " is not a float32 number");
+  if (!(timing.fps > 0.0 && timing.fps <= kFloatMax)) {
+    return invalidArgument(where + "frames per second must be positive, got " + messageNumber(timing.fps));
   }
-  if (!(sample_frames > 0.0 && sample_frames <= kFloatMax)) {
-    return invalidArgument(where + "frames per sample must be positive, got " + messageNumber(sample_frames));
+  const double last_frame = timing.start_frame + static_cast<double>(samples_);
+  if (!(std::abs(timing.start_frame) <= kFloatMax && std::abs(last_frame / timing.fps) <= kFloatMax)) {
+    return invalidArgument(where + "the first frame " + messageNumber(timing.start_frame) + " is not a float32 number");
   }
-  // The header is built apart and copied over the body's reserved first bytes, so a cache of
-  // gigabytes is never copied whole.
-  std::string header(kSignature, sizeof kSignature);
-  appendLittleEndianU32(header, kVersion);
-  appendLittleEndianU32(header, static_cast<std::uint32_t>(vertices_));
-  appendLittleEndianF32(header, static_cast<float>(start_frame));
-  appendLittleEndianF32(header, static_cast<float>(sample_frames));
-  appendLittleEndianU32(header, static_cast<std::uint32_t>(samples_));
-  data_.replace(0, kPc2HeaderBytes, header);
-  return writeFileAtomically(path, data_);
+  std::string header;
+  if (format_ == PointCacheFormat::kPc2) {
+    header.assign(kPc2Signature, sizeof kPc2Signature);
+    appendLittleEndianU32(header, kPc2Version);
+    appendLittleEndianU32(header, static_cast<std::uint32_t>(vertices_));
+    appendLittleEndianF32(header, static_cast<float>(timing.start_frame));
+    appendLittleEndianF32(header, 1.0F);  // one scene frame per sample
+    appendLittleEndianU32(header, static_cast<std::uint32_t>(samples_));
+  } else {
+    appendBigEndianU32(header, static_cast<std::uint32_t>(samples_));
+    appendBigEndianU32(header, static_cast<std::uint32_t>(vertices_));
+    for (std::size_t k = 0; k < samples_; ++k) {
+      appendF32(header, static_cast<float>((timing.start_frame + static_cast<double>(k)) / timing.fps), format_);
+    }
+  }
+  // Inserted in place (the constructor reserved room) and taken out again, so a cache of
+  // gigabytes is never copied whole and write() can be called again.
+  data_.insert(0, header);
+  const Status written = writeFileAtomically(path, data_);
+  data_.erase(0, header.size());
+  return written;
 }
 
 }  // namespace odeskin

@@ -400,8 +400,8 @@ int run(int argc, char** argv, std::string& verb) {
       "          odeskin play arm.odsk --fps 30 --seconds 1 -o frames/arm_%04d.obj --backend vulkan\n"
       "          odeskin play horse.odsk --fps 8 --png preview --size 480x360\n"
       "          odeskin play horse.odsk --t 0 -o base.obj && odeskin play horse.odsk --fps 24 -o horse.pc2\n"
-      "A .pc2 point cache (sample k at scene frame k) animates the mesh --t 0 writes, vertex for\n"
-      "vertex: Blender's Mesh Cache modifier, 3ds Max's Point Cache, Houdini.");
+      "A .pc2 or .mdd point cache (sample k at scene frame k) animates the mesh --t 0 writes, vertex\n"
+      "for vertex: Blender's Mesh Cache modifier, 3ds Max's Point Cache (PC2), LightWave and Modo (MDD).");
   play_cmd->add_option("asset", play.asset, "The .odsk asset")->required();
   CLI::Option* t_opt = play_cmd->add_option("--t", play_t, "One frame at global time T in [0, K-1]");
   CLI::Option* fps_opt = play_cmd->add_option("--fps", play_fps, "A sequence at this frame rate");
@@ -410,7 +410,8 @@ int run(int argc, char** argv, std::string& verb) {
   t_opt->excludes(fps_opt);
   seconds_opt->needs(fps_opt);
   play_cmd->add_option("-o,--output", play.output,
-                       "OUT.obj, a pattern with one frame number (OUT_%04d.obj), OUT.glb (baked) or OUT.pc2 (point cache)");
+                       "OUT.obj, a pattern with one frame number (OUT_%04d.obj), OUT.glb (baked), OUT.pc2 or OUT.mdd\n"
+                       "(point caches)");
   play_cmd->add_option("--materials", play.materials,
                        "With -o OUT.glb: dress it in the materials and textures of this glTF (the file it was fitted from)");
   play_cmd->add_option("--png", play.png_dir, "Also draw the frames to DIR/frame_NNNN.png and DIR/strip.png (Vulkan)");

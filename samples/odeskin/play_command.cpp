@@ -33,7 +33,7 @@ std::string usageProblem(const PlayOptions& o) {
   if (o.t.has_value() == o.fps.has_value()) return "play: give either --t T (one frame) or --fps F (a sequence)";
   if (o.seconds && !o.fps) return "play: --seconds needs --fps";
   if (o.output.empty() && o.png_dir.empty()) {
-    return "play: -o OUT is required (.obj, .glb or .pc2), or --png DIR for pictures only";
+    return "play: -o OUT is required (.obj, .glb, .pc2 or .mdd), or --png DIR for pictures only";
   }
   if (o.t && !std::isfinite(*o.t)) return "play: --t must be a number in [0, K-1]";
   if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0)) return "play: --fps must be positive, got " + numberText(*o.fps);
@@ -52,9 +52,9 @@ std::string usageProblem(const PlayOptions& o) {
   if (!o.materials.empty() && lowerExtension(o.output) != ".glb") return "play: --materials needs -o OUT.glb";
   if (o.output.empty()) return {};
   const std::string ext = lowerExtension(o.output);
-  if (ext == ".gltf") return "play: " + o.output + ": write .glb (one self-contained binary file), .obj or .pc2";
-  if (ext != ".obj" && ext != ".glb" && ext != ".pc2") {
-    return "play: " + o.output + ": unknown output format '" + ext + "' (expected .obj, .glb or .pc2)";
+  if (ext == ".gltf") return "play: " + o.output + ": write .glb (one self-contained binary file), .obj, .pc2 or .mdd";
+  if (ext != ".obj" && ext != ".glb" && ext != ".pc2" && ext != ".mdd") {
+    return "play: " + o.output + ": unknown output format '" + ext + "' (expected .obj, .glb, .pc2 or .mdd)";
   }
   if (o.fps && ext == ".obj") {
     Result<FramePattern> pattern = FramePattern::parse(o.output);
@@ -241,21 +241,22 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   }
   // .glb: every frame goes into one file (morph target per frame, STEP weights animation).
   const bool glb = lowerExtension(o.output) == ".glb";
-  // .pc2: every frame's positions in one point cache (point_cache.hpp), for the mesh --t 0 writes.
-  const bool pc2 = lowerExtension(o.output) == ".pc2";
+  // .pc2, .mdd: every frame's positions in one point cache (point_cache.hpp), for the mesh --t 0 writes.
+  const bool mdd = lowerExtension(o.output) == ".mdd";
+  const bool point_cache = lowerExtension(o.output) == ".pc2" || mdd;
   if (glb && write_meshes) {
     if (Status s = checkBakedSize(times.size(), outputVertexCount(asset)); !s.ok()) {
       return reportUsage(console, "play: " + o.output + ": " + s.message() +
                                       "; lower --fps or --seconds, or write .obj frames");
     }
   }
-  if (pc2) {
-    if (const std::string problem = pc2SizeProblem(times.size(), outputVertexCount(asset)); !problem.empty()) {
+  if (point_cache) {
+    if (const std::string problem = pointCacheSizeProblem(times.size(), outputVertexCount(asset)); !problem.empty()) {
       return reportUsage(console, "play: " + o.output + ": " + problem + "; lower --fps or --seconds");
     }
   }
-  std::optional<Pc2Builder> cache;
-  if (pc2) cache.emplace(outputVertexCount(asset), times.size());
+  std::optional<PointCacheBuilder> cache;
+  if (point_cache) cache.emplace(mdd ? PointCacheFormat::kMdd : PointCacheFormat::kPc2, outputVertexCount(asset), times.size());
   std::optional<gltf::MaterialLibrary> materials;
   if (!o.materials.empty()) {
     Result<gltf::MaterialLibrary> library = gltf::readMaterialLibrary(o.materials);
@@ -301,7 +302,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       continue;
     }
     if (Status s = ensureParentDirectory(files[f], last_directory); !s.ok()) return reportFailure(console, s);
-    if (pc2) {
+    if (point_cache) {
       if (Status s = cache->add(outputPositions(asset, positions)); !s.ok()) {
         return reportError(console, "play: " + o.output + ": " + s.message(), kExitFailure);
       }
@@ -344,9 +345,11 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     }
   }
 
-  // Sample k is scene frame k: at --fps F, a scene at F frames per second plays it in time.
-  if (pc2) {
-    if (Status s = cache->write(o.output); !s.ok()) return reportFailure(console, s);
+  // Sample k is scene frame k (MDD: at k / F seconds): a scene at F frames per second plays it in time.
+  if (point_cache) {
+    if (Status s = cache->write(o.output, PointCacheTiming{o.fps.value_or(24.0), 0.0}); !s.ok()) {
+      return reportFailure(console, s);
+    }
   }
 
   std::vector<std::filesystem::path> pictures;
@@ -360,13 +363,13 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   if (!console.quiet) {
     char timing[64];
     std::snprintf(timing, sizeof timing, "%.3f ms", 1e3 * mean);
-    const std::string pc2_note = " (point cache of " + std::to_string(outputVertexCount(asset)) +
+    const std::string cache_note = " (point cache of " + std::to_string(outputVertexCount(asset)) +
                                  " vertices for the mesh `play --t 0 -o BASE.obj` writes)";
     if (o.t) {
       const auto segment = static_cast<std::size_t>(std::min(std::floor(*o.t), std::max(t_end - 1.0, 0.0)));
       console.out << "t = " << numberText(*o.t) << " (segment " << segment << ", tau " << numberText(*o.t - static_cast<double>(segment))
                   << ") -> " << (write_meshes ? files.front().string() : pictures.front().string())
-                  << (pc2 ? pc2_note : std::string()) << "\n";
+                  << (point_cache ? cache_note : std::string()) << "\n";
     } else {
       console.out << times.size() << " frame" << (times.size() == 1 ? "" : "s") << " at " << numberText(*o.fps)
                   << " fps (t " << numberText(times.front()) << " to " << numberText(times.back()) << ")";
@@ -374,8 +377,8 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
         console.out << " -> ";
         if (glb) {
           console.out << files.front().string() << " (one morph target per frame)";
-        } else if (pc2) {
-          console.out << files.front().string() << pc2_note;
+        } else if (point_cache) {
+          console.out << files.front().string() << cache_note;
         } else {
           console.out << files.front().string() << " ... " << files.back().string();
         }
@@ -388,7 +391,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     }
   }
   if (report) {
-    if ((glb || pc2) && write_meshes) files.assign(1, o.output);
+    if ((glb || point_cache) && write_meshes) files.assign(1, o.output);
     report->files = std::move(files);
     report->pictures = std::move(pictures);
     report->times = std::move(times);

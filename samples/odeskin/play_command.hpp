@@ -5,8 +5,8 @@
 // segment_seconds (clamped to [0, K-1]); S defaults to the asset's length. `--png DIR` (with or
 // without -o) also draws every frame to DIR/frame_%04d.png with one fixed camera, and a contact
 // sheet of up to 12 evenly spaced frames to DIR/strip.png as a quick preview. `-o OUT.glb` bakes
-// every frame into one GLB; `-o OUT.pc2` writes them as one point cache (point_cache.hpp), sample k
-// at scene frame k, for the mesh `--t 0 -o BASE.obj` writes.
+// every frame into one GLB; `-o OUT.pc2` or `-o OUT.mdd` writes them as one point cache
+// (point_cache.hpp), sample k at scene frame k, for the mesh `--t 0 -o BASE.obj` writes.
 #pragma once
 
 #include <cstddef>
@@ -41,7 +41,7 @@ struct PlayOptions {
   std::optional<double> t;        // one frame at global time t
   std::optional<double> fps;      // a sequence at this frame rate
   std::optional<double> seconds;  // sequence length; default: (K-1) x segment_seconds
-  std::string output;             // .obj file (--t) or .obj pattern (--fps), .glb or .pc2; may be empty with png_dir
+  std::string output;             // .obj file (--t) or .obj pattern (--fps), .glb, .pc2 or .mdd; may be empty with png_dir
   std::filesystem::path materials;  // .glb only: a glTF whose materials dress it (gltf_materials.hpp)
   PlaybackOptions playback;
   std::filesystem::path png_dir;  // --png DIR: pictures of the frames (Vulkan; lavapipe works)

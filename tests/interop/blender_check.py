@@ -10,8 +10,8 @@
 #   compact  `odeskin export --interpolation linear` (or --interpolation cubic): skin, skeletal
 #            animation and per-mode morph targets whose weights Blender imports as shape-key F-curves;
 #   baked    `odeskin play --fps F -o OUT.glb`: a morph target per frame, STEP weights;
-#   pc2      `odeskin play --fps F -o OUT.pc2` on the mesh `play --t 0` writes, through Blender's
-#            Mesh Cache modifier;
+#   pc2, mdd `odeskin play --fps F -o OUT.pc2` (or OUT.mdd) on the mesh `play --t 0` writes,
+#            through Blender's Mesh Cache modifier;
 #   rig      `odeskin rig MESH -o OUT.tgf --gltf OUT.glb` (--mesh instead of --asset): an armature
 #            whose bones start at the .tgf's joints, one vertex group per bone, and the mesh at rest;
 #   ply      `odeskin compare ASSET --t T REFERENCE -o OUT.ply` (--reference): the heat map's errors
@@ -44,7 +44,8 @@ if "bool" not in numpy.__dict__:
 
 # Blender evaluates in float32; the compact export's keys and fit add up to about 5e-5 of the box
 # between keys (odeskin export prints its bounds).
-TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "rig": 1e-6, "ply": 1e-6, "roundtrip": 1e-4, "surface": 1e-6}
+TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "mdd": 1e-6, "rig": 1e-6, "ply": 1e-6, "roundtrip": 1e-4,
+             "surface": 1e-6}
 
 
 class CheckFailure(Exception):
@@ -60,7 +61,7 @@ def parse_args():
     parser = argparse.ArgumentParser(prog="blender_check.py")
     parser.add_argument("check", choices=sorted(TOLERANCE))
     parser.add_argument("--odeskin", required=True)
-    parser.add_argument("--asset", help="the fitted .odsk (compact, baked, pc2)")
+    parser.add_argument("--asset", help="the fitted .odsk (compact, baked, pc2, mdd, ply)")
     parser.add_argument("--mesh", help="rig: the OBJ mesh to rig")
     parser.add_argument("--reference", help="ply: the ground-truth OBJ the asset is compared with")
     parser.add_argument("--t", default="0.5", help="ply: the asset's time T")
@@ -69,7 +70,7 @@ def parse_args():
     parser.add_argument("--out", required=True)
     parser.add_argument("--times", default="0,0.37,0.51,1,1.52,1.99,2",
                         help="compact: key times T (odeskin play --t) to compare")
-    parser.add_argument("--fps", type=int, default=24, help="baked and pc2: frames per second")
+    parser.add_argument("--fps", type=int, default=24, help="baked, pc2 and mdd: frames per second")
     parser.add_argument("--interpolation", default="linear", choices=["linear", "cubic"],
                         help="compact: odeskin export --interpolation (Blender drops cubic tangents)")
     return parser.parse_args(argv)
@@ -186,19 +187,20 @@ def check_baked(options, out):
         compare(f"baked frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE["baked"])
 
 
-def check_pc2(options, out):
-    base, cache = out / "base.obj", out / "cache.pc2"
+def check_point_cache(options, out):
+    kind = options.check  # "pc2" or "mdd", the file's extension and the modifier's format
+    base, cache = out / "base.obj", out / f"cache.{kind}"
     odeskin(options, "play", options.asset, "--t", "0", "-o", str(base))
     odeskin(options, "play", options.asset, "--fps", str(options.fps), "-o", str(cache))
-    frames = frame_references(options, out, "pc2")
+    frames = frame_references(options, out, kind)
     reset_scene(options.fps)
     bpy.ops.wm.obj_import(filepath=str(base))
     obj = only_mesh()
     modifier = obj.modifiers.new("odeskin", "MESH_CACHE")
-    modifier.cache_format = "PC2"
+    modifier.cache_format = kind.upper()
     modifier.filepath = str(cache)
     for k, reference in enumerate(frames):
-        compare(f"pc2 frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE["pc2"])
+        compare(f"{kind} frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE[kind])
 
 
 def tgf_bones(path):
@@ -427,8 +429,9 @@ def main():
         sys.exit(1)
     try:
         with tempfile.TemporaryDirectory(dir=out) as scratch:
-            checks = {"compact": check_compact, "baked": check_baked, "pc2": check_pc2, "rig": check_rig,
-                      "ply": check_ply, "roundtrip": check_roundtrip, "surface": check_surface}
+            checks = {"compact": check_compact, "baked": check_baked, "pc2": check_point_cache,
+                      "mdd": check_point_cache, "rig": check_rig, "ply": check_ply, "roundtrip": check_roundtrip,
+                      "surface": check_surface}
             checks[options.check](options, Path(scratch))
         if failures:
             raise CheckFailure(f"{len(failures)} comparison(s) over the tolerance; first: {failures[0]}")

@@ -213,6 +213,16 @@ TEST_F(Cli, PlaySequenceToPc2HoldsEveryFrame) {
   // --t writes a one-sample cache.
   ASSERT_EQ(play(atTime(0.5, dir / "one.pc2"), io), kExitOk) << io.err.str();
   EXPECT_EQ(fs::file_size(dir / "one.pc2"), 32 + v * 12);
+
+  // The same frames as MDD: big-endian counts, a time per sample, the same positions byte-swapped.
+  o.output = (dir / "arm.mdd").string();
+  ASSERT_EQ(play(o, io), kExitOk) << io.err.str();
+  std::ifstream mdd_in(dir / "arm.mdd", std::ios::binary);
+  const std::string mdd{std::istreambuf_iterator<char>(mdd_in), std::istreambuf_iterator<char>()};
+  const std::size_t n = frames.files.size();
+  ASSERT_EQ(mdd.size(), 8 + 4 * n + n * v * 12);
+  EXPECT_EQ(static_cast<std::uint8_t>(mdd[3]), n);  // big-endian: the low byte last
+  EXPECT_EQ(std::string(mdd.rbegin(), mdd.rbegin() + 4), b.substr(b.size() - 4)) << "z of the last vertex";
 }
 
 TEST_F(Cli, PlayUsesTheSegmentLengthAndTheRenderLayout) {
