@@ -19,8 +19,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "../core/result.hpp"
-#include "key_interpolation.hpp"
 #include "../offline/deform_player.hpp"
+#include "key_interpolation.hpp"
 
 namespace odeskin {
 

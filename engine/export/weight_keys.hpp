@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The "weights" animation of the compact export: every target's weight curve as CUBICSPLINE keys
 // with the analytic derivatives as tangents (glTF 2.0 appendix C), or as LINEAR keys
-// (key_interpolation.hpp), keys shared by all targets (the channel has one sampler). Weights are kept in [0, 1] (Blender clamps negative shape-key values,
-// ECOSYSTEM.md 2.3): a field whose curve g goes negative is split into a "+" target with weight
-// max(g, 0) / scale and a "-" target with weight max(-g, 0) / scale, each displacement multiplied by
-// its sign and scale = max of its part over the segment. Keys sit at both ends of every segment and
-// at every zero crossing of every curve (where max(g, 0) has a kink: CUBICSPLINE keys have separate
-// in- and out-tangents; a LINEAR key's kink is free), and intervals are halved until the
-// interpolant matches every weight.
+// (key_interpolation.hpp), keys shared by all targets (the channel has one sampler). Weights are
+// kept in [0, 1] (Blender clamps negative shape-key values, ECOSYSTEM.md 2.3): a field whose curve
+// g goes negative is split into a "+" target with weight max(g, 0) / scale and a "-" target with
+// weight max(-g, 0) / scale, each displacement multiplied by its sign and scale = max of its part
+// over the segment. Keys sit at both ends of every segment and at every zero crossing of every
+// curve (where max(g, 0) has a kink: CUBICSPLINE keys have separate in- and out-tangents; a LINEAR
+// key's kink is free), and intervals are halved until the interpolant matches every weight.
 #pragma once
 
 #include <cstdint>
