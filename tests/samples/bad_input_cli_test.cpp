@@ -632,6 +632,9 @@ TEST_F(BadInputCli, UnwritableOutputsFailWithoutPartialFiles) {
       {{"reconstruct", in("good1.obj"), "-o", under + ".obj"}, "blocker"},
       {{"evaluate", in("good1.obj"), in("good2.obj"), in("good3.obj"), "--keys", "0,2", "--json", under + ".json"},
        "blocker"},
+      {{"play", in("cyl.odsk"), "--fps", "4", "-o", under + ".pc2"}, "blocker"},
+      {{"play", in("cyl.odsk"), "--fps", "4", "-o", under + ".mdd"}, "blocker"},
+      {{"compare", in("good1.obj"), in("good2.obj"), "-o", under + ".ply"}, "blocker"},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Outcome r = runOdeskin(cases[i].first, dir() / "io" / ("unwritable" + std::to_string(i)));
@@ -650,6 +653,9 @@ TEST_F(BadInputCli, AWriteThatFailsPartWayLeavesTheOldFile) {
       {"x.glb", {"export", in("cyl.odsk"), "-q", "-o", (out_dir / "x.glb").string()}},
       {"x.obj", {"play", in("cyl.odsk"), "--t", "0.5", "-q", "-o", (out_dir / "x.obj").string()}},
       {"s.glb", {"surface", in("patch.json"), "-q", "-o", (out_dir / "s.glb").string()}},
+      {"x.pc2", {"play", in("cyl.odsk"), "--fps", "4", "-q", "-o", (out_dir / "x.pc2").string()}},
+      {"x.mdd", {"play", in("cyl.odsk"), "--fps", "4", "-q", "-o", (out_dir / "x.mdd").string()}},
+      {"x.ply", {"compare", in("good1.obj"), in("good2.obj"), "-q", "-o", (out_dir / "x.ply").string()}},
   };
   for (const auto& [name, args] : cases) {
     writeText(out_dir / name, "precious\n");
@@ -703,6 +709,9 @@ TEST_F(BadInputCli, GoodInputsSucceed) {
       {{"fit", in("unbound1.obj"), in("unbound.obj"), "-q", "-o", (out / "unbound.odsk").string()}, out / "unbound.odsk"},
       {{"surface", in("patch.json"), "-q", "-o", (out / "patch.glb").string()}, out / "patch.glb"},
       {{"blend", "--example", "3.17", "-q", "-o", (out / "blend.obj").string()}, out / "blend.obj"},
+      {{"play", in("cyl.odsk"), "--fps", "4", "-q", "-o", (out / "cyl.pc2").string()}, out / "cyl.pc2"},
+      {{"compare", in("good1.obj"), in("good2.obj"), "-q", "-o", (out / "good.ply").string(), "--json",
+        (out / "good.json").string()}, out / "good.ply"},
       // More threads than the machine runs: capped, without TBB's own warning on stderr.
       {{"demo", "--backend", "cpu", "--threads", "100000", "--frames", "2", "-q", "-o", (out / "demo").string()}, {}},
       // Weights that sum to one within the reader's tolerance, and a material with negative
