@@ -17,6 +17,9 @@
 #   ply      `odeskin compare ASSET --t T REFERENCE -o OUT.ply` (--reference): the heat map's errors
 #            and colours recomputed here from odeskin play and the reference, and Blender's PLY
 #            importer showing the same vertices and colours;
+#   animated `odeskin rig MESH --gltf` (--mesh), animated in Blender (bones turned at 0.5 s and 1 s)
+#            and exported with its skin and animation; `odeskin fit --times 0.5,1` reads it, `odeskin
+#            export` writes it back, and Blender shows the example poses where its own file had them;
 #   surface  `odeskin surface NETWORK -o OUT.glb --obj` (--network): the same vertices as the OBJ,
 #            and the weld intact in Blender: only the rim edges the command reports have one face;
 #   roundtrip  Blender makes a character from --poses OBJ files (shape keys, smooth shading, UVs, a
@@ -27,6 +30,7 @@
 # tolerance); nothing is skipped.
 import argparse
 import json
+import math
 import re
 import subprocess
 import sys
@@ -35,6 +39,7 @@ from pathlib import Path
 
 import bmesh
 import bpy
+import mathutils
 import numpy
 
 # Debian 12's Blender 3.4 glTF importer still uses numpy.bool, which Debian's numpy 1.24 removed:
@@ -44,7 +49,7 @@ if "bool" not in numpy.__dict__:
 
 # Blender evaluates in float32; the compact export's keys and fit add up to about 5e-5 of the box
 # between keys (odeskin export prints its bounds).
-TOLERANCE = {"compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "mdd": 1e-6, "rig": 1e-6, "ply": 1e-6, "roundtrip": 1e-4,
+TOLERANCE = {"animated": 1e-4, "compact": 1e-4, "baked": 1e-5, "pc2": 1e-6, "mdd": 1e-6, "rig": 1e-6, "ply": 1e-6, "roundtrip": 1e-4,
              "surface": 1e-6}
 
 
@@ -62,7 +67,7 @@ def parse_args():
     parser.add_argument("check", choices=sorted(TOLERANCE))
     parser.add_argument("--odeskin", required=True)
     parser.add_argument("--asset", help="the fitted .odsk (compact, baked, pc2, mdd, ply)")
-    parser.add_argument("--mesh", help="rig: the OBJ mesh to rig")
+    parser.add_argument("--mesh", help="rig, animated: the OBJ mesh to rig")
     parser.add_argument("--reference", help="ply: the ground-truth OBJ the asset is compared with")
     parser.add_argument("--t", default="0.5", help="ply: the asset's time T")
     parser.add_argument("--poses", nargs="+", help="roundtrip: OBJ files of one mesh, the first the base")
@@ -389,6 +394,58 @@ def check_roundtrip(options, out):
                 TOLERANCE["roundtrip"])
 
 
+def animate_rig(rig_glb, animated_glb):
+    """Blender's keyframes on odeskin's rig: the last four bones turned 35 degrees at frame 12 and
+    -30 degrees about another axis at frame 24 (24 fps), exported with the skin and animation."""
+    reset_scene(24)
+    bpy.ops.import_scene.gltf(filepath=str(rig_glb))
+    armature = next(o for o in bpy.context.scene.objects if o.type == "ARMATURE")
+    bones = list(armature.pose.bones)
+    turned = bones[-4:]
+    for frame, axis, degrees in ((0, (1, 0, 0), 0.0), (12, (1, 0, 0), 35.0), (24, (0, 0, 1), -30.0)):
+        for bone in bones:
+            bone.rotation_mode = "QUATERNION"
+            bone.rotation_quaternion = (1.0, 0.0, 0.0, 0.0)
+        for bone in turned:
+            bone.rotation_quaternion = mathutils.Quaternion(axis, math.radians(degrees))
+        for bone in bones:
+            bone.keyframe_insert("rotation_quaternion", frame=frame)
+    bpy.context.scene.frame_start, bpy.context.scene.frame_end = 0, 24
+    bpy.ops.export_scene.gltf(filepath=str(animated_glb), export_format="GLB", export_animations=True)
+    return [b.name for b in turned]
+
+
+def check_animated(options, out):
+    rig, animated, asset, glb = out / "rig.glb", out / "animated.glb", out / "animated.odsk", out / "exported.glb"
+    odeskin(options, "rig", options.mesh, "-o", str(out / "rig.tgf"), "--gltf", str(rig))
+    turned = animate_rig(rig, animated)
+    log(f"{animated.name}: Blender turned {', '.join(turned)} at 0.5 s and 1 s")
+    reset_scene(24)
+    bpy.ops.import_scene.gltf(filepath=str(animated))
+    source = only_mesh()
+    shown = {t: evaluated_positions(source, frame) for t, frame in ((0, 0), (1, 12), (2, 24))}
+    box = float((shown[0].max(axis=0) - shown[0].min(axis=0)).max())
+    for t in (1, 2):  # a test of poses that do not move would prove nothing
+        moved = float(numpy.linalg.norm(shown[t] - shown[t - 1], axis=1).max()) / box
+        log(f"Blender's pose {t} moves vertices up to {moved:.3f} of the box from pose {t - 1}")
+        if moved < 0.01:
+            raise CheckFailure(f"Blender's animation barely moves between poses {t - 1} and {t} ({moved:.2e} of the box)")
+    # The bind pose, then the animation at 0.5 s and 1 s: keys t = 0, 1, 2 of 1 s segments.
+    odeskin(options, "fit", str(animated), "--times", "0.5,1", "-o", str(asset))
+    odeskin(options, "export", str(asset), "--interpolation", "linear", "-o", str(glb))
+    reset_scene(24)
+    bpy.ops.import_scene.gltf(filepath=str(glb))
+    exported = only_mesh()
+    for t, pose in shown.items():
+        compare(f"example pose t {t} against Blender's own file", evaluated_positions(exported, 24 * t), pose,
+                TOLERANCE["animated"])
+    for t in (0.5, 1.5):
+        reference = out / f"animated-t{t}.obj"
+        odeskin(options, "play", str(asset), "--t", str(t), "-o", str(reference))
+        compare(f"animated t {t}", evaluated_positions(exported, round(24 * t)), obj_positions(reference),
+                TOLERANCE["animated"])
+
+
 def check_surface(options, out):
     glb = out / "surface.glb"
     done = subprocess.run([options.odeskin, "surface", options.network, "-o", str(glb), "--obj"], capture_output=True,
@@ -419,7 +476,7 @@ def main():
     out = Path(options.out)
     out.mkdir(parents=True, exist_ok=True)
     log(f"Blender {bpy.app.version_string}, check {options.check}, input {options.mesh or options.asset or options.network or options.poses}")
-    needs = {"rig": "mesh", "roundtrip": "poses", "surface": "network"}.get(options.check, "asset")
+    needs = {"rig": "mesh", "animated": "mesh", "roundtrip": "poses", "surface": "network"}.get(options.check, "asset")
     given = [name for name in ("mesh", "poses", "asset", "network") if getattr(options, name) is not None]
     if given != [needs] or (options.check == "roundtrip" and len(options.poses) < 2):
         log(f"FAILED: the {options.check} check takes --{needs}" + (" with two or more poses" if needs == "poses" else ""))
@@ -431,7 +488,7 @@ def main():
         with tempfile.TemporaryDirectory(dir=out) as scratch:
             checks = {"compact": check_compact, "baked": check_baked, "pc2": check_point_cache,
                       "mdd": check_point_cache, "rig": check_rig, "ply": check_ply, "roundtrip": check_roundtrip,
-                      "surface": check_surface}
+                      "surface": check_surface, "animated": check_animated}
             checks[options.check](options, Path(scratch))
         if failures:
             raise CheckFailure(f"{len(failures)} comparison(s) over the tolerance; first: {failures[0]}")
