@@ -9,7 +9,8 @@
 # CHECK is one of
 #   compact  `odeskin export --interpolation linear` (or --interpolation cubic): skin, skeletal
 #            animation and per-mode morph targets whose weights Blender imports as shape-key F-curves;
-#   baked    `odeskin play --fps F -o OUT.glb`: a morph target per frame, STEP weights;
+#   baked    `odeskin play --fps F -o OUT.glb` and `odeskin export --bake --fps F`: a morph target
+#            per frame, STEP or LINEAR weights;
 #   pc2, mdd `odeskin play --fps F -o OUT.pc2` (or OUT.mdd) on the mesh `play --t 0` writes,
 #            through Blender's Mesh Cache modifier;
 #   rig      `odeskin rig MESH -o OUT.tgf --gltf OUT.glb` (--mesh instead of --asset): an armature
@@ -106,14 +107,18 @@ def frame_references(options, out, stem):
 
 
 def check_baked(options, out):
-    glb = out / "baked.glb"
-    odeskin(options, "play", options.asset, "--fps", str(options.fps), "-o", str(glb))
+    # play's bake switches frames with STEP weights, export --bake cross-fades them with LINEAR ones;
+    # at the frames themselves both are the frames.
+    played, exported = out / "played.glb", out / "exported.glb"
+    odeskin(options, "play", options.asset, "--fps", str(options.fps), "-o", str(played))
+    odeskin(options, "export", options.asset, "--bake", "--fps", str(options.fps), "-o", str(exported))
     frames = frame_references(options, out, "baked")
-    reset_scene(options.fps)
-    bpy.ops.import_scene.gltf(filepath=str(glb))
-    obj = only_mesh()
-    for k, reference in enumerate(frames):
-        compare(f"baked frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE["baked"])
+    for glb in (played, exported):
+        reset_scene(options.fps)
+        bpy.ops.import_scene.gltf(filepath=str(glb))
+        obj = only_mesh()
+        for k, reference in enumerate(frames):
+            compare(f"{glb.stem} frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE["baked"])
 
 
 def check_point_cache(options, out):
