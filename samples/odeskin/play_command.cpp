@@ -363,8 +363,8 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   if (!console.quiet) {
     char timing[64];
     std::snprintf(timing, sizeof timing, "%.3f ms", 1e3 * mean);
-    const std::string cache_note = " (point cache of " + std::to_string(outputVertexCount(asset)) +
-                                 " vertices for the mesh `play --t 0 -o BASE.obj` writes)";
+    const std::string cache_note =
+        " (point cache of " + std::to_string(outputVertexCount(asset)) + " vertices for the mesh `play --t 0 -o BASE.obj` writes)";
     if (o.t) {
       const auto segment = static_cast<std::size_t>(std::min(std::floor(*o.t), std::max(t_end - 1.0, 0.0)));
       console.out << "t = " << numberText(*o.t) << " (segment " << segment << ", tau " << numberText(*o.t - static_cast<double>(segment))
