@@ -97,7 +97,7 @@ Status PointCacheBuilder::write(const std::filesystem::path& path, const PointCa
   // Inserted in place (the constructor reserved room) and taken out again, so a cache of
   // gigabytes is never copied whole and write() can be called again.
   data_.insert(0, header);
-  const Status written = writeFileAtomically(path, data_);
+  Status written = writeFileAtomically(path, data_);
   data_.erase(0, header.size());
   return written;
 }
