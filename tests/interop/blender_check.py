@@ -25,8 +25,8 @@
 #            and the weld intact in Blender: only the rim edges the command reports have one face;
 #   roundtrip  Blender makes a character from --poses OBJ files (shape keys, smooth shading, UVs, a
 #            textured material) and exports it as glTF; `odeskin fit` reads it, `odeskin export
-#            --materials` writes it back, and Blender imports that: the same vertices, UVs and
-#            material, moving as `odeskin play` does.
+#            --materials` (and `play -o OUT.glb --materials`) write it back, and Blender imports
+#            them: the same vertices, UVs and material, moving as `odeskin play` does.
 # Exits 1 on any failure (a missing odeskin, an import error, a vertex off by more than the
 # tolerance); nothing is skipped.
 import argparse
@@ -303,18 +303,23 @@ def check_roundtrip(options, out):
     odeskin(options, "fit", str(source), "--targets", ",".join(str(k) for k in range(len(options.poses) - 1)),
             "-o", str(asset))
     odeskin(options, "export", str(asset), "--materials", str(source), "--interpolation", "linear", "-o", str(glb))
+    # The baked form dresses itself the same way (play -o .glb --materials).
+    baked = out / "baked.glb"
+    odeskin(options, "play", str(asset), "--fps", "4", "--materials", str(source), "-o", str(baked))
     _, source_uvs, source_material, source_image = imported_look(source, 100)
-    obj, uvs, material, image = imported_look(glb, 100)
-    log(f"{glb.name}: {len(obj.data.vertices)} vertices, {len(uvs)} face corners, material '{material}' "
-        f"with a {image[0]}x{image[1]} image")
-    if (material, image) != (source_material, source_image):
-        failures.append(f"material '{material}' {image} is not the source's '{source_material}' {source_image}")
-    if uvs.shape != source_uvs.shape:
-        raise CheckFailure(f"{len(uvs)} face corners with UVs, the source {len(source_uvs)}")
-    uv_error = float(numpy.abs(uvs - source_uvs).max())
-    log(f"UVs: largest difference {uv_error:.2e} from the source's, corner by corner")
-    if uv_error > 1e-6:
-        failures.append(f"UVs differ from the source's by {uv_error:.2e}")
+    for written in (baked, glb):  # the compact export last: its motion is checked below
+        obj, uvs, material, image = imported_look(written, 100)
+        log(f"{written.name}: {len(obj.data.vertices)} vertices, {len(uvs)} face corners, material '{material}' "
+            f"with a {image[0]}x{image[1]} image")
+        if (material, image) != (source_material, source_image):
+            failures.append(f"{written.name}: material '{material}' {image} is not the source's "
+                            f"'{source_material}' {source_image}")
+        if uvs.shape != source_uvs.shape:
+            raise CheckFailure(f"{written.name}: {len(uvs)} face corners with UVs, the source {len(source_uvs)}")
+        uv_error = float(numpy.abs(uvs - source_uvs).max())
+        log(f"{written.name} UVs: largest difference {uv_error:.2e} from the source's, corner by corner")
+        if uv_error > 1e-6:
+            failures.append(f"{written.name}: UVs differ from the source's by {uv_error:.2e}")
     seconds = segment_seconds(argparse.Namespace(odeskin=options.odeskin, asset=str(asset)))
     for t in (0.0, 0.37, 1.0, 1.52, float(len(options.poses) - 1)):
         reference = out / f"roundtrip-t{t}.obj"
