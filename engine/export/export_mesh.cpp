@@ -71,7 +71,6 @@ Result<ExportMesh> buildExportMesh(const DeformAsset& asset, std::span<const Vec
     first_face = primitive.face_end;
     mesh.triangles.insert(mesh.triangles.end(), run.begin(), run.end());
     mesh.primitive_ends.push_back(static_cast<std::uint32_t>(mesh.triangles.size() / 3));
-    mesh.primitive_materials.push_back(primitive.material);
   }
   for (std::uint32_t index : mesh.triangles) {
     if (index >= mesh.source_vertex.size()) return invalidArgument("export: a face uses vertex " + std::to_string(index));

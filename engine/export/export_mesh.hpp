@@ -20,11 +20,9 @@ inline constexpr std::uint32_t kExportInfluences = 4;
 struct ExportMesh {
   std::vector<std::uint32_t> source_vertex;  // output vertex -> topology vertex
   std::vector<std::uint32_t> triangles;      // 3 output vertex indices each (polygons as fans)
-  // The input's primitives as runs of `triangles`: primitive p has triangles
-  // [primitive_ends[p - 1], primitive_ends[p]) and the input's material primitive_materials[p]
-  // (-1: none). One primitive, without a material, when the asset records none.
+  // The input's primitives (asset.render.primitives) as runs of `triangles`: primitive p has
+  // triangles [primitive_ends[p - 1], primitive_ends[p]). One primitive when the asset records none.
   std::vector<std::uint32_t> primitive_ends;
-  std::vector<std::int32_t> primitive_materials;
   std::vector<Vec3> positions;               // output vertices of the base shape
   std::vector<Vec3> normals;                 // output vertices: unit, area-weighted, of the base shape
   std::vector<Vec2> uvs;                     // output vertices: the input's TEXCOORD_0, or empty
