@@ -98,16 +98,13 @@ void addMaterialLibrary(tinygltf::Model& model, const MaterialLibrary& library) 
     image.bufferView = appendView(model, encoded.bytes.data(), encoded.bytes.size(), 0);
     model.images.push_back(std::move(image));
   }
-  for (const std::string& name : library.extensions_used) {
-    if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), name) == model.extensionsUsed.end()) {
-      model.extensionsUsed.push_back(name);
+  auto addMissing = [](std::vector<std::string>& list, const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+      if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
     }
-  }
-  for (const std::string& name : library.extensions_required) {
-    if (std::find(model.extensionsRequired.begin(), model.extensionsRequired.end(), name) == model.extensionsRequired.end()) {
-      model.extensionsRequired.push_back(name);
-    }
-  }
+  };
+  addMissing(model.extensionsUsed, library.extensions_used);
+  addMissing(model.extensionsRequired, library.extensions_required);
 }
 
 }  // namespace odeskin::gltf
