@@ -15,6 +15,7 @@
 #include "engine/surfaces/cardinal_spline.hpp"
 #include "engine/surfaces/hermite_blend.hpp"
 #include "file_extension.hpp"
+#include "output_paths.hpp"
 
 namespace odeskin {
 namespace {
@@ -140,11 +141,7 @@ int runBlendCommand(const BlendCommandOptions& o, Console& console, BlendReport*
                                                 scientific(std::max(r.position_error, r.tangent_error))));
   }
 
-  std::error_code ec;
-  if (o.output.has_parent_path()) {
-    std::filesystem::create_directories(o.output.parent_path(), ec);
-    if (ec) return reportFailure(console, ioError("blend: " + o.output.parent_path().string() + ": cannot create directory: " + ec.message()));
-  }
+  if (Status s = createParentFolder(o.output); !s.ok()) return reportFailure(console, Status(s.code(), "blend: " + s.message()));
   const std::string comment = "odeskin blend --example " + o.example + ": " + profile + "; grid " +
                               std::to_string(u_count) + " x " + std::to_string(v_count) +
                               ", vertex i*V+j = S(i/(U-1), 2 pi j/V)";

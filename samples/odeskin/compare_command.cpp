@@ -108,9 +108,7 @@ int runCompareCommand(const CompareOptions& o, Console& console, CompareReport* 
   r.p99_error = percentile(*errors, 0.99);
 
   for (const std::filesystem::path& out : {o.ply, o.json}) {
-    std::error_code ec;
-    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-    if (ec) return reportFailure(console, ioError(out.parent_path().string() + ": cannot create directory: " + ec.message()));
+    if (Status s = createParentFolder(out); !s.ok()) return reportFailure(console, s);
   }
   if (!o.ply.empty()) {
     // A mesh equal to its reference still gets a usable range (every vertex at the bottom colour).

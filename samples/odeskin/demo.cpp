@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "demo.hpp"
+#include "output_paths.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -80,9 +81,7 @@ Result<DemoResult> runDemo(const DemoOptions& options, std::ostream& log) {
   FitReport report;
   ODESKIN_ASSIGN_OR_RETURN(DeformAsset asset, fitDeformAsset(arm.fit_input, fit, &report));
   if (!options.asset_path.empty()) {
-    std::error_code ec;
-    if (options.asset_path.has_parent_path()) std::filesystem::create_directories(options.asset_path.parent_path(), ec);
-    if (ec) return ioError(options.asset_path.parent_path().string() + ": cannot create directory: " + ec.message());
+    ODESKIN_TRY(createParentFolder(options.asset_path));
     ODESKIN_TRY(saveAsset(options.asset_path, asset));
     log << "asset: " << options.asset_path.string() << "\n";
   }

@@ -187,11 +187,7 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   Result<EvaluationResult> result = runEvaluation(*frames, keys, methods, source, o.times, options);
   if (!result.ok()) return reportFailure(console, result.status());
 
-  std::error_code ec;
-  if (o.json.has_parent_path()) {
-    std::filesystem::create_directories(o.json.parent_path(), ec);
-    if (ec) return reportFailure(console, ioError(o.json.parent_path().string() + ": cannot create directory: " + ec.message()));
-  }
+  if (Status st = createParentFolder(o.json); !st.ok()) return reportFailure(console, st);
   if (Status st = writeFileAtomically(o.json, toJson(*result).dump(2) + "\n"); !st.ok()) {
     return reportFailure(console, st);
   }

@@ -10,6 +10,7 @@
 #include "engine/core/number_text.hpp"
 #include "engine/io/asset_file.hpp"
 #include "file_extension.hpp"
+#include "output_paths.hpp"
 #include "progress.hpp"
 
 namespace odeskin {
@@ -112,11 +113,7 @@ int runExportCommand(const ExportCommandOptions& o, Console& console, GltfExport
                 << "; baking one morph target per frame at " << numberText(options.bake_fps) << " fps\n";
   }
 
-  std::error_code ec;
-  if (o.output.has_parent_path()) {
-    std::filesystem::create_directories(o.output.parent_path(), ec);
-    if (ec) return reportFailure(console, ioError(o.output.parent_path().string() + ": cannot create directory: " + ec.message()));
-  }
+  if (Status s = createParentFolder(o.output); !s.ok()) return reportFailure(console, s);
   ProgressBar bar(console.err, "export", 0, !console.quiet && console.interactive);
   options.progress = [&bar](std::string_view stage, double fraction) {
     bar.fraction(stage, stage == "bake" ? fraction : stageStart(stage) + 0.2 * fraction);

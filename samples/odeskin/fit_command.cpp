@@ -13,6 +13,7 @@
 #include "engine/offline/time_basis.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "material_options.hpp"
+#include "output_paths.hpp"
 #include "progress.hpp"
 
 namespace odeskin {
@@ -158,12 +159,9 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
     return reportError(console, "fit: " + poses + ": " + message, kExitFailure);
   }
 
-  std::error_code ec;
-  if (o.output.has_parent_path()) {
-    std::filesystem::create_directories(o.output.parent_path(), ec);
-    if (ec) return reportFailure(console, ioError(o.output.parent_path().string() + ": cannot create directory: " + ec.message()));
-  }
+  if (Status s = createParentFolder(o.output); !s.ok()) return reportFailure(console, s);
   if (Status saved = saveAsset(o.output, result->asset); !saved.ok()) return reportFailure(console, saved);
+  std::error_code ec;
   const std::uintmax_t bytes = std::filesystem::file_size(o.output, ec);
   if (!console.quiet) printSummary(console.out, o, *examples, *result, ec ? 0 : bytes);
   if (o.timings) printTimings(console.out, result->timings);

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
 // Output paths checked before any work. An output must not replace an input (`odeskin fit a.obj
 // b.obj -o a.obj` wrote the asset over the first pose), and a file output must not name a folder
-// (`fit ... -o out/` fitted, then failed to write and left out/ behind).
+// (`fit ... -o out/` fitted, then failed to write and left out/ behind). And the folder an output
+// goes in, made when it is written.
 #pragma once
 
 #include <filesystem>
 #include <span>
 #include <string>
 #include <system_error>
+
+#include "engine/core/status.hpp"
 
 namespace odeskin {
 
@@ -31,6 +34,17 @@ inline std::string folderNotFile(const std::filesystem::path& output) {
   if (!output.has_filename()) return "names a folder (it ends in a separator); give a file name";
   if (std::filesystem::is_directory(output, ec)) return "is a folder; give a file name";
   return {};
+}
+
+// Creates the folder `file` goes in, with its parents; ok when there is none to create. kIoError
+// "FOLDER: cannot create directory: WHY" when it cannot be made.
+inline Status createParentFolder(const std::filesystem::path& file) {
+  const std::filesystem::path parent = file.parent_path();
+  if (parent.empty()) return okStatus();
+  std::error_code ec;
+  std::filesystem::create_directories(parent, ec);
+  if (ec) return ioError(parent.string() + ": cannot create directory: " + ec.message());
+  return okStatus();
 }
 
 }  // namespace odeskin

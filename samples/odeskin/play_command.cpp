@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "output_paths.hpp"
 #include "play_command.hpp"
 
 #include <algorithm>
@@ -66,9 +67,7 @@ std::string usageProblem(const PlayOptions& o) {
 Status ensureParentDirectory(const std::filesystem::path& file, std::filesystem::path& last_created) {
   const std::filesystem::path parent = file.parent_path();
   if (parent.empty() || parent == last_created) return okStatus();
-  std::error_code ec;
-  std::filesystem::create_directories(parent, ec);
-  if (ec) return ioError(parent.string() + ": cannot create directory: " + ec.message());
+  ODESKIN_TRY(createParentFolder(file));
   last_created = parent;
   return okStatus();
 }

@@ -225,11 +225,7 @@ Status writeOutputs(const ReconstructCommandOptions& o, const MeshNetworkOptions
     }
     return status;
   };
-  for (const fs::path& p : {o.output, o.network, o.json}) {
-    std::error_code ec;
-    if (!p.empty() && p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-    if (ec) return ioError(p.parent_path().string() + ": cannot create directory: " + ec.message());
-  }
+  for (const fs::path& p : {o.output, o.network, o.json}) ODESKIN_TRY(createParentFolder(p));
   for (const ObjOutput& obj : objs) {
     if (Status s = writeObj(obj.path, obj.positions, mesh.faces, "odeskin reconstruct " + o.mesh.filename().string()); !s.ok()) {
       return undo(s);

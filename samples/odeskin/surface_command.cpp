@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "output_paths.hpp"
 #include "surface_command.hpp"
 
 #include <algorithm>
@@ -198,14 +199,7 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   report.triangles = 2 * mesh->faces.faceCount();
   report.rim_edges = unsharedEdges(mesh->faces).size();
 
-  std::error_code ec;
-  if (o.output.has_parent_path()) {
-    std::filesystem::create_directories(o.output.parent_path(), ec);
-    if (ec) {
-      return reportError(console, "surface: " + o.output.parent_path().string() + ": cannot create directory: " + ec.message(),
-                         kExitFailure);
-    }
-  }
+  if (Status s = createParentFolder(o.output); !s.ok()) return reportError(console, "surface: " + s.message(), kExitFailure);
   std::filesystem::path obj;
   if (o.obj) {
     obj = std::filesystem::path(o.output).replace_extension(".obj");
@@ -216,6 +210,7 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   const std::vector<Vec3> normals = vertexNormals(*mesh);
   if (Status s = writeSurfaceGlb(o.output, *mesh, normals); !s.ok()) {
     // All or nothing; but an OBJ output that is a device or FIFO (written in place) stays.
+    std::error_code ec;
     if (!obj.empty() && std::filesystem::is_regular_file(std::filesystem::status(obj, ec))) {
       std::filesystem::remove(obj, ec);
     }
