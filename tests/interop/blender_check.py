@@ -73,10 +73,18 @@ def parse_args():
     return parser.parse_args(argv)
 
 
+def compare_with_play(options, asset, obj, t, frame, out):
+    """Blender's `obj` at `frame` against `odeskin play ASSET --t T`, with the check's tolerance."""
+    reference = out / f"{options.check}-t{t}.obj"
+    odeskin(options, "play", str(asset), "--t", str(t), "-o", str(reference))
+    compare(f"{options.check} t {t}", evaluated_positions(obj, frame), obj_positions(reference),
+            TOLERANCE[options.check])
+
+
 def check_compact(options, out):
     glb = out / "compact.glb"
     odeskin(options, "export", options.asset, "-o", str(glb), "--interpolation", options.interpolation)
-    seconds = segment_seconds(options)
+    seconds = segment_seconds(options, options.asset)
     # A scene at 100 fps puts T = 0.37 on a whole frame: Blender's sub-frames are not needed.
     fps = 100
     reset_scene(fps)
@@ -95,10 +103,7 @@ def check_compact(options, out):
         frame = t * seconds * fps
         if abs(frame - round(frame)) > 1e-6:
             raise CheckFailure(f"--times {t}: {t * seconds} s is not a whole frame at {fps} fps")
-        reference = out / f"compact-t{t}.obj"
-        odeskin(options, "play", options.asset, "--t", str(t), "-o", str(reference))
-        compare(f"compact t {t}", evaluated_positions(obj, round(frame)), obj_positions(reference),
-                TOLERANCE["compact"])
+        compare_with_play(options, options.asset, obj, t, round(frame), out)
 
 
 def frame_references(options, out, stem):
@@ -320,12 +325,9 @@ def check_roundtrip(options, out):
         log(f"{written.name} UVs: largest difference {uv_error:.2e} from the source's, corner by corner")
         if uv_error > 1e-6:
             failures.append(f"{written.name}: UVs differ from the source's by {uv_error:.2e}")
-    seconds = segment_seconds(argparse.Namespace(odeskin=options.odeskin, asset=str(asset)))
+    seconds = segment_seconds(options, asset)
     for t in (0.0, 0.37, 1.0, 1.52, float(len(options.poses) - 1)):
-        reference = out / f"roundtrip-t{t}.obj"
-        odeskin(options, "play", str(asset), "--t", str(t), "-o", str(reference))
-        compare(f"roundtrip t {t}", evaluated_positions(obj, round(t * seconds * 100)), obj_positions(reference),
-                TOLERANCE["roundtrip"])
+        compare_with_play(options, asset, obj, t, round(t * seconds * 100), out)
 
 
 def animate_rig(rig_glb, animated_glb):
@@ -374,10 +376,7 @@ def check_animated(options, out):
         compare(f"example pose t {t} against Blender's own file", evaluated_positions(exported, 24 * t), pose,
                 TOLERANCE["animated"])
     for t in (0.5, 1.5):
-        reference = out / f"animated-t{t}.obj"
-        odeskin(options, "play", str(asset), "--t", str(t), "-o", str(reference))
-        compare(f"animated t {t}", evaluated_positions(exported, round(24 * t)), obj_positions(reference),
-                TOLERANCE["animated"])
+        compare_with_play(options, asset, exported, t, round(24 * t), out)
 
 
 def check_surface(options, out):

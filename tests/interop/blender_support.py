@@ -27,12 +27,12 @@ def odeskin(options, *args):
         raise CheckFailure(f"odeskin {' '.join(args)} exited {done.returncode}: {done.stderr.strip()}")
 
 
-def segment_seconds(options):
-    done = subprocess.run([options.odeskin, "info", options.asset], capture_output=True, text=True)
+def segment_seconds(options, asset):
+    done = subprocess.run([options.odeskin, "info", str(asset)], capture_output=True, text=True)
     # "key poses:      3 (2 segments, 2 s)"
     found = re.search(r"^key poses:\s+\d+ \((\d+) segments?, ([0-9.e+-]+) s\)", done.stdout, re.MULTILINE)
     if done.returncode != 0 or not found:
-        raise CheckFailure(f"odeskin info {options.asset} did not give the segment length: {done.stderr.strip()}")
+        raise CheckFailure(f"odeskin info {asset} did not give the segment length: {done.stderr.strip()}")
     return float(found.group(2)) / int(found.group(1))
 
 
