@@ -12,6 +12,7 @@
 #include "../core/smoothing_groups.hpp"
 #include "../kernels/lbs_job.hpp"
 #include "gltf_animation.hpp"
+#include "gltf_dequantize.hpp"
 #include "gltf_load.hpp"
 #include "gltf_mesh.hpp"
 #include "gltf_nodes.hpp"
@@ -131,7 +132,7 @@ struct Skinned {
 
 // The pose at `time_s`: morph with the animated (or default) weights, then skin with
 // S_j = G_j x IBM_j; `key_pose` gets the rigid part of every S_j.
-Status animatedPose(const tinygltf::Model& model, const Skinned& s, const Clip& clip, double time_s, int mesh_node,
+Status animatedPose(const Skinned& s, const Clip& clip, double time_s, int mesh_node,
                     const std::vector<Vec3>& base, const std::vector<std::vector<Vec3>>& deltas,
                     std::vector<double> weights, const Influences& influences, const std::string& label,
                     std::vector<Vec3>& pose, std::vector<RigidTransform>& key_pose) {
@@ -149,10 +150,7 @@ Status animatedPose(const tinygltf::Model& model, const Skinned& s, const Clip& 
     if (!rigid || deviation > kRigidTolerance) {
       return invalidArgument("joint " + std::to_string(j) + " '" + s.skin.skeleton.names[j] + "' in pose '" + label +
                              "' " + (rigid ? "scales or shears by " + messageNumber(deviation) : std::string("reflects")) +
-                             "; key poses must be rigid" +
-                             (usesMeshQuantization(model) ? " (a KHR_mesh_quantization scale in the inverse bind "
-                                                            "matrices is not supported)"
-                                                          : ""));
+                             "; key poses must be rigid");
     }
     key_pose[j] = *rigid;
   }
@@ -162,9 +160,9 @@ Status animatedPose(const tinygltf::Model& model, const Skinned& s, const Clip& 
   return job.run();
 }
 
-// The skin of node `mesh_node` and the rig it gives (skeleton and influences; key poses come later).
-Result<Skinned> readSkinned(const tinygltf::Model& model, int mesh_node, const MeshData& mesh, const Welded& welded,
-                            Rig& rig, DecodeBudget& budget) {
+// The skin of node `mesh_node`. A scale every joint shares in the rest pose (the dequantization of
+// KHR_mesh_quantization's integer grid, gltf_dequantize.hpp) moves from the skin into `mesh`.
+Result<Skinned> readSkinned(const tinygltf::Model& model, int mesh_node, MeshData& mesh, DecodeBudget& budget) {
   const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(mesh_node)];
   Skinned s;
   ODESKIN_ASSIGN_OR_RETURN(s.parents, nodeParents(model));
@@ -174,10 +172,37 @@ Result<Skinned> readSkinned(const tinygltf::Model& model, int mesh_node, const M
     return parseError(nodeLabel(model, mesh_node) + " has a skin but mesh " + std::to_string(node.mesh) +
                       " has no JOINTS_0/WEIGHTS_0");
   }
-  rig.skeleton = s.skin.skeleton;
-  ODESKIN_ASSIGN_OR_RETURN(rig.influences,
-                           topologyInfluences(mesh, welded, static_cast<std::uint32_t>(s.skin.joint_nodes.size())));
+  const std::vector<glm::dmat4> global = globalMatrices(s.rest, s.parents);
+  std::vector<glm::dmat4> rest_skin;
+  for (std::size_t j = 0; j < s.skin.joint_nodes.size(); ++j) {
+    rest_skin.push_back(global[static_cast<std::size_t>(s.skin.joint_nodes[j])] * s.skin.inverse_bind[j]);
+  }
+  ODESKIN_ASSIGN_OR_RETURN(const std::optional<Dequantization> scale,
+                           sharedSkinScale(rest_skin, s.skin.skeleton.names, kRigidTolerance,
+                                           "skin " + std::to_string(node.skin)));
+  if (scale) {
+    dequantizeMesh(*scale, mesh);
+    dequantizeInverseBinds(*scale, s.skin.inverse_bind);
+    placeJoints(s.skin);
+  }
   return s;
+}
+
+// An unskinned mesh on KHR_mesh_quantization's integer grid means something only through its
+// node's transform, where the quantizing tools put the dequantization: the mesh in world space.
+Status dequantizeUnskinned(const tinygltf::Model& model, int mesh_node, MeshData& mesh) {
+  ODESKIN_ASSIGN_OR_RETURN(const std::vector<int> parents, nodeParents(model));
+  ODESKIN_ASSIGN_OR_RETURN(const std::vector<NodeTransform> rest, restTransforms(model));
+  const glm::dmat4 world = globalMatrices(rest, parents)[static_cast<std::size_t>(mesh_node)];
+  if (!(glm::determinant(glm::dmat3(world)) > 0.0)) {
+    return parseError(nodeLabel(model, mesh_node) +
+                      "'s world transform mirrors or collapses its KHR_mesh_quantization mesh (determinant <= 0)");
+  }
+  Dequantization d;
+  d.linear = glm::dmat3(world);
+  d.offset = Vec3(world[3]);
+  dequantizeMesh(d, mesh);
+  return okStatus();
 }
 
 // One pose (with its key pose and label) per requested time of the requested animation.
@@ -207,7 +232,7 @@ Status appendAnimatedPoses(const tinygltf::Model& model, const GltfPoseRequest& 
     const std::string label = file + " " + name + " at " + formatTime(t) + " s";
     std::vector<Vec3> pose;
     std::vector<RigidTransform> key_pose;
-    ODESKIN_TRY(animatedPose(model, skinned, clip, t, mesh_node, base, deltas, default_weights, out.rig->influences,
+    ODESKIN_TRY(animatedPose(skinned, clip, t, mesh_node, base, deltas, default_weights, out.rig->influences,
                              label, pose, key_pose));
     out.poses.push_back(std::move(pose));
     out.pose_labels.push_back(label);
@@ -239,6 +264,12 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
                              " has " + std::to_string(targets));
     }
   }
+  std::optional<Skinned> skinned;
+  if (node.skin >= 0) {
+    ODESKIN_ASSIGN_OR_RETURN(skinned, readSkinned(model, mesh_node, mesh, budget));
+  } else if (usesMeshQuantization(model)) {
+    ODESKIN_TRY(dequantizeUnskinned(model, mesh_node, mesh));
+  }
   const Welded welded = weldEqualPositions(mesh.positions);
   ODESKIN_ASSIGN_OR_RETURN(std::vector<std::vector<Vec3>> deltas, topologyDeltas(mesh, welded));
   ODESKIN_ASSIGN_OR_RETURN(const std::vector<double> default_weights, defaultWeights(model, mesh_node, targets));
@@ -264,10 +295,11 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
     out.warnings.push_back("TEXCOORD_0 is not kept: " + mesh.uv_warning);
   }
 
-  std::optional<Skinned> skinned;
-  if (node.skin >= 0) {
+  if (skinned) {
     out.rig.emplace();
-    ODESKIN_ASSIGN_OR_RETURN(skinned, readSkinned(model, mesh_node, mesh, welded, *out.rig, budget));
+    out.rig->skeleton = skinned->skin.skeleton;
+    ODESKIN_ASSIGN_OR_RETURN(out.rig->influences, topologyInfluences(mesh, welded, static_cast<std::uint32_t>(
+                                                                                       skinned->skin.joint_nodes.size())));
   }
   const std::vector<RigidTransform> identity(skinned ? skinned->skin.joint_nodes.size() : 0);
 

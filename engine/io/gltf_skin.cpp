@@ -105,7 +105,10 @@ Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::spa
       }
       const bool affine = std::abs(m[0][3]) < 1e-6 && std::abs(m[1][3]) < 1e-6 && std::abs(m[2][3]) < 1e-6 &&
                           std::abs(m[3][3] - 1.0) < 1e-6;
-      if (!affine || std::abs(glm::determinant(glm::dmat3(m))) < 1e-12) {
+      // Relative to the columns' lengths (Hadamard's bound), since a quantized mesh's IBMs carry its
+      // grid step, 1e-5 or less, in every column.
+      const double columns = glm::length(glm::dvec3(m[0])) * glm::length(glm::dvec3(m[1])) * glm::length(glm::dvec3(m[2]));
+      if (!affine || !(std::abs(glm::determinant(glm::dmat3(m))) > 1e-12 * columns)) {
         return parseError(where + ": inverse bind matrix " + std::to_string(j) +
                           " is not an invertible affine matrix (last row must be 0 0 0 1)");
       }
@@ -115,7 +118,6 @@ Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::spa
   Skeleton& s = out.skeleton;
   s.names.resize(bones);
   s.parents.assign(bones, -1);
-  s.heads.resize(bones);
   for (std::size_t j = 0; j < bones; ++j) {
     const int node = skin.joints[j];
     const std::string& name = model.nodes[static_cast<std::size_t>(node)].name;
@@ -126,13 +128,20 @@ Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::spa
         break;
       }
     }
-    s.heads[j] = Vec3(glm::inverse(out.inverse_bind[j])[3]);
   }
+  placeJoints(out);
+  return out;
+}
+
+void placeJoints(SkinData& skin) {
+  Skeleton& s = skin.skeleton;
+  const std::size_t bones = skin.inverse_bind.size();
+  s.heads.resize(bones);
+  for (std::size_t j = 0; j < bones; ++j) s.heads[j] = Vec3(glm::inverse(skin.inverse_bind[j])[3]);
   s.tails = s.heads;
   for (std::size_t j = bones; j-- > 0;) {  // backwards, so the first child in bone order wins
     if (s.parents[j] >= 0) s.tails[static_cast<std::size_t>(s.parents[j])] = s.heads[j];
   }
-  return out;
 }
 
 Result<Influences> topologyInfluences(const MeshData& mesh, const Welded& welded, std::uint32_t bone_count) {

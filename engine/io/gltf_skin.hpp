@@ -32,6 +32,9 @@ struct SkinData {
 Result<SkinData> readSkin(const tinygltf::Model& model, int skin_index, std::span<const int> parents,
                           DecodeBudget& budget);
 
+// Heads and tails of `skin.skeleton` from its inverse bind matrices and parents (as SkinData says).
+void placeJoints(SkinData& skin);
+
 // Influences of the topology vertices: each takes its first render vertex's JOINTS_n/WEIGHTS_n,
 // duplicate joints summed, weights divided by their sum, zero weights dropped, rows sorted by bone.
 // kParseError naming the render vertex: a joint index >= bone_count, a negative weight, weights

@@ -178,7 +178,11 @@ struct TubeOptions {
   int sparse_index_type = kUShortType;
   int position_type = kFloatType;
   bool position_normalized = false;
-  double position_scale = 1.0;    // stored = position x scale (for quantized positions)
+  double position_scale = 1.0;    // stored = (position - offset) x scale, rounded for integers
+  Vec3 position_offset{0.0};
+  // KHR_mesh_quantization's skinned layout (gltfpack, glTF-Transform): morph deltas stored x scale
+  // too, and every inverse bind matrix times the dequantization D = translate(offset) scale(1/scale).
+  bool fold_into_skin = false;
   std::function<Vec3(int ring, int column)> normal;  // NORMAL of each vertex; none when empty
   int normal_type = kFloatType;   // float, or byte stored normalized (x 127)
   int uv_type = kFloatType;       // TEXCOORD_0: float, or an integer type (x uv_scale)
@@ -257,7 +261,10 @@ tinygltf::Primitive emit(Builder& b, const Prim& p, const TubeOptions& o, bool s
   std::vector<double> positions;
   std::vector<double> uvs;
   for (std::size_t i = 0; i < p.positions.size(); ++i) {
-    for (int k = 0; k < 3; ++k) positions.push_back(p.positions[i][k] * o.position_scale);
+    for (int k = 0; k < 3; ++k) {
+      const double stored = (p.positions[i][k] - o.position_offset[k]) * o.position_scale;
+      positions.push_back(o.position_type == kFloatType ? stored : std::round(stored));
+    }
     const Vec2 uv = o.uv(p.ring[i], p.column[i]);
     uvs.push_back(uv.x * o.uv_scale);
     uvs.push_back(uv.y * o.uv_scale);
@@ -289,13 +296,14 @@ tinygltf::Primitive emit(Builder& b, const Prim& p, const TubeOptions& o, bool s
   std::vector<std::uint32_t> moved;
   std::vector<double> values;
   std::vector<double> base(3 * p.positions.size(), 0.0);
+  const Vec3 delta = kDelta * (o.fold_into_skin ? o.position_scale : 1.0);
   for (std::size_t i = 0; i < p.positions.size(); ++i) {
     if (p.ring[i] == 2) {
       moved.push_back(static_cast<std::uint32_t>(i));
-      values.insert(values.end(), {kDelta.x, kDelta.y, kDelta.z});
+      values.insert(values.end(), {delta.x, delta.y, delta.z});
       base[3 * i] = base[3 * i + 1] = base[3 * i + 2] = 9.0;  // must be overridden
     } else if (p.ring[i] == 1) {
-      base[3 * i] = kBaseDelta.x;
+      base[3 * i] = kBaseDelta.x * (o.fold_into_skin ? o.position_scale : 1.0);
     }
   }
   int target = -1;
@@ -386,6 +394,13 @@ Tube makeTube(const TubeOptions& o = {}) {
   std::vector<double> ibm(32, 0.0);
   for (std::size_t k = 0; k < 4; ++k) ibm[5 * k] = ibm[16 + 5 * k] = 1.0;
   ibm[16 + 13] = -1.0;  // column 3, row 1 of joint 1's matrix: translate (0, -1, 0)
+  if (o.fold_into_skin) {  // IBM_j D: the scale multiplies the 3x3, the offset goes through IBM_j
+    for (std::size_t j = 0; j < 2; ++j) {
+      double* m = &ibm[16 * j];
+      for (int k = 0; k < 3; ++k) m[12 + k] += m[k] * o.position_offset.x + m[4 + k] * o.position_offset.y + m[8 + k] * o.position_offset.z;
+      for (int k = 0; k < 12; ++k) m[k] /= o.position_scale;
+    }
+  }
   skin.inverseBindMatrices = b.accessor(ibm, kFloatType, TINYGLTF_TYPE_MAT4);
   b.model.skins.push_back(skin);
   tinygltf::Scene scene;
@@ -1130,6 +1145,101 @@ TEST(GltfReader, QuantizedPositions) {
   EXPECT_EQ(refused.status().code(), StatusCode::kParseError);
   EXPECT_NE(refused.status().message().find("accessor " + std::to_string(tube.position_accessor)), std::string::npos)
       << refused.status().message();
+}
+
+// gltfpack's layout: 16-bit unsigned grid coordinates, the dequantization folded into the IBMs.
+TubeOptions gltfpackLayout() {
+  TubeOptions o;
+  o.position_type = kUShortType;
+  o.position_scale = 65535.0 / 2.0;  // the tube spans 2 along every axis
+  o.position_offset = Vec3(-1.0, 0.0, -1.0);
+  o.fold_into_skin = true;
+  return o;
+}
+
+TEST(GltfReader, QuantizedSkinGivesTheFloatFilesPoses) {
+  const TubeOptions o = gltfpackLayout();
+  const double step = 1.0 / o.position_scale;
+  const auto exact = read(write(makeTube().model, "float.glb", true), {0.5, 1.0}, {0});
+  const auto quantized = read(write(makeTube(o).model, "quantized.glb", true), {0.5, 1.0}, {0});
+  ASSERT_TRUE(exact.ok()) << exact.status().toString();
+  ASSERT_TRUE(quantized.ok()) << quantized.status().toString();
+  // The rest pose is the bind pose, so the grid goes back to the tube's own coordinates.
+  ASSERT_EQ(quantized->rest_positions.size(), exact->rest_positions.size());
+  for (std::size_t v = 0; v < exact->rest_positions.size(); ++v) {
+    expectNear(quantized->rest_positions[v], exact->rest_positions[v], step, "rest vertex " + std::to_string(v));
+  }
+  ASSERT_EQ(quantized->poses.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    for (std::size_t v = 0; v < exact->rest_positions.size(); ++v) {
+      expectNear(quantized->poses[k][v], exact->poses[k][v], 2.0 * step,
+                 quantized->pose_labels[k] + " vertex " + std::to_string(v));
+    }
+    for (std::size_t j = 0; j < 2; ++j) {
+      const RigidTransform& a = quantized->rig->key_poses[k][j];
+      const RigidTransform& b = exact->rig->key_poses[k][j];
+      expectNear(a.translation, b.translation, 1e-6, "key translation");
+      EXPECT_GT(std::abs(glm::dot(a.rotation, b.rotation)), 1.0 - 1e-9);
+    }
+  }
+  for (std::size_t j = 0; j < 2; ++j) {
+    expectNear(quantized->rig->skeleton.heads[j], exact->rig->skeleton.heads[j], 1e-6, "joint head");
+  }
+}
+
+TEST(GltfReader, QuantizedSkinAwayFromItsBindPoseKeepsThePoses) {
+  // The root rests 2 to the side of where it was bound: the bind space may move, the poses may not.
+  auto shifted = [](TubeOptions o) {
+    tinygltf::Model m = makeTube(o).model;
+    m.nodes[1].translation = {2.0, 0.0, 0.0};
+    return m;
+  };
+  const TubeOptions o = gltfpackLayout();
+  const auto exact = read(write(shifted(TubeOptions{}), "float.glb", true), {0.5, 1.0}, {0});
+  const auto quantized = read(write(shifted(o), "quantized.glb", true), {0.5, 1.0}, {0});
+  ASSERT_TRUE(exact.ok()) << exact.status().toString();
+  ASSERT_TRUE(quantized.ok()) << quantized.status().toString();
+  for (std::size_t k = 1; k < 3; ++k) {  // the poses at times; the bind pose and target are bind space
+    for (std::size_t v = 0; v < exact->rest_positions.size(); ++v) {
+      expectNear(quantized->poses[k][v], exact->poses[k][v], 2.0 / o.position_scale,
+                 quantized->pose_labels[k] + " vertex " + std::to_string(v));
+    }
+  }
+}
+
+TEST(GltfReader, QuantizedSkinWhoseJointsScaleDifferentlyIsRefused) {
+  tinygltf::Model m = makeTube(gltfpackLayout()).model;
+  // Joint 1's inverse bind matrix scaled once more: no one grid explains both joints.
+  const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(m.skins[0].inverseBindMatrices)];
+  const tinygltf::BufferView& view = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
+  auto* floats = reinterpret_cast<float*>(m.buffers[0].data.data() + view.byteOffset + a.byteOffset);
+  for (int k = 0; k < 12; ++k) floats[16 + k] *= 1.5f;
+  const fs::path path = write(m, "two-scales.glb", true);
+  const auto r = read(path, {1.0});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kParseError);
+  for (const std::string& w : std::vector<std::string>{path.string(), "skin 0", "joint 1 'tip'", "joint 0 'root'",
+                                                       "KHR_mesh_quantization"}) {
+    EXPECT_NE(r.status().message().find(w), std::string::npos) << w << " not in: " << r.status().message();
+  }
+}
+
+TEST(GltfReader, QuantizedUnskinnedMeshTakesItsNodesTransform) {
+  TubeOptions o = gltfpackLayout();
+  o.fold_into_skin = false;
+  Tube tube = makeTube(o);
+  tinygltf::Node& node = tube.model.nodes[0];
+  node.skin = -1;  // the node's transform now counts: it holds the dequantization
+  node.translation = {o.position_offset.x, o.position_offset.y, o.position_offset.z};
+  node.scale = std::vector<double>(3, 1.0 / o.position_scale);
+  GltfPoseRequest request;
+  request.morph_targets = {0};
+  const auto examples = readGltfExamples(write(tube.model, "unskinned.glb", true), request);
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  for (std::size_t r = 0; r < tube.render_positions.size(); ++r) {
+    expectNear(examples->rest_positions[examples->render.topology_of_render[r]], tube.render_positions[r],
+               1.0 / o.position_scale, "render vertex " + std::to_string(r));
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
