@@ -14,6 +14,7 @@ packages=(
   cppcheck clang-tidy
   nodejs chromium
   blender python3-numpy  # tests/interop: odeskin's outputs opened in Blender (its glTF importer needs numpy)
+  gltfpack  # tests/interop: a character quantized by gltfpack (KHR_mesh_quantization) read back
 )
 # Debian's npm package conflicts with a nodejs that bundles npm (NodeSource builds): ask for it only
 # when no npm is on the PATH.

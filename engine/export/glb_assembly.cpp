@@ -5,12 +5,15 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <numbers>
+#include <optional>
 
 #include <tiny_gltf.h>
 
 #include "../core/number_text.hpp"
 #include "../io/gltf_baked_writer.hpp"
 #include "../io/gltf_buffer_builder.hpp"
+#include "quantized_attributes.hpp"
 
 namespace odeskin {
 namespace {
@@ -43,6 +46,14 @@ bool allFinite(const std::vector<float>& values) {
   return std::all_of(values.begin(), values.end(), [](float x) { return std::isfinite(x); });
 }
 
+// Finite once written as float32 (a double beyond float's range would become an infinity).
+bool allFinite(const std::vector<Vec3>& values) {
+  return std::all_of(values.begin(), values.end(), [](const Vec3& v) {
+    return std::isfinite(static_cast<float>(v.x)) && std::isfinite(static_cast<float>(v.y)) &&
+           std::isfinite(static_cast<float>(v.z));
+  });
+}
+
 void putVec3(std::vector<float>& out, const Vec3& v) {
   out.insert(out.end(), {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
 }
@@ -64,9 +75,81 @@ Result<int> timeAccessor(ModelBuilder& b, const std::vector<double>& t, double s
   return b.floats(seconds, TINYGLTF_TYPE_SCALAR, 1, 0, true);
 }
 
+// Values as computed and as written (decoded, in the same units) at the listed output vertices.
+struct WrittenField {
+  std::vector<std::uint32_t> vertices;
+  std::vector<Vec3> exact;
+  std::vector<Vec3> written;
+};
+
+// Where the compact export's numbers go: float32 in mesh space, or KHR_mesh_quantization's
+// integers in grid steps (quantized_attributes.hpp), with what was written, to measure it.
+struct Quantization {
+  std::optional<PositionGrid> grid;
+  WrittenField positions;  // in mesh space
+  WrittenField normals;
+  std::vector<WrittenField> position_targets;  // in split-target order
+  std::vector<WrittenField> normal_targets;    // the same, when the targets carry normals
+  std::size_t float_targets = 0;
+};
+
+std::vector<std::uint32_t> allVertices(std::size_t count) {
+  std::vector<std::uint32_t> out(count);
+  for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<std::uint32_t>(i);
+  return out;
+}
+
+// base + sum_t w_t target_t, exact and as written, with the weights of one key (none: the base).
+void morphBoth(const WrittenField& base, const std::vector<WrittenField>& targets, std::span<const double> weights,
+               std::vector<Vec3>& exact, std::vector<Vec3>& written) {
+  exact = base.exact;
+  written = base.written;
+  for (std::size_t t = 0; t < weights.size() && t < targets.size(); ++t) {
+    const double w = weights[t];
+    if (w == 0.0) continue;
+    const WrittenField& f = targets[t];
+    for (std::size_t i = 0; i < f.vertices.size(); ++i) {
+      exact[f.vertices[i]] += w * f.exact[i];
+      written[f.vertices[i]] += w * f.written[i];
+    }
+  }
+}
+
+// What the rounding costs at the base shape and at every weight key (glTF morphs before skinning,
+// and skinning moves an error rigidly, never enlarging it): the largest position error and the
+// angles between the exact and the written normals, in degrees: their 99th percentile and largest.
+void measureQuantization(const Quantization& q, const WeightKeys& weights, GlbSummary& summary) {
+  const std::size_t targets = weights.weightCount();
+  std::vector<Vec3> exact, written;
+  std::vector<double> angles;  // every (vertex, key) pair's
+  for (std::size_t k = 0; k <= weights.times.size(); ++k) {  // k == times: the base alone
+    const std::span<const double> w =
+        k < weights.times.size() && targets > 0 ? std::span<const double>(weights.values).subspan(k * targets, targets)
+                                                : std::span<const double>();
+    morphBoth(q.positions, q.position_targets, w, exact, written);
+    for (std::size_t i = 0; i < exact.size(); ++i) {
+      summary.quantization_error = std::max(summary.quantization_error, glm::length(written[i] - exact[i]));
+    }
+    morphBoth(q.normals, q.normal_targets, w, exact, written);
+    for (std::size_t i = 0; i < exact.size(); ++i) {
+      const double a = glm::length(exact[i]);
+      const double b = glm::length(written[i]);
+      if (!(a > 0.0 && b > 0.0)) continue;  // a normal that cancels has no direction to keep
+      const double cosine = std::clamp(glm::dot(exact[i], written[i]) / (a * b), -1.0, 1.0);
+      angles.push_back(std::acos(cosine) * 180.0 / std::numbers::pi);
+    }
+  }
+  if (angles.empty()) return;
+  const auto p99 = angles.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(angles.size() - 1));
+  std::nth_element(angles.begin(), p99, angles.end());
+  summary.normal_p99_degrees = *p99;
+  summary.normal_max_degrees = *std::max_element(p99, angles.end());
+}
+
 // The index accessor of every primitive with triangles (-1 for one without), then the vertex
 // attributes all primitives share, into `primitive`.
-std::vector<int> writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Primitive& primitive, std::size_t joint_count) {
+std::vector<int> writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Primitive& primitive, std::size_t joint_count,
+                           Quantization& q) {
   const std::size_t count = mesh.positions.size();
   std::vector<int> index_accessors;
   std::uint32_t begin = 0;
@@ -86,12 +169,25 @@ std::vector<int> writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Pr
                                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, indices.size()));
     }
   }
-  std::vector<float> xyz;
-  for (const Vec3& p : mesh.positions) putVec3(xyz, p);
-  primitive.attributes["POSITION"] = b.floats(xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-  xyz.clear();
-  for (const Vec3& n : mesh.normals) putVec3(xyz, n);
-  primitive.attributes["NORMAL"] = b.floats(xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  if (q.grid) {
+    std::vector<Vec3> grid(count);
+    for (std::size_t i = 0; i < count; ++i) grid[i] = q.grid->toGrid(mesh.positions[i]);
+    bool sparse = false;
+    q.positions = {allVertices(count), mesh.positions, {}};
+    primitive.attributes["POSITION"] = appendVec3Accessor(b.model, Vec3Encoding::kShort, count, q.positions.vertices,
+                                                          grid, true, sparse, &q.positions.written);
+    for (Vec3& p : q.positions.written) p = q.grid->origin + q.grid->step * p;
+    q.normals = {allVertices(count), mesh.normals, {}};
+    primitive.attributes["NORMAL"] = appendVec3Accessor(b.model, Vec3Encoding::kByteNormalized, count, q.normals.vertices,
+                                                        mesh.normals, false, sparse, &q.normals.written);
+  } else {
+    std::vector<float> xyz;
+    for (const Vec3& p : mesh.positions) putVec3(xyz, p);
+    primitive.attributes["POSITION"] = b.floats(xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    xyz.clear();
+    for (const Vec3& n : mesh.normals) putVec3(xyz, n);
+    primitive.attributes["NORMAL"] = b.floats(xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  }
   if (!mesh.uvs.empty()) primitive.attributes["TEXCOORD_0"] = gltf::appendTexcoordAccessor(b.model, mesh.uvs);
   std::vector<float> weights;
   for (const auto& w : mesh.weights) weights.insert(weights.end(), w.begin(), w.end());
@@ -114,69 +210,47 @@ std::vector<int> writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Pr
   return index_accessors;
 }
 
-// One morph target's deltas over the output vertices (`indices` increasing, 3 floats each in
-// `values`): dense, or sparse (zeros plus the listed vertices, no bufferView) when that is smaller.
-// POSITION deltas need min/max; a target that moves nothing still needs one sparse entry.
-int deltaAccessor(ModelBuilder& b, std::size_t count, std::vector<std::uint32_t> indices, std::vector<float> values,
-                  bool bounds, bool& sparse) {
-  if (indices.empty()) {
-    indices.push_back(0);
-    values.assign(3, 0.0f);
-  }
-  const std::size_t index_bytes = count <= 65536 ? 2 : 4;
-  sparse = indices.size() * (index_bytes + 12) < count * 12;
-  if (!sparse) {
-    std::vector<float> dense(count * 3, 0.0f);
-    for (std::size_t k = 0; k < indices.size(); ++k) std::memcpy(&dense[3 * std::size_t{indices[k]}], &values[3 * k], 3 * sizeof(float));
-    return b.floats(dense, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, bounds);
-  }
-  tinygltf::Accessor a;
-  a.bufferView = -1;
-  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  a.type = TINYGLTF_TYPE_VEC3;
-  a.count = count;
-  a.sparse.isSparse = true;
-  a.sparse.count = static_cast<int>(indices.size());
-  if (index_bytes == 2) {
-    a.sparse.indices.bufferView = b.view(std::vector<std::uint16_t>(indices.begin(), indices.end()), 0);
-    a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-  } else {
-    a.sparse.indices.bufferView = b.view(indices, 0);
-    a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  }
-  a.sparse.indices.byteOffset = 0;
-  a.sparse.values.bufferView = b.view(values, 0);
-  a.sparse.values.byteOffset = 0;
-  if (bounds) gltf::setBounds(a, values, 3, indices.size() < count);  // min/max after substitution
-  b.model.accessors.push_back(a);
-  return static_cast<int>(b.model.accessors.size() - 1);
-}
-
 // A target's POSITION deltas: its field (topology vertices) gathered to the output vertices.
 Result<int> positionAccessor(ModelBuilder& b, const ExportMesh& mesh, const SparseField& field, double factor,
-                             const std::string& name, std::vector<std::int32_t>& slot_of_vertex, bool& sparse) {
+                             const std::string& name, std::vector<std::int32_t>& slot_of_vertex, bool& sparse,
+                             Quantization& q) {
   for (std::size_t k = 0; k < field.vertices.size(); ++k) slot_of_vertex[field.vertices[k]] = static_cast<std::int32_t>(k);
   std::vector<std::uint32_t> indices;
-  std::vector<float> values;
+  std::vector<Vec3> values;
   for (std::size_t i = 0; i < mesh.source_vertex.size(); ++i) {
     const std::int32_t slot = slot_of_vertex[mesh.source_vertex[i]];
     if (slot < 0) continue;
     indices.push_back(static_cast<std::uint32_t>(i));
-    putVec3(values, factor * field.values[static_cast<std::size_t>(slot)]);
+    values.push_back(factor * field.values[static_cast<std::size_t>(slot)]);
   }
   for (std::uint32_t v : field.vertices) slot_of_vertex[v] = -1;
   if (!allFinite(values)) return invalidArgument("export: morph target " + name + " has a non-finite displacement");
-  return deltaAccessor(b, mesh.source_vertex.size(), std::move(indices), std::move(values), true, sparse);
+  if (!q.grid) return appendVec3Accessor(b.model, Vec3Encoding::kFloat, mesh.positions.size(), std::move(indices), std::move(values), true, sparse);
+  const double step = q.grid->step;
+  std::vector<Vec3> steps(values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) steps[k] = values[k] / step;
+  const Vec3Encoding encoding = fitsEncoding(Vec3Encoding::kShort, steps) ? Vec3Encoding::kShort : Vec3Encoding::kFloat;
+  q.float_targets += encoding == Vec3Encoding::kFloat ? 1 : 0;
+  WrittenField& field_written = q.position_targets.emplace_back(WrittenField{indices, std::move(values), {}});
+  const int accessor =
+      appendVec3Accessor(b.model, encoding, mesh.positions.size(), std::move(indices), steps, true, sparse, &field_written.written);
+  for (Vec3& d : field_written.written) d *= step;
+  return accessor;
 }
 
 // A target's NORMAL deltas, already indexed by output vertex.
 Result<int> normalAccessor(ModelBuilder& b, const ExportMesh& mesh, const SparseField& delta, double factor,
-                           const std::string& name) {
-  std::vector<float> values;
-  for (const Vec3& d : delta.values) putVec3(values, factor * d);
+                           const std::string& name, Quantization& q) {
+  std::vector<Vec3> values;
+  for (const Vec3& d : delta.values) values.push_back(factor * d);
   if (!allFinite(values)) return invalidArgument("export: morph target " + name + " has a non-finite normal delta");
   bool sparse = false;
-  return deltaAccessor(b, mesh.positions.size(), delta.vertices, std::move(values), false, sparse);
+  if (!q.grid) return appendVec3Accessor(b.model, Vec3Encoding::kFloat, mesh.positions.size(), delta.vertices, std::move(values), false, sparse);
+  const Vec3Encoding encoding =
+      fitsEncoding(Vec3Encoding::kShortNormalized, values) ? Vec3Encoding::kShortNormalized : Vec3Encoding::kFloat;
+  WrittenField& written = q.normal_targets.emplace_back(WrittenField{delta.vertices, values, {}});
+  return appendVec3Accessor(b.model, encoding, mesh.positions.size(), delta.vertices, std::move(values), false, sparse,
+                            &written.written);
 }
 
 int sampler(tinygltf::Animation& animation, int input, int output, KeyInterpolation interpolation) {
@@ -221,7 +295,9 @@ Status writeWeightsAnimation(ModelBuilder& b, const GlbContents& in, tinygltf::A
   return okStatus();
 }
 
-Status writeSkeletonAnimation(ModelBuilder& b, const GlbContents& in, int first_joint, tinygltf::Animation& animation) {
+// `unit`: grid steps per mesh unit (1 unless quantized), for the joints' translations.
+Status writeSkeletonAnimation(ModelBuilder& b, const GlbContents& in, int first_joint, double unit,
+                              tinygltf::Animation& animation) {
   const SkeletonKeys& s = *in.skeleton;
   const std::size_t bones = in.asset->bone_count;
   const double per_second = 1.0 / in.asset->segment_seconds;
@@ -232,13 +308,13 @@ Status writeSkeletonAnimation(ModelBuilder& b, const GlbContents& in, int first_
     for (std::size_t k = 0; k < s.times.size(); ++k) {
       const std::size_t at = k * bones + bone;
       if (!cubic) {
-        putVec3(translation, s.translations[at]);
+        putVec3(translation, unit * s.translations[at]);
         putQuat(rotation, s.rotations[at]);
         continue;
       }
-      putVec3(translation, s.translation_in[at] * per_second);
-      putVec3(translation, s.translations[at]);
-      putVec3(translation, s.translation_out[at] * per_second);
+      putVec3(translation, unit * s.translation_in[at] * per_second);
+      putVec3(translation, unit * s.translations[at]);
+      putVec3(translation, unit * s.translation_out[at] * per_second);
       putQuat(rotation, s.rotation_in[at] * per_second);
       putQuat(rotation, s.rotations[at]);
       putQuat(rotation, s.rotation_out[at] * per_second);
@@ -274,7 +350,9 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
 
   tinygltf::Primitive primitive;  // what every primitive shares: attributes and targets
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  const std::vector<int> index_accessors = writeMesh(b, mesh, primitive, bones);
+  Quantization quantization;
+  if (contents.quantize) quantization.grid = positionGrid(mesh.positions);
+  const std::vector<int> index_accessors = writeMesh(b, mesh, primitive, bones, quantization);
   tinygltf::Value::Array names;
   std::vector<std::int32_t> slot_of_vertex(asset.vertexCount(), -1);
   for (const SplitTarget& t : contents.weights->targets) {
@@ -282,12 +360,12 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
     const std::string name = source.name + (t.sign > 0 ? "+" : "-");
     bool sparse = false;
     ODESKIN_ASSIGN_OR_RETURN(const int position,
-                             positionAccessor(b, mesh, source.field, t.sign * t.scale, name, slot_of_vertex, sparse));
+                             positionAccessor(b, mesh, source.field, t.sign * t.scale, name, slot_of_vertex, sparse, quantization));
     std::map<std::string, int>& target = primitive.targets.emplace_back();
     target["POSITION"] = position;
     if (contents.normals != nullptr) {
       ODESKIN_ASSIGN_OR_RETURN(target["NORMAL"],
-                               normalAccessor(b, mesh, contents.normals->deltas[t.source], t.sign * t.scale, name));
+                               normalAccessor(b, mesh, contents.normals->deltas[t.source], t.sign * t.scale, name, quantization));
     }
     names.emplace_back(name);
     summary.sparse_targets += sparse ? 1 : 0;
@@ -321,8 +399,15 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
   mesh_node.mesh = 0;
   mesh_node.skin = 0;
   b.model.nodes.push_back(mesh_node);
+  // Quantized, the skeleton root scales grid steps to mesh units, and everything below it is in
+  // grid steps: Blender 3.4's importer drops a scale in the inverse bind matrices (where gltfpack
+  // puts it), but keeps a node's. Then S_b = scale(step) G'_b IBM'_b with G'_b = G_b in grid steps
+  // and IBM'_b = translate((origin - pivot_b) / step), which maps q to G_b (origin + step q - pivot_b).
   tinygltf::Node skeleton_root;
   skeleton_root.name = "skeleton";
+  const double unit = quantization.grid ? 1.0 / quantization.grid->step : 1.0;
+  const Vec3 origin = quantization.grid ? quantization.grid->origin : Vec3(0.0);
+  if (quantization.grid) skeleton_root.scale.assign(3, quantization.grid->step);
   b.model.nodes.push_back(skeleton_root);
   const SkeletonKeys& keys = *contents.skeleton;
   std::vector<float> inverse_binds;
@@ -331,13 +416,14 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
     node.name = boneName(asset, bone);
     const Vec3& t = keys.translations[bone];  // the pose at t = 0, for viewers that show no animation
     const glm::dquat& q = keys.rotations[bone];
-    node.translation = {t.x, t.y, t.z};
+    node.translation = {unit * t.x, unit * t.y, unit * t.z};
     node.rotation = {q.x, q.y, q.z, q.w};
     b.model.nodes.push_back(node);
-    // J_b^-1 = translation by -pivot, column-major.
-    const Vec3& p = asset.bone_pivots[bone];
-    inverse_binds.insert(inverse_binds.end(), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, static_cast<float>(-p.x),
-                                               static_cast<float>(-p.y), static_cast<float>(-p.z), 1});
+    // J_b^-1 = translation by -pivot (by (origin - pivot) / step when quantized), column-major.
+    const Vec3& pivot = asset.bone_pivots[bone];
+    const Vec3 p = quantization.grid ? unit * (origin - pivot) : -pivot;
+    inverse_binds.insert(inverse_binds.end(), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, static_cast<float>(p.x),
+                                               static_cast<float>(p.y), static_cast<float>(p.z), 1});
   }
   for (std::size_t bone = 0; bone < bones; ++bone) {  // parents may come after their children
     const std::int32_t parent = keys.parents[bone];
@@ -355,7 +441,7 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
   tinygltf::Animation animation;
   animation.name = "odeskin";
   ODESKIN_TRY(writeWeightsAnimation(b, contents, animation));
-  ODESKIN_TRY(writeSkeletonAnimation(b, contents, kFirstJoint, animation));
+  ODESKIN_TRY(writeSkeletonAnimation(b, contents, kFirstJoint, unit, animation));
   b.model.animations.push_back(animation);
 
   tinygltf::Scene scene;
@@ -363,6 +449,12 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
   scene.nodes = {0, 1};
   b.model.scenes.push_back(scene);
   b.model.defaultScene = 0;
+  if (quantization.grid) {
+    b.model.extensionsUsed.push_back("KHR_mesh_quantization");
+    b.model.extensionsRequired.push_back("KHR_mesh_quantization");
+    measureQuantization(quantization, *contents.weights, summary);
+    summary.float_targets = quantization.float_targets;
+  }
   if (contents.materials != nullptr) gltf::addMaterialLibrary(b.model, *contents.materials);
   std::vector<unsigned char>& data = b.model.buffers[0].data;
   data.resize((data.size() + 3) / 4 * 4, 0);

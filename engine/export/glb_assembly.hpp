@@ -2,8 +2,8 @@
 // Puts the compact export together as one glTF 2.0 binary (ECOSYSTEM.md 2): the skinned mesh node
 // at the scene root with identity transform (the spec ignores its transform; the validator warns on
 // any), a skeleton root node holding the joint nodes, the skin with inverse bind matrices J_b^-1,
-// morph targets (float POSITION deltas with min/max, NORMAL deltas when given, sparse where that
-// is smaller, names in mesh.extras.targetNames), and one animation "odeskin": the "weights" channel
+// morph targets (POSITION deltas with min/max, NORMAL deltas when given, sparse where that is
+// smaller, names in mesh.extras.targetNames), and one animation "odeskin": the "weights" channel
 // of the mesh node and translation and rotation channels of every joint, CUBICSPLINE or LINEAR as
 // the keys were placed, times in seconds (t * segment_seconds) and tangents per second.
 #pragma once
@@ -30,12 +30,25 @@ struct GlbContents {
   const TargetNormals* normals = nullptr;  // NORMAL deltas for every target, or none
   const gltf::MaterialLibrary* materials = nullptr;  // to dress the primitives with, or none
   std::string generator = "odeskin export";
+  // KHR_mesh_quantization (quantized_attributes.hpp): 16-bit positions and position deltas on a
+  // grid over the base shape's box, 8-bit normals and 16-bit normal deltas. The skeleton root node
+  // then scales grid steps to mesh units, and the joints' translations and inverse bind matrices
+  // are in grid steps (no scale in any inverse bind matrix, which Blender 3.4 would drop).
+  bool quantize = false;
 };
 
 struct GlbSummary {
   std::size_t morph_targets = 0;
   std::size_t sparse_targets = 0;  // written as sparse accessors
   std::size_t buffer_bytes = 0;
+  // Quantized only: the largest position error the rounding makes at any weight key (absolute),
+  // the angles of the morphed normals from the exact ones at the same keys (99th percentile and
+  // largest, where the morphed normal nearly cancels), and the targets whose deltas span
+  // more than 16 bits of grid steps and stay float32.
+  double quantization_error = 0.0;
+  double normal_p99_degrees = 0.0;
+  double normal_max_degrees = 0.0;
+  std::size_t float_targets = 0;
 };
 
 // kInvalidArgument for more than 65536 joints, values that are not finite, key times that are not

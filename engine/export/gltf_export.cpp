@@ -14,6 +14,7 @@
 #include "../offline/residual_fit.hpp"
 #include "baked_export.hpp"
 #include "glb_assembly.hpp"
+#include "quantized_attributes.hpp"
 
 namespace odeskin {
 namespace {
@@ -86,6 +87,10 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   ODESKIN_TRY(gltf::checkFloat32Positions(base, "export"));
 
   report.bake_reason = compactExportProblem(asset);
+  if (o.quantize && (o.bake || !report.bake_reason.empty())) {
+    return invalidArgument("export: quantization is written for the compact form only, and this export is baked" +
+                           (o.bake ? std::string(" (--bake)") : " because " + report.bake_reason));
+  }
   if (o.bake || !report.bake_reason.empty()) {
     report.baked = true;
     ODESKIN_ASSIGN_OR_RETURN(const BakedExport baked,
@@ -124,7 +129,7 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   ODESKIN_ASSIGN_OR_RETURN(const ExportMesh mesh, buildExportMesh(asset, base, key_bones));
   progress("writing", 0.0);
   GlbContents contents{&asset,    &mesh, &targets, &weights, &skeleton, o.target_normals ? &normals : nullptr,
-                       library, o.generator};
+                       library, o.generator, o.quantize};
   ODESKIN_ASSIGN_OR_RETURN(const GlbSummary summary, writeExportGlb(path, contents));
   progress("writing", 1.0);
 
@@ -149,6 +154,14 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   report.max_influences = mesh.max_influences;
   report.pruned_vertices = mesh.pruned_vertices;
   report.prune_error = mesh.max_prune_error / box;
+  report.quantized = o.quantize;
+  if (o.quantize) {
+    report.quantization_error = summary.quantization_error / box;
+    report.quantization_step = positionGrid(mesh.positions).step / box;
+    report.normal_quantization_p99_degrees = summary.normal_p99_degrees;
+    report.normal_quantization_max_degrees = summary.normal_max_degrees;
+    report.float_targets = summary.float_targets;
+  }
   report.bytes = fileSize(path);
   return report;
 }

@@ -38,6 +38,10 @@ struct GltfExportOptions {
   // corrective deformation; without them they shade the skinned base shape. About doubles the
   // targets' bytes.
   bool target_normals = true;
+  // Compact form only: KHR_mesh_quantization (quantized_attributes.hpp), 16-bit positions and
+  // position deltas, 8-bit normals, 16-bit normal deltas; about half the bytes. The rounding's
+  // error is measured into the report, apart from `tolerance`'s budget.
+  bool quantize = false;
   // A glTF file whose materials, textures and images dress the output (gltf_materials.hpp): the
   // file the asset was fitted from, or any file with one material. Empty: no materials.
   std::filesystem::path materials;
@@ -76,6 +80,16 @@ struct GltfExportReport {
   std::uint32_t max_influences = 0;      // in the asset; more than 4 are pruned
   std::uint32_t pruned_vertices = 0;
   double prune_error = 0.0;              // max LBS error of the pruning over the key poses, / box
+  // Quantized only: the largest position error the rounding makes at any weight key, / box; the
+  // grid step, / box; the angles of the morphed normals from the exact ones at the same keys, in
+  // degrees (99th percentile of the (vertex, key) pairs, and largest); the morph
+  // targets whose position deltas span too many grid steps for 16 bits and stay float32.
+  bool quantized = false;
+  double quantization_error = 0.0;
+  double quantization_step = 0.0;
+  double normal_quantization_p99_degrees = 0.0;
+  double normal_quantization_max_degrees = 0.0;
+  std::size_t float_targets = 0;
   // Baked form only:
   std::size_t frames = 0;
 };

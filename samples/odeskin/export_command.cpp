@@ -79,6 +79,14 @@ void printSummary(std::ostream& out, const ExportCommandOptions& o, const Deform
       << scientific(r.skeleton_position_error) << " of the box\n";
   out << "mid-segment deviation from the player: <= " << scientific(r.player_deviation)
       << " of the box (key corrections where the fit stored no remainder)\n";
+  if (r.quantized) {
+    out << "quantized (KHR_mesh_quantization): grid step " << scientific(r.quantization_step)
+        << " of the box; rounding moves positions by at most " << scientific(r.quantization_error)
+        << " of the box at the weight keys; normals: 99% within " << fixedText(r.normal_quantization_p99_degrees, 2)
+        << " degrees of the unrounded ones, at most " << fixedText(r.normal_quantization_max_degrees, 1);
+    if (r.float_targets > 0) out << "; " << r.float_targets << " morph targets span too many grid steps and stay float";
+    out << "\n";
+  }
   printMaterials(out, o, r);
   if (r.pruned_vertices == 0) {
     out << "influences: at most " << r.max_influences << " per vertex, written as they are\n";
@@ -103,6 +111,7 @@ int runExportCommand(const ExportCommandOptions& o, Console& console, GltfExport
   options.target_normals = o.target_normals;
   options.materials = o.materials;
   options.interpolation = *parseKeyInterpolation(o.interpolation);
+  options.quantize = o.quantize;
   const std::string reason = compactExportProblem(asset);
   if (reason.empty() && !o.bake && o.fps && !console.quiet) {
     console.err << "note: --fps applies to bakes only; " << o.asset.string()

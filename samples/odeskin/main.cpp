@@ -108,6 +108,7 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
       "          odeskin export horse.odsk -o horse.glb --tolerance 1e-6\n"
       "          odeskin export horse.odsk -o horse-baked.glb --bake --fps 60\n"
       "          odeskin export horse.odsk -o horse-blender.glb --interpolation linear\n"
+      "          odeskin export horse.odsk -o horse-small.glb --quantize\n"
       "Blender 3.4's importer drops CUBICSPLINE tangents (glTF-Blender-IO#419): export with\n"
       "--interpolation linear for Blender.");
   cmd->add_option("asset", o.asset, "The .odsk asset")->required();
@@ -125,6 +126,9 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
                   "as written by importers that drop tangents)");
   cmd->add_flag("!--no-target-normals", o.target_normals,
                 "Morph targets without NORMAL deltas (about half the bytes; viewers then shade the skinned base shape)");
+  cmd->add_flag("--quantize", o.quantize,
+                "KHR_mesh_quantization: 16-bit positions and position deltas, 8-bit normals, 16-bit normal deltas\n"
+                "(about half the bytes; the summary gives the rounding's error). Not with --bake");
   return cmd;
 }
 

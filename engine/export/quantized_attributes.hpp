@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// KHR_mesh_quantization for the compact export (`odeskin export --quantize`). Positions become
+// 16-bit signed grid coordinates centred on the base shape's box, morph-target POSITION deltas
+// 16-bit integers in the same grid steps, NORMAL 8-bit and NORMAL deltas 16-bit normalized
+// integers. glTF ignores a skinned mesh node's transform, so the skeleton carries the grid
+// (glb_assembly.hpp). Each attribute keeps the values it wrote, decoded, so that the export can
+// measure what quantization cost.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <tiny_gltf.h>
+
+#include "../core/types.hpp"
+
+namespace odeskin {
+
+// The grid of the mesh's local space: position = origin + step * stored.
+struct PositionGrid {
+  Vec3 origin{0.0};
+  double step = 1.0;
+
+  Vec3 toGrid(const Vec3& position) const { return (position - origin) / step; }
+};
+
+// The box centre and longest side / 65534 of `positions`, so that every position is within
+// +-32767 steps of the centre (step 1 for a single point).
+PositionGrid positionGrid(std::span<const Vec3> positions);
+
+// How a VEC3 attribute's components are stored.
+enum class Vec3Encoding {
+  kFloat,            // float32 (12 bytes)
+  kShort,            // int16 integers (8 bytes with padding)
+  kShortNormalized,  // int16 / 32767 (8 bytes with padding)
+  kByteNormalized,   // int8 / 127 (4 bytes with padding)
+};
+
+// The encoding's value of `x` as stored and read back: rounded to its integers (clamped to their
+// range), float32 for kFloat.
+double encodedValue(Vec3Encoding encoding, double x);
+
+// Whether every component of `values` (in the attribute's own units: grid steps, or a normal's
+// [-1, 1]) fits the encoding without clamping.
+bool fitsEncoding(Vec3Encoding encoding, std::span<const Vec3> values);
+
+// A VEC3 accessor over the output's `count` vertices whose listed `indices` (increasing) hold
+// `values` and the rest zero: dense with a 4-byte aligned stride, or sparse (tightly packed values,
+// no bufferView for the zeros) when that takes fewer bytes. `bounds`: min/max, required of
+// POSITION. `sparse` receives which; `decoded` (when given) the stored values read back, per index.
+int appendVec3Accessor(tinygltf::Model& m, Vec3Encoding encoding, std::size_t count, std::vector<std::uint32_t> indices,
+                       std::vector<Vec3> values, bool bounds, bool& sparse, std::vector<Vec3>* decoded = nullptr);
+
+}  // namespace odeskin
