@@ -11,7 +11,7 @@ namespace odeskin {
 Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlayer& player, const std::filesystem::path& path,
                                      double fps, const std::string& generator,
                                      const std::function<void(std::string_view, double)>& progress,
-                                     const gltf::MaterialLibrary* materials) {
+                                     const gltf::MaterialLibrary* materials, bool quantize) {
   const double t_end = static_cast<double>(player.segmentCount());
   const double end_seconds = t_end * asset.segment_seconds;
   std::vector<double> seconds;
@@ -43,9 +43,11 @@ Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlaye
   options.generator = generator;
   options.animation = "odeskin";
   options.materials = materials;
+  options.quantize = quantize;
+  BakedExport out{frames.size(), out_vertices, {}};
   ODESKIN_TRY(writeBakedGlb(path, outputFaces(asset), frames, seconds, options,
-                            {normals, asset.render.uvs, asset.render.primitives}));
-  return BakedExport{frames.size(), out_vertices};
+                            {normals, asset.render.uvs, asset.render.primitives}, &out.quantization));
+  return out;
 }
 
 }  // namespace odeskin

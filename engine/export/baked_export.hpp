@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The baked form of `odeskin export`: the player's frames (double-precision reference) in the
-// asset's output layout, one morph target per frame, LINEAR cross-fades between frames.
+// asset's output layout, one morph target per frame, LINEAR cross-fades between frames; quantized
+// (KHR_mesh_quantization) when asked.
 #pragma once
 
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <string_view>
 
 #include "../core/result.hpp"
+#include "../io/gltf_baked_writer.hpp"
 #include "../io/gltf_materials.hpp"
 #include "../offline/deform_player.hpp"
 
@@ -17,6 +19,7 @@ namespace odeskin {
 struct BakedExport {
   std::size_t frames = 0;
   std::size_t vertices = 0;
+  BakedQuantization quantization;  // zeros unless quantized
 };
 
 // Frames at f / fps seconds up to the end of the asset, plus the end itself when it falls between
@@ -24,6 +27,6 @@ struct BakedExport {
 Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlayer& player, const std::filesystem::path& path,
                                      double fps, const std::string& generator,
                                      const std::function<void(std::string_view, double)>& progress,
-                                     const gltf::MaterialLibrary* materials = nullptr);
+                                     const gltf::MaterialLibrary* materials = nullptr, bool quantize = false);
 
 }  // namespace odeskin

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <numbers>
 #include <optional>
 
 #include <tiny_gltf.h>
@@ -13,7 +12,7 @@
 #include "../core/number_text.hpp"
 #include "../io/gltf_baked_writer.hpp"
 #include "../io/gltf_buffer_builder.hpp"
-#include "quantized_attributes.hpp"
+#include "../io/gltf_quantized.hpp"
 
 namespace odeskin {
 namespace {
@@ -83,14 +82,14 @@ struct WrittenField {
 };
 
 // Where the compact export's numbers go: float32 in mesh space, or KHR_mesh_quantization's
-// integers in grid steps (quantized_attributes.hpp), with what was written, to measure it.
+// integers in grid steps (gltf_quantized.hpp), with what was written, to measure it.
 struct Quantization {
   std::optional<PositionGrid> grid;
   WrittenField positions;  // in mesh space
   WrittenField normals;
   std::vector<WrittenField> position_targets;  // in split-target order
   std::vector<WrittenField> normal_targets;    // the same, when the targets carry normals
-  std::size_t float_targets = 0;
+  std::size_t float_deltas = 0;
 };
 
 std::vector<std::uint32_t> allVertices(std::size_t count) {
@@ -117,11 +116,11 @@ void morphBoth(const WrittenField& base, const std::vector<WrittenField>& target
 
 // What the rounding costs at the base shape and at every weight key (glTF morphs before skinning,
 // and skinning moves an error rigidly, never enlarging it): the largest position error and the
-// angles between the exact and the written normals, in degrees: their 99th percentile and largest.
+// angles between the exact and the written normals.
 void measureQuantization(const Quantization& q, const WeightKeys& weights, GlbSummary& summary) {
   const std::size_t targets = weights.weightCount();
   std::vector<Vec3> exact, written;
-  std::vector<double> angles;  // every (vertex, key) pair's
+  NormalAngles angles;
   for (std::size_t k = 0; k <= weights.times.size(); ++k) {  // k == times: the base alone
     const std::span<const double> w =
         k < weights.times.size() && targets > 0 ? std::span<const double>(weights.values).subspan(k * targets, targets)
@@ -131,19 +130,10 @@ void measureQuantization(const Quantization& q, const WeightKeys& weights, GlbSu
       summary.quantization_error = std::max(summary.quantization_error, glm::length(written[i] - exact[i]));
     }
     morphBoth(q.normals, q.normal_targets, w, exact, written);
-    for (std::size_t i = 0; i < exact.size(); ++i) {
-      const double a = glm::length(exact[i]);
-      const double b = glm::length(written[i]);
-      if (!(a > 0.0 && b > 0.0)) continue;  // a normal that cancels has no direction to keep
-      const double cosine = std::clamp(glm::dot(exact[i], written[i]) / (a * b), -1.0, 1.0);
-      angles.push_back(std::acos(cosine) * 180.0 / std::numbers::pi);
-    }
+    for (std::size_t i = 0; i < exact.size(); ++i) angles.add(exact[i], written[i]);
   }
-  if (angles.empty()) return;
-  const auto p99 = angles.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(angles.size() - 1));
-  std::nth_element(angles.begin(), p99, angles.end());
-  summary.normal_p99_degrees = *p99;
-  summary.normal_max_degrees = *std::max_element(p99, angles.end());
+  summary.normal_p99_degrees = angles.p99();
+  summary.normal_max_degrees = angles.largest();
 }
 
 // The index accessor of every primitive with triangles (-1 for one without), then the vertex
@@ -230,7 +220,7 @@ Result<int> positionAccessor(ModelBuilder& b, const ExportMesh& mesh, const Spar
   std::vector<Vec3> steps(values.size());
   for (std::size_t k = 0; k < values.size(); ++k) steps[k] = values[k] / step;
   const Vec3Encoding encoding = fitsEncoding(Vec3Encoding::kShort, steps) ? Vec3Encoding::kShort : Vec3Encoding::kFloat;
-  q.float_targets += encoding == Vec3Encoding::kFloat ? 1 : 0;
+  q.float_deltas += encoding == Vec3Encoding::kFloat ? 1 : 0;
   WrittenField& field_written = q.position_targets.emplace_back(WrittenField{indices, std::move(values), {}});
   const int accessor =
       appendVec3Accessor(b.model, encoding, mesh.positions.size(), std::move(indices), steps, true, sparse, &field_written.written);
@@ -248,6 +238,7 @@ Result<int> normalAccessor(ModelBuilder& b, const ExportMesh& mesh, const Sparse
   if (!q.grid) return appendVec3Accessor(b.model, Vec3Encoding::kFloat, mesh.positions.size(), delta.vertices, std::move(values), false, sparse);
   const Vec3Encoding encoding =
       fitsEncoding(Vec3Encoding::kShortNormalized, values) ? Vec3Encoding::kShortNormalized : Vec3Encoding::kFloat;
+  q.float_deltas += encoding == Vec3Encoding::kFloat ? 1 : 0;
   WrittenField& written = q.normal_targets.emplace_back(WrittenField{delta.vertices, values, {}});
   return appendVec3Accessor(b.model, encoding, mesh.positions.size(), delta.vertices, std::move(values), false, sparse,
                             &written.written);
@@ -453,7 +444,7 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
     b.model.extensionsUsed.push_back("KHR_mesh_quantization");
     b.model.extensionsRequired.push_back("KHR_mesh_quantization");
     measureQuantization(quantization, *contents.weights, summary);
-    summary.float_targets = quantization.float_targets;
+    summary.float_deltas = quantization.float_deltas;
   }
   if (contents.materials != nullptr) gltf::addMaterialLibrary(b.model, *contents.materials);
   std::vector<unsigned char>& data = b.model.buffers[0].data;

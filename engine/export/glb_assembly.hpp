@@ -30,7 +30,7 @@ struct GlbContents {
   const TargetNormals* normals = nullptr;  // NORMAL deltas for every target, or none
   const gltf::MaterialLibrary* materials = nullptr;  // to dress the primitives with, or none
   std::string generator = "odeskin export";
-  // KHR_mesh_quantization (quantized_attributes.hpp): 16-bit positions and position deltas on a
+  // KHR_mesh_quantization (gltf_quantized.hpp): 16-bit positions and position deltas on a
   // grid over the base shape's box, 8-bit normals and 16-bit normal deltas. The skeleton root node
   // then scales grid steps to mesh units, and the joints' translations and inverse bind matrices
   // are in grid steps (no scale in any inverse bind matrix, which Blender 3.4 would drop).
@@ -43,12 +43,12 @@ struct GlbSummary {
   std::size_t buffer_bytes = 0;
   // Quantized only: the largest position error the rounding makes at any weight key (absolute),
   // the angles of the morphed normals from the exact ones at the same keys (99th percentile and
-  // largest, where the morphed normal nearly cancels), and the targets whose deltas span
-  // more than 16 bits of grid steps and stay float32.
+  // largest, where the morphed normal nearly cancels), and the morph-target POSITION or NORMAL
+  // accessors that stay float32, their deltas beyond 16 bits.
   double quantization_error = 0.0;
   double normal_p99_degrees = 0.0;
   double normal_max_degrees = 0.0;
-  std::size_t float_targets = 0;
+  std::size_t float_deltas = 0;
 };
 
 // kInvalidArgument for more than 65536 joints, values that are not finite, key times that are not

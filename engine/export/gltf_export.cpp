@@ -14,7 +14,7 @@
 #include "../offline/residual_fit.hpp"
 #include "baked_export.hpp"
 #include "glb_assembly.hpp"
-#include "quantized_attributes.hpp"
+#include "../io/gltf_quantized.hpp"
 
 namespace odeskin {
 namespace {
@@ -87,15 +87,20 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   ODESKIN_TRY(gltf::checkFloat32Positions(base, "export"));
 
   report.bake_reason = compactExportProblem(asset);
-  if (o.quantize && (o.bake || !report.bake_reason.empty())) {
-    return invalidArgument("export: quantization is written for the compact form only, and this export is baked" +
-                           (o.bake ? std::string(" (--bake)") : " because " + report.bake_reason));
-  }
   if (o.bake || !report.bake_reason.empty()) {
     report.baked = true;
-    ODESKIN_ASSIGN_OR_RETURN(const BakedExport baked,
-                             writeBakedExport(asset, player, path, o.bake_fps, o.generator, o.progress, library));
+    ODESKIN_ASSIGN_OR_RETURN(const BakedExport baked, writeBakedExport(asset, player, path, o.bake_fps, o.generator,
+                                                                        o.progress, library, o.quantize));
     report.frames = baked.frames;
+    const double box = report.box > 0.0 ? report.box : 1.0;
+    report.quantized = o.quantize;
+    if (o.quantize) {
+      report.quantization_error = baked.quantization.position_error / box;
+      report.quantization_step = baked.quantization.step / box;
+      report.normal_quantization_p99_degrees = baked.quantization.normal_p99_degrees;
+      report.normal_quantization_max_degrees = baked.quantization.normal_max_degrees;
+      report.float_deltas = baked.quantization.float_deltas;
+    }
     report.vertices = baked.vertices;
     report.morph_targets = baked.frames - 1;
     report.bytes = fileSize(path);
@@ -160,7 +165,7 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
     report.quantization_step = positionGrid(mesh.positions).step / box;
     report.normal_quantization_p99_degrees = summary.normal_p99_degrees;
     report.normal_quantization_max_degrees = summary.normal_max_degrees;
-    report.float_targets = summary.float_targets;
+    report.float_deltas = summary.float_deltas;
   }
   report.bytes = fileSize(path);
   return report;

@@ -38,9 +38,9 @@ struct GltfExportOptions {
   // corrective deformation; without them they shade the skinned base shape. About doubles the
   // targets' bytes.
   bool target_normals = true;
-  // Compact form only: KHR_mesh_quantization (quantized_attributes.hpp), 16-bit positions and
-  // position deltas, 8-bit normals, 16-bit normal deltas; about half the bytes. The rounding's
-  // error is measured into the report, apart from `tolerance`'s budget.
+  // KHR_mesh_quantization (gltf_quantized.hpp): 16-bit positions and position deltas, 8-bit
+  // normals, 16-bit normal deltas; about two thirds of the bytes. The rounding's error is measured
+  // into the report, apart from `tolerance`'s budget.
   bool quantize = false;
   // A glTF file whose materials, textures and images dress the output (gltf_materials.hpp): the
   // file the asset was fitted from, or any file with one material. Empty: no materials.
@@ -60,6 +60,16 @@ struct GltfExportReport {
   std::uintmax_t bytes = 0;        // of the written file
   std::size_t materials = 0;       // copied from options.materials (0 without)
   std::size_t images = 0;          // embedded with them
+  // Quantized only: the largest position error the rounding makes at any weight key (baked: any
+  // frame), / box; the grid step, / box; the angles of the morphed normals from the exact ones
+  // there, in degrees (99th percentile of the (vertex, key) pairs, and largest); the morph-target
+  // POSITION or NORMAL accessors that stay float32, their deltas beyond 16 bits.
+  bool quantized = false;
+  double quantization_error = 0.0;
+  double quantization_step = 0.0;
+  double normal_quantization_p99_degrees = 0.0;
+  double normal_quantization_max_degrees = 0.0;
+  std::size_t float_deltas = 0;
   // Compact form only:
   std::size_t sparse_targets = 0;  // written as sparse accessors
   std::size_t merged_fields = 0;   // (material, mode) fields merged into a target with the same curve
@@ -80,16 +90,6 @@ struct GltfExportReport {
   std::uint32_t max_influences = 0;      // in the asset; more than 4 are pruned
   std::uint32_t pruned_vertices = 0;
   double prune_error = 0.0;              // max LBS error of the pruning over the key poses, / box
-  // Quantized only: the largest position error the rounding makes at any weight key, / box; the
-  // grid step, / box; the angles of the morphed normals from the exact ones at the same keys, in
-  // degrees (99th percentile of the (vertex, key) pairs, and largest); the morph
-  // targets whose position deltas span too many grid steps for 16 bits and stay float32.
-  bool quantized = false;
-  double quantization_error = 0.0;
-  double quantization_step = 0.0;
-  double normal_quantization_p99_degrees = 0.0;
-  double normal_quantization_max_degrees = 0.0;
-  std::size_t float_targets = 0;
   // Baked form only:
   std::size_t frames = 0;
 };

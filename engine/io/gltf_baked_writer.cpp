@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "gltf_baked_writer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -11,6 +13,7 @@
 
 #include "../core/render_primitives.hpp"
 #include "gltf_buffer_builder.hpp"
+#include "gltf_quantized.hpp"
 #include "obj_io.hpp"
 
 namespace odeskin {
@@ -64,11 +67,72 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
   return okStatus();
 }
 
+// Every vertex of frame `f` (frame 0 as it is, later frames less frame 0), in grid steps when
+// `step` is not 1.
+std::vector<Vec3> frameValues(std::span<const std::vector<Vec3>> values, std::size_t f, double step) {
+  std::vector<Vec3> out(values[f].size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = (f == 0 ? values[0][i] : values[f][i] - values[0][i]) / step;
+  return out;
+}
+
+std::vector<std::uint32_t> allVertices(std::size_t count) {
+  std::vector<std::uint32_t> out(count);
+  for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<std::uint32_t>(i);
+  return out;
+}
+
+// The quantized frames: frame 0 on the grid (normals 8-bit), one target per later frame (deltas in
+// grid steps, normal deltas 16-bit), and what the rounding cost at each frame into `cost`.
+void writeQuantizedFrames(tinygltf::Model& m, const PositionGrid& grid, const std::vector<std::vector<Vec3>>& frames,
+                          std::span<const std::vector<Vec3>> normals, tinygltf::Primitive& primitive,
+                          BakedQuantization* cost) {
+  const std::size_t count = frames[0].size();
+  const std::vector<std::uint32_t> all = allVertices(count);
+  std::vector<Vec3> base, base_normals, written;
+  bool sparse = false;
+  std::vector<Vec3> grid_frame = frameValues(frames, 0, grid.step);
+  for (Vec3& p : grid_frame) p -= grid.origin / grid.step;
+  primitive.attributes["POSITION"] = appendVec3Accessor(m, Vec3Encoding::kShort, count, all, grid_frame, true, sparse, &base);
+  for (Vec3& p : base) p = grid.origin + grid.step * p;
+  if (!normals.empty()) {
+    primitive.attributes["NORMAL"] =
+        appendVec3Accessor(m, Vec3Encoding::kByteNormalized, count, all, normals[0], false, sparse, &base_normals);
+  }
+  BakedQuantization measured;
+  measured.step = grid.step;
+  NormalAngles angles;
+  for (std::size_t i = 0; i < count; ++i) {
+    measured.position_error = std::max(measured.position_error, glm::length(base[i] - frames[0][i]));
+    if (!normals.empty()) angles.add(normals[0][i], base_normals[i]);
+  }
+  for (std::size_t f = 1; f < frames.size(); ++f) {
+    std::map<std::string, int>& target = primitive.targets.emplace_back();
+    const std::vector<Vec3> steps = frameValues(frames, f, grid.step);
+    const bool fits = fitsEncoding(Vec3Encoding::kShort, steps);
+    measured.float_deltas += fits ? 0 : 1;
+    target["POSITION"] = appendVec3Accessor(m, fits ? Vec3Encoding::kShort : Vec3Encoding::kFloat, count, all, steps,
+                                            true, sparse, &written);
+    for (std::size_t i = 0; i < count; ++i) {
+      measured.position_error = std::max(measured.position_error, glm::length(base[i] + grid.step * written[i] - frames[f][i]));
+    }
+    if (normals.empty()) continue;
+    const std::vector<Vec3> deltas = frameValues(normals, f, 1.0);
+    const Vec3Encoding encoding =
+        fitsEncoding(Vec3Encoding::kShortNormalized, deltas) ? Vec3Encoding::kShortNormalized : Vec3Encoding::kFloat;
+    measured.float_deltas += encoding == Vec3Encoding::kFloat ? 1 : 0;
+    target["NORMAL"] = appendVec3Accessor(m, encoding, count, all, deltas, false, sparse, &written);
+    for (std::size_t i = 0; i < count; ++i) angles.add(normals[f][i], base_normals[i] + written[i]);
+  }
+  measured.normal_p99_degrees = angles.p99();
+  measured.normal_max_degrees = angles.largest();
+  if (cost != nullptr) *cost = measured;
+}
+
 }  // namespace
 
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                     const BakedGlbOptions& options, const BakedVertexData& data) {
+                     const BakedGlbOptions& options, const BakedVertexData& data, BakedQuantization* quantization) {
   if (Status s = checkInput(faces, frames, seconds, data); !s.ok()) return Status(s.code(), path.string() + ": " + s.message());
   const std::span<const std::vector<Vec3>> normals = data.normals;
   tinygltf::Model m = gltf::newModel(options.generator);
@@ -101,10 +165,16 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
     }
     return gltf::appendFloatAccessor(m, xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, bounds);
   };
-  primitive.attributes["POSITION"] = flatten(frames, 0, true);
-  if (!normals.empty()) primitive.attributes["NORMAL"] = flatten(normals, 0, false);
+  std::optional<PositionGrid> grid;
+  if (options.quantize) {
+    grid = positionGrid(frames[0]);
+    writeQuantizedFrames(m, *grid, frames, normals, primitive, quantization);
+  } else {
+    primitive.attributes["POSITION"] = flatten(frames, 0, true);
+    if (!normals.empty()) primitive.attributes["NORMAL"] = flatten(normals, 0, false);
+  }
   if (!data.uvs.empty()) primitive.attributes["TEXCOORD_0"] = gltf::appendTexcoordAccessor(m, data.uvs);
-  for (std::size_t f = 1; f < frames.size(); ++f) {
+  for (std::size_t f = 1; f < frames.size() && !options.quantize; ++f) {
     std::map<std::string, int> target{{"POSITION", flatten(frames, f, true)}};
     if (!normals.empty()) target["NORMAL"] = flatten(normals, f, false);
     primitive.targets.push_back(target);
@@ -119,6 +189,12 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   mesh.weights.assign(frames.size() - 1, 0.0);
   m.meshes.push_back(mesh);
   gltf::addSingleMeshScene(m, "odeskin");
+  if (grid) {  // the mesh node undoes the grid: an unskinned mesh's node transform applies
+    m.nodes[0].translation = {grid->origin.x, grid->origin.y, grid->origin.z};
+    m.nodes[0].scale.assign(3, grid->step);
+    m.extensionsUsed.push_back("KHR_mesh_quantization");
+    m.extensionsRequired.push_back("KHR_mesh_quantization");
+  }
 
   if (frames.size() > 1) {
     // Key f weights target f-1 by 1 (frame 0: none); STEP holds it, LINEAR fades into the next.

@@ -48,6 +48,18 @@ void printMaterials(std::ostream& out, const ExportCommandOptions& o, const Gltf
       << o.materials.string() << "\n";
 }
 
+void printQuantization(std::ostream& out, const GltfExportReport& r) {
+  if (!r.quantized) return;
+  out << "quantized (KHR_mesh_quantization): grid step " << scientific(r.quantization_step)
+      << " of the box; rounding moves positions by at most " << scientific(r.quantization_error) << " of the box at the "
+      << (r.baked ? "frames" : "weight keys") << "; normals: 99% within " << fixedText(r.normal_quantization_p99_degrees, 2)
+      << " degrees of the unrounded ones, at most " << fixedText(r.normal_quantization_max_degrees, 1);
+  if (r.float_deltas > 0) {
+    out << "; " << r.float_deltas << " morph-target attributes stay float32 (deltas beyond 16 bits)";
+  }
+  out << "\n";
+}
+
 void printSummary(std::ostream& out, const ExportCommandOptions& o, const DeformAsset& asset, const GltfExportReport& r,
                   double fps) {
   const std::size_t segments = asset.segments.size();
@@ -55,6 +67,7 @@ void printSummary(std::ostream& out, const ExportCommandOptions& o, const Deform
     out << "baked " << o.asset.filename().string() << " -> " << o.output.string() << " (" << r.bytes << " bytes): "
         << r.frames << " frames at " << numberText(fps) << " fps, " << r.vertices
         << " vertices, one morph target per frame, LINEAR cross-fades\n";
+    printQuantization(out, r);
     printMaterials(out, o, r);
     return;
   }
@@ -79,14 +92,7 @@ void printSummary(std::ostream& out, const ExportCommandOptions& o, const Deform
       << scientific(r.skeleton_position_error) << " of the box\n";
   out << "mid-segment deviation from the player: <= " << scientific(r.player_deviation)
       << " of the box (key corrections where the fit stored no remainder)\n";
-  if (r.quantized) {
-    out << "quantized (KHR_mesh_quantization): grid step " << scientific(r.quantization_step)
-        << " of the box; rounding moves positions by at most " << scientific(r.quantization_error)
-        << " of the box at the weight keys; normals: 99% within " << fixedText(r.normal_quantization_p99_degrees, 2)
-        << " degrees of the unrounded ones, at most " << fixedText(r.normal_quantization_max_degrees, 1);
-    if (r.float_targets > 0) out << "; " << r.float_targets << " morph targets span too many grid steps and stay float";
-    out << "\n";
-  }
+  printQuantization(out, r);
   printMaterials(out, o, r);
   if (r.pruned_vertices == 0) {
     out << "influences: at most " << r.max_influences << " per vertex, written as they are\n";

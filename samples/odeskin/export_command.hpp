@@ -20,7 +20,7 @@ struct ExportCommandOptions {
   double tolerance = 1e-5;             // of the box: error budget of the weight keys and of the skeleton keys
   std::string interpolation = "cubic";  // of the compact form's keys: cubic (CUBICSPLINE) or linear
   bool target_normals = true;          // NORMAL deltas in the compact form's morph targets
-  bool quantize = false;               // KHR_mesh_quantization (compact form only)
+  bool quantize = false;               // KHR_mesh_quantization
   std::filesystem::path materials;     // a glTF whose materials dress the output, or empty
 };
 

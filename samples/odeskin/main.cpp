@@ -128,7 +128,7 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
                 "Morph targets without NORMAL deltas (about half the bytes; viewers then shade the skinned base shape)");
   cmd->add_flag("--quantize", o.quantize,
                 "KHR_mesh_quantization: 16-bit positions and position deltas, 8-bit normals, 16-bit normal deltas\n"
-                "(about half the bytes; the summary gives the rounding's error). Not with --bake");
+                "(about two thirds of the bytes; the summary gives the rounding's error)");
   return cmd;
 }
 

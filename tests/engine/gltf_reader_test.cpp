@@ -1189,7 +1189,7 @@ TEST(GltfReader, QuantizedSkinGivesTheFloatFilesPoses) {
 
 TEST(GltfReader, QuantizedSkinAwayFromItsBindPoseKeepsThePoses) {
   // The root rests 2 to the side of where it was bound: the bind space may move, the poses may not.
-  auto shifted = [](TubeOptions o) {
+  auto shifted = [](const TubeOptions& o) {
     tinygltf::Model m = makeTube(o).model;
     m.nodes[1].translation = {2.0, 0.0, 0.0};
     return m;

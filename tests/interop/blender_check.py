@@ -48,8 +48,9 @@ from blender_support import (CheckFailure, compare, evaluated_positions, failure
                              odeskin, only_mesh, reset_scene, segment_seconds)
 
 # Blender evaluates in float32; the compact export's keys and fit add up to about 5e-5 of the box
-# between keys (odeskin export prints its bounds), and --quantize's rounding adds about 1e-4 more.
-TOLERANCE = {"compact": 1e-4, "quantized": 2e-4, "baked": 1e-5, "pc2": 1e-6, "mdd": 1e-6, "rig": 1e-6, "ply": 1e-6, "surface": 1e-6,
+# between keys (odeskin export prints its bounds), and --quantize's rounding adds about 1e-4 more
+# (2.5e-5 to a bake).
+TOLERANCE = {"compact": 1e-4, "quantized": 2e-4, "baked": 1e-5, "baked_quantized": 5e-5, "pc2": 1e-6, "mdd": 1e-6, "rig": 1e-6, "ply": 1e-6, "surface": 1e-6,
              "roundtrip": 1e-4, "animated": 1e-4}
 
 
@@ -117,14 +118,16 @@ def check_baked(options, out):
     # at the frames themselves both are the frames.
     played, exported = out / "played.glb", out / "exported.glb"
     odeskin(options, "play", options.asset, "--fps", str(options.fps), "-o", str(played))
-    odeskin(options, "export", options.asset, "--bake", "--fps", str(options.fps), "-o", str(exported))
+    quantize = ["--quantize"] if options.check == "baked_quantized" else []
+    odeskin(options, "export", options.asset, "--bake", "--fps", str(options.fps), "-o", str(exported), *quantize)
     frames = frame_references(options, out, "baked")
     for glb in (played, exported):
         reset_scene(options.fps)
         bpy.ops.import_scene.gltf(filepath=str(glb))
         obj = only_mesh()
         for k, reference in enumerate(frames):
-            compare(f"{glb.stem} frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE["baked"])
+            tolerance = TOLERANCE[options.check if glb == exported else "baked"]
+            compare(f"{glb.stem} frame {k}", evaluated_positions(obj, k), obj_positions(reference), tolerance)
 
 
 def check_point_cache(options, out):
@@ -420,7 +423,8 @@ def main():
         sys.exit(1)
     try:
         with tempfile.TemporaryDirectory(dir=out) as scratch:
-            checks = {"compact": check_compact, "quantized": check_compact, "baked": check_baked, "pc2": check_point_cache,
+            checks = {"compact": check_compact, "quantized": check_compact, "baked": check_baked,
+                      "baked_quantized": check_baked, "pc2": check_point_cache,
                       "mdd": check_point_cache, "rig": check_rig, "ply": check_ply, "roundtrip": check_roundtrip,
                       "surface": check_surface, "animated": check_animated}
             checks[options.check](options, Path(scratch))

@@ -519,8 +519,6 @@ TEST_F(BadInputCli, UsageErrorsExitTwoWithOneLine) {
        "x.obj", 2, {"frames"}},
       {"export_interpolation", {"export", in("cyl.odsk"), "--interpolation", "bezier", "-o", "{out}"}, "x.glb", 2,
        {"--interpolation must be cubic or linear, got 'bezier'"}},
-      {"export_quantized_bake", {"export", in("cyl.odsk"), "--quantize", "--bake", "-o", "{out}"}, "x.glb", 1,
-       {"cyl.odsk: ", "quantization is written for the compact form only", "(--bake)"}},
       {"play_pc2_too_big", {"play", in("cyl.odsk"), "--fps", "1000", "--seconds", "999", "-o", "{out}"}, "x.pc2", 2,
        {"x.pc2: 999001 frames of", "over the 4 GiB one point cache holds"}},
       {"missing_option", {"fit", in("good1.obj"), in("good2.obj")}, "x.odsk", 2, {"--output is required"}},

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
-// KHR_mesh_quantization for the compact export (`odeskin export --quantize`). Positions become
-// 16-bit signed grid coordinates centred on the base shape's box, morph-target POSITION deltas
-// 16-bit integers in the same grid steps, NORMAL 8-bit and NORMAL deltas 16-bit normalized
-// integers. glTF ignores a skinned mesh node's transform, so the skeleton carries the grid
-// (glb_assembly.hpp). Each attribute keeps the values it wrote, decoded, so that the export can
-// measure what quantization cost.
+// KHR_mesh_quantization for `odeskin export --quantize` (internal to the glTF writers). Positions
+// become 16-bit signed grid coordinates centred on the base shape's box, morph-target POSITION
+// deltas 16-bit integers in the same grid steps, NORMAL 8-bit and NORMAL deltas 16-bit normalized
+// integers; a delta beyond 16 bits stays float32. The node that holds the mesh carries the grid:
+// the baked mesh node, or for a skinned mesh, whose node's transform glTF ignores, the skeleton
+// root (glb_assembly.hpp). Each attribute keeps the values it wrote, decoded, so that the writers
+// can measure what quantization cost.
 #pragma once
 
 #include <cstdint>
@@ -52,5 +53,17 @@ bool fitsEncoding(Vec3Encoding encoding, std::span<const Vec3> values);
 // POSITION. `sparse` receives which; `decoded` (when given) the stored values read back, per index.
 int appendVec3Accessor(tinygltf::Model& m, Vec3Encoding encoding, std::size_t count, std::vector<std::uint32_t> indices,
                        std::vector<Vec3> values, bool bounds, bool& sparse, std::vector<Vec3>* decoded = nullptr);
+
+// Angles between exact and written normals, in degrees, gathered over vertices and times.
+class NormalAngles {
+ public:
+  // A zero sum has no direction to keep (where the morphed normal cancels): skipped.
+  void add(const Vec3& exact, const Vec3& written);
+  double p99();  // 0 when none was added
+  double largest() const;
+
+ private:
+  std::vector<double> degrees_;
+};
 
 }  // namespace odeskin

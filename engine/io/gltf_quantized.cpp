@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
-#include "quantized_attributes.hpp"
+#include "gltf_quantized.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numbers>
 
-#include "../io/gltf_buffer_builder.hpp"
+#include "gltf_buffer_builder.hpp"
 
 namespace odeskin {
 namespace {
@@ -162,6 +163,25 @@ int appendVec3Accessor(tinygltf::Model& m, Vec3Encoding encoding, std::size_t co
   }
   m.accessors.push_back(a);
   return static_cast<int>(m.accessors.size() - 1);
+}
+
+void NormalAngles::add(const Vec3& exact, const Vec3& written) {
+  const double a = glm::length(exact);
+  const double b = glm::length(written);
+  if (!(a > 0.0 && b > 0.0)) return;
+  const double cosine = std::clamp(glm::dot(exact, written) / (a * b), -1.0, 1.0);
+  degrees_.push_back(std::acos(cosine) * 180.0 / std::numbers::pi);
+}
+
+double NormalAngles::p99() {
+  if (degrees_.empty()) return 0.0;
+  const auto at = degrees_.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(degrees_.size() - 1));
+  std::nth_element(degrees_.begin(), at, degrees_.end());
+  return *at;
+}
+
+double NormalAngles::largest() const {
+  return degrees_.empty() ? 0.0 : *std::max_element(degrees_.begin(), degrees_.end());
 }
 
 }  // namespace odeskin
