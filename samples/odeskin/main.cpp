@@ -418,6 +418,9 @@ int run(int argc, char** argv, std::string& verb) {
                        "(point caches)");
   play_cmd->add_option("--materials", play.materials,
                        "With -o OUT.glb: dress it in the materials and textures of this glTF (the file it was fitted from)");
+  play_cmd->add_flag("--quantize", play.quantize,
+                     "With -o OUT.glb: KHR_mesh_quantization (16-bit positions and deltas, 8-bit normals); the summary\n"
+                     "gives the rounding's error");
   play_cmd->add_option("--png", play.png_dir, "Also draw the frames to DIR/frame_NNNN.png and DIR/strip.png (Vulkan)");
   play_cmd->add_option("--size", play.png_size, "--png picture size WIDTHxHEIGHT");
   play_cmd->add_flag("--curves", play.png_curves, "--png: draw the iso-parametric curves");

@@ -15,6 +15,7 @@
 #include "engine/io/gltf_baked_writer.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/io/point_cache.hpp"
+#include "engine/offline/residual_fit.hpp"
 #include "engine/visual/compose.hpp"
 #include "engine/visual/png_writer.hpp"
 #include "file_extension.hpp"
@@ -51,6 +52,7 @@ std::string usageProblem(const PlayOptions& o) {
     if (Status s = visual::validateViewSpec(view); !s.ok()) return "play: " + s.message();
   }
   if (!o.materials.empty() && lowerExtension(o.output) != ".glb") return "play: --materials needs -o OUT.glb";
+  if (o.quantize && lowerExtension(o.output) != ".glb") return "play: --quantize needs -o OUT.glb";
   if (o.output.empty()) return {};
   const std::string ext = lowerExtension(o.output);
   if (ext == ".gltf") return "play: " + o.output + ": write .glb (one self-contained binary file), .obj, .pc2 or .mdd";
@@ -323,6 +325,8 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   }
   bar.finish();
   if (Status s = playback->checkValidation(); !s.ok()) return reportFailure(console, s);
+  BakedQuantization quantization;
+  double quantization_box = 0.0;
   if (glb && write_meshes) {
     std::vector<double> seconds;
     seconds.reserve(times.size());
@@ -338,10 +342,13 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     }
     BakedGlbOptions options;
     options.materials = materials ? &*materials : nullptr;
+    options.quantize = o.quantize;
     if (Status s = writeBakedGlb(o.output, outputFaces(asset), kept, kept_seconds, options,
-                                 {kept_normals, asset.render.uvs, asset.render.primitives}); !s.ok()) {
+                                 {kept_normals, asset.render.uvs, asset.render.primitives}, &quantization);
+        !s.ok()) {
       return reportFailure(console, s);
     }
+    quantization_box = longestBoxSide(kept.front());
   }
 
   // Sample k is scene frame k (MDD: at k / F seconds): a scene at F frames per second plays it in time.
@@ -381,6 +388,17 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
         } else {
           console.out << files.front().string() << " ... " << files.back().string();
         }
+      }
+      console.out << "\n";
+    }
+    if (o.quantize && glb && write_meshes) {
+      const double box = quantization_box > 0.0 ? quantization_box : 1.0;
+      console.out << "quantized (KHR_mesh_quantization): grid step " << scientific(quantization.step / box)
+                  << " of the box; rounding moves positions by at most " << scientific(quantization.position_error / box)
+                  << " of the box at the frames; normals: 99% within " << fixedText(quantization.normal_p99_degrees, 2)
+                  << " degrees of the unrounded ones, at most " << fixedText(quantization.normal_max_degrees, 1);
+      if (quantization.float_deltas > 0) {
+        console.out << "; " << quantization.float_deltas << " morph-target attributes stay float32 (deltas beyond 16 bits)";
       }
       console.out << "\n";
     }

@@ -43,6 +43,7 @@ struct PlayOptions {
   std::optional<double> seconds;  // sequence length; default: (K-1) x segment_seconds
   std::string output;             // .obj file (--t) or .obj pattern (--fps), .glb, .pc2 or .mdd; may be empty with png_dir
   std::filesystem::path materials;  // .glb only: a glTF whose materials dress it (gltf_materials.hpp)
+  bool quantize = false;            // .glb only: KHR_mesh_quantization (gltf_quantized.hpp)
   PlaybackOptions playback;
   std::filesystem::path png_dir;  // --png DIR: pictures of the frames (Vulkan; lavapipe works)
   std::string png_size = "640x480";

@@ -170,6 +170,21 @@ TEST_F(Cli, PlaySequenceToGlbHoldsEveryFrameAsAMorphTarget) {
   }
   // With NORMALs, so viewers shade it smooth (glTF has them compute flat normals otherwise).
   EXPECT_EQ(read->render.normals.size(), read->render.topology_of_render.size());
+
+  // --quantize: the same frames on a 16-bit grid the mesh node undoes, within the error it prints.
+  o.output = (dir / "arm-q.glb").string();
+  o.quantize = true;
+  Captured quantized_io;
+  ASSERT_EQ(play(o, quantized_io, &baked), kExitOk) << quantized_io.err.str();
+  EXPECT_NE(quantized_io.out.str().find("quantized (KHR_mesh_quantization): grid step 1.53e-05 of the box"),
+            std::string::npos)
+      << quantized_io.out.str();
+  EXPECT_LT(fs::file_size(dir / "arm-q.glb"), fs::file_size(dir / "arm.glb"));
+  read = readGltfExamples(dir / "arm-q.glb", request);
+  ASSERT_TRUE(read.ok()) << read.status().toString();
+  for (std::size_t k = 0; k < frames.files.size(); ++k) {
+    EXPECT_LE(maxDistance(read->poses[k], readPositions(frames.files[k])), 5e-5 * box()) << "quantized frame " << k;
+  }
 }
 
 TEST_F(Cli, PlaySequenceToPc2HoldsEveryFrame) {
@@ -265,6 +280,9 @@ TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   PlayOptions dressed = atTime(0.5, dir / "x.obj");
   dressed.materials = dir / "look.glb";
   cases.push_back({dressed, "--materials needs -o OUT.glb"});
+  PlayOptions quantized = atTime(0.5, dir / "x.obj");
+  quantized.quantize = true;
+  cases.push_back({quantized, "--quantize needs -o OUT.glb"});
   PlayOptions both = atTime(0.5, dir / "x.obj");
   both.fps = 30.0;
   cases.push_back({both, "either --t T"});
