@@ -3,7 +3,7 @@
 // vertex positions at a few times with odeskin's own CPU playback, and saves a screenshot.
 //
 //   node test/viewer-e2e.mjs --odeskin build/samples/odeskin --asset horse.odsk --glb horse.glb \
-//     --out build/web/e2e [--times 0.4,1.7] [--page-screenshot viewer.png]
+//     --out build/web/e2e [--times 0.4,1.7] [--tolerance 1e-4] [--page-screenshot viewer.png]
 //
 // --glb is the file under test, made from --asset by the command web/CMakeLists.txt names. --times
 // are in the asset's key units (`odeskin play --t`); for a baked GLB (`play --fps F`) they must be
@@ -20,7 +20,8 @@ import { longestSide, readObjPositions } from './obj-positions.mjs';
 import { serveStatic } from './static-server.mjs';
 
 const WEB_DIR = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-// float32 positions in the browser against odeskin's doubles.
+// float32 positions in the browser against odeskin's doubles (--tolerance: more for a quantized
+// file, whose rounding `odeskin export` prints).
 const TOLERANCE = 1e-4;
 const VIEWPORT = { width: 960, height: 600 };
 // The machine running the tests has no network: keep Chromium from trying (and waiting).
@@ -57,6 +58,7 @@ function parseOptions() {
       glb: { type: 'string' },
       out: { type: 'string' },
       times: { type: 'string', default: '0.4,1.7' },
+      tolerance: { type: 'string', default: String(TOLERANCE) },
       chromium: { type: 'string', default: '/usr/bin/chromium' },
       'page-screenshot': { type: 'string' },
     },
@@ -66,7 +68,9 @@ function parseOptions() {
   check(existsSync(values.chromium), `${values.chromium}: no such file (install Debian's chromium package)`);
   const times = values.times.split(',').map(Number);
   check(times.length > 0 && times.every((t) => Number.isFinite(t) && t >= 0), `--times ${values.times}: expected t,t,...`);
-  return { ...values, times };
+  const tolerance = Number(values.tolerance);
+  check(Number.isFinite(tolerance) && tolerance > 0, `--tolerance ${values.tolerance}: expected a positive number`);
+  return { ...values, times, tolerance };
 }
 
 // Seconds per key-to-key segment, from `odeskin info` ("key poses: 3 (2 segments, 2 s)").
@@ -160,8 +164,8 @@ async function checkPositions(page, options, secondsPerKey, t) {
   const relative = worst / size;
   log(`t ${t} (${seconds} s): ${reference.length / 3} vertices, largest difference ${worst.toExponential(2)} ` +
       `= ${relative.toExponential(2)} of the box (vertex ${worstVertex})`);
-  check(relative <= TOLERANCE, `t ${t}: vertex ${worstVertex} is ${relative.toExponential(2)} of the box away ` +
-      `from odeskin play (tolerance ${TOLERANCE})`);
+  check(relative <= options.tolerance, `t ${t}: vertex ${worstVertex} is ${relative.toExponential(2)} of the box ` +
+      `away from odeskin play (tolerance ${options.tolerance})`);
   return relative;
 }
 
