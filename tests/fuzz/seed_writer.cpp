@@ -2,8 +2,9 @@
 // Writes generated seed files for the fuzz corpus (scripts/fuzz.sh): formats ../shared/data has no
 // example of. A small procedural arm is fitted into a DeformAsset, then saved as an .odsk asset and
 // exported as glTF: the compact form (skin, skeletal animation, morph targets with CUBICSPLINE
-// weights, sparse accessors), the baked form (morph targets and a weights animation, no skin), and
-// the compact form again as JSON glTF with its buffer in a data: URI.
+// weights, sparse accessors), the baked form (morph targets and a weights animation, no skin), both
+// quantized (KHR_mesh_quantization), and the compact form again as JSON glTF with its buffer in a
+// data: URI.
 //   odeskin_fuzz_seeds <folder>   ->  <folder>/{odsk,gltf}/...
 #include <cstdio>
 #include <filesystem>
@@ -74,6 +75,13 @@ int main(int argc, char** argv) {
   baked.bake_fps = 4.0;
   if (Result<GltfExportReport> r = exportGltf(*asset, folder / "gltf" / "arm-baked.glb", baked); !r.ok()) {
     return fail(r.status().toString());
+  }
+  // KHR_mesh_quantization: the grid in a skin (the reader's shared-scale path) and on an unskinned
+  // mesh node.
+  for (GltfExportOptions* options : {&compact, &baked}) {
+    options->quantize = true;
+    const fs::path quantized = folder / "gltf" / (options->bake ? "arm-baked-quantized.glb" : "arm-quantized.glb");
+    if (Result<GltfExportReport> r = exportGltf(*asset, quantized, *options); !r.ok()) return fail(r.status().toString());
   }
 
   tinygltf::TinyGLTF gltf;
