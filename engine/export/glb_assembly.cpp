@@ -92,12 +92,6 @@ struct Quantization {
   std::size_t float_deltas = 0;
 };
 
-std::vector<std::uint32_t> allVertices(std::size_t count) {
-  std::vector<std::uint32_t> out(count);
-  for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<std::uint32_t>(i);
-  return out;
-}
-
 // base + sum_t w_t target_t, exact and as written, with the weights of one key (none: the base).
 void morphBoth(const WrittenField& base, const std::vector<WrittenField>& targets, std::span<const double> weights,
                std::vector<Vec3>& exact, std::vector<Vec3>& written) {
@@ -163,11 +157,11 @@ std::vector<int> writeMesh(ModelBuilder& b, const ExportMesh& mesh, tinygltf::Pr
     std::vector<Vec3> grid(count);
     for (std::size_t i = 0; i < count; ++i) grid[i] = q.grid->toGrid(mesh.positions[i]);
     bool sparse = false;
-    q.positions = {allVertices(count), mesh.positions, {}};
+    q.positions = {allVertexIndices(count), mesh.positions, {}};
     primitive.attributes["POSITION"] = appendVec3Accessor(b.model, Vec3Encoding::kShort, count, q.positions.vertices,
                                                           grid, true, sparse, &q.positions.written);
     for (Vec3& p : q.positions.written) p = q.grid->origin + q.grid->step * p;
-    q.normals = {allVertices(count), mesh.normals, {}};
+    q.normals = {allVertexIndices(count), mesh.normals, {}};
     primitive.attributes["NORMAL"] = appendVec3Accessor(b.model, Vec3Encoding::kByteNormalized, count, q.normals.vertices,
                                                         mesh.normals, false, sparse, &q.normals.written);
   } else {
@@ -215,7 +209,10 @@ Result<int> positionAccessor(ModelBuilder& b, const ExportMesh& mesh, const Spar
   }
   for (std::uint32_t v : field.vertices) slot_of_vertex[v] = -1;
   if (!allFinite(values)) return invalidArgument("export: morph target " + name + " has a non-finite displacement");
-  if (!q.grid) return appendVec3Accessor(b.model, Vec3Encoding::kFloat, mesh.positions.size(), std::move(indices), std::move(values), true, sparse);
+  const std::size_t count = mesh.positions.size();
+  if (!q.grid) {
+    return appendVec3Accessor(b.model, Vec3Encoding::kFloat, count, std::move(indices), std::move(values), true, sparse);
+  }
   const double step = q.grid->step;
   std::vector<Vec3> steps(values.size());
   for (std::size_t k = 0; k < values.size(); ++k) steps[k] = values[k] / step;
@@ -223,7 +220,7 @@ Result<int> positionAccessor(ModelBuilder& b, const ExportMesh& mesh, const Spar
   q.float_deltas += encoding == Vec3Encoding::kFloat ? 1 : 0;
   WrittenField& field_written = q.position_targets.emplace_back(WrittenField{indices, std::move(values), {}});
   const int accessor =
-      appendVec3Accessor(b.model, encoding, mesh.positions.size(), std::move(indices), steps, true, sparse, &field_written.written);
+      appendVec3Accessor(b.model, encoding, count, std::move(indices), steps, true, sparse, &field_written.written);
   for (Vec3& d : field_written.written) d *= step;
   return accessor;
 }
@@ -235,13 +232,15 @@ Result<int> normalAccessor(ModelBuilder& b, const ExportMesh& mesh, const Sparse
   for (const Vec3& d : delta.values) values.push_back(factor * d);
   if (!allFinite(values)) return invalidArgument("export: morph target " + name + " has a non-finite normal delta");
   bool sparse = false;
-  if (!q.grid) return appendVec3Accessor(b.model, Vec3Encoding::kFloat, mesh.positions.size(), delta.vertices, std::move(values), false, sparse);
+  const std::size_t count = mesh.positions.size();
+  if (!q.grid) {
+    return appendVec3Accessor(b.model, Vec3Encoding::kFloat, count, delta.vertices, std::move(values), false, sparse);
+  }
   const Vec3Encoding encoding =
       fitsEncoding(Vec3Encoding::kShortNormalized, values) ? Vec3Encoding::kShortNormalized : Vec3Encoding::kFloat;
   q.float_deltas += encoding == Vec3Encoding::kFloat ? 1 : 0;
   WrittenField& written = q.normal_targets.emplace_back(WrittenField{delta.vertices, values, {}});
-  return appendVec3Accessor(b.model, encoding, mesh.positions.size(), delta.vertices, std::move(values), false, sparse,
-                            &written.written);
+  return appendVec3Accessor(b.model, encoding, count, delta.vertices, std::move(values), false, sparse, &written.written);
 }
 
 int sampler(tinygltf::Animation& animation, int input, int output, KeyInterpolation interpolation) {
@@ -350,13 +349,13 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
     const ModeTarget& source = contents.targets->targets[t.source];
     const std::string name = source.name + (t.sign > 0 ? "+" : "-");
     bool sparse = false;
-    ODESKIN_ASSIGN_OR_RETURN(const int position,
-                             positionAccessor(b, mesh, source.field, t.sign * t.scale, name, slot_of_vertex, sparse, quantization));
+    ODESKIN_ASSIGN_OR_RETURN(const int position, positionAccessor(b, mesh, source.field, t.sign * t.scale, name,
+                                                                  slot_of_vertex, sparse, quantization));
     std::map<std::string, int>& target = primitive.targets.emplace_back();
     target["POSITION"] = position;
     if (contents.normals != nullptr) {
-      ODESKIN_ASSIGN_OR_RETURN(target["NORMAL"],
-                               normalAccessor(b, mesh, contents.normals->deltas[t.source], t.sign * t.scale, name, quantization));
+      ODESKIN_ASSIGN_OR_RETURN(target["NORMAL"], normalAccessor(b, mesh, contents.normals->deltas[t.source],
+                                                                t.sign * t.scale, name, quantization));
     }
     names.emplace_back(name);
     summary.sparse_targets += sparse ? 1 : 0;

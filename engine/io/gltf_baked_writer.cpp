@@ -75,24 +75,19 @@ std::vector<Vec3> frameValues(std::span<const std::vector<Vec3>> values, std::si
   return out;
 }
 
-std::vector<std::uint32_t> allVertices(std::size_t count) {
-  std::vector<std::uint32_t> out(count);
-  for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<std::uint32_t>(i);
-  return out;
-}
-
 // The quantized frames: frame 0 on the grid (normals 8-bit), one target per later frame (deltas in
 // grid steps, normal deltas 16-bit), and what the rounding cost at each frame into `cost`.
 void writeQuantizedFrames(tinygltf::Model& m, const PositionGrid& grid, const std::vector<std::vector<Vec3>>& frames,
                           std::span<const std::vector<Vec3>> normals, tinygltf::Primitive& primitive,
                           BakedQuantization* cost) {
   const std::size_t count = frames[0].size();
-  const std::vector<std::uint32_t> all = allVertices(count);
+  const std::vector<std::uint32_t> all = allVertexIndices(count);
   std::vector<Vec3> base, base_normals, written;
   bool sparse = false;
   std::vector<Vec3> grid_frame = frameValues(frames, 0, grid.step);
   for (Vec3& p : grid_frame) p -= grid.origin / grid.step;
-  primitive.attributes["POSITION"] = appendVec3Accessor(m, Vec3Encoding::kShort, count, all, grid_frame, true, sparse, &base);
+  primitive.attributes["POSITION"] =
+      appendVec3Accessor(m, Vec3Encoding::kShort, count, all, grid_frame, true, sparse, &base);
   for (Vec3& p : base) p = grid.origin + grid.step * p;
   if (!normals.empty()) {
     primitive.attributes["NORMAL"] =
@@ -113,7 +108,8 @@ void writeQuantizedFrames(tinygltf::Model& m, const PositionGrid& grid, const st
     target["POSITION"] = appendVec3Accessor(m, fits ? Vec3Encoding::kShort : Vec3Encoding::kFloat, count, all, steps,
                                             true, sparse, &written);
     for (std::size_t i = 0; i < count; ++i) {
-      measured.position_error = std::max(measured.position_error, glm::length(base[i] + grid.step * written[i] - frames[f][i]));
+      const double error = glm::length(base[i] + grid.step * written[i] - frames[f][i]);
+      measured.position_error = std::max(measured.position_error, error);
     }
     if (normals.empty()) continue;
     const std::vector<Vec3> deltas = frameValues(normals, f, 1.0);

@@ -116,6 +116,12 @@ bool fitsEncoding(Vec3Encoding encoding, std::span<const Vec3> values) {
   });
 }
 
+std::vector<std::uint32_t> allVertexIndices(std::size_t count) {
+  std::vector<std::uint32_t> out(count);
+  for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<std::uint32_t>(i);
+  return out;
+}
+
 int appendVec3Accessor(tinygltf::Model& m, Vec3Encoding encoding, std::size_t count, std::vector<std::uint32_t> indices,
                        std::vector<Vec3> values, bool bounds, bool& sparse, std::vector<Vec3>* decoded) {
   const Layout l = layoutOf(encoding);

@@ -47,6 +47,9 @@ double encodedValue(Vec3Encoding encoding, double x);
 // [-1, 1]) fits the encoding without clamping.
 bool fitsEncoding(Vec3Encoding encoding, std::span<const Vec3> values);
 
+// 0, 1, ..., count - 1: the indices of a dense attribute.
+std::vector<std::uint32_t> allVertexIndices(std::size_t count);
+
 // A VEC3 accessor over the output's `count` vertices whose listed `indices` (increasing) hold
 // `values` and the rest zero: dense with a 4-byte aligned stride, or sparse (tightly packed values,
 // no bufferView for the zeros) when that takes fewer bytes. `bounds`: min/max, required of

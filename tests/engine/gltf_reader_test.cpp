@@ -397,7 +397,9 @@ Tube makeTube(const TubeOptions& o = {}) {
   if (o.fold_into_skin) {  // IBM_j D: the scale multiplies the 3x3, the offset goes through IBM_j
     for (std::size_t j = 0; j < 2; ++j) {
       double* m = &ibm[16 * j];
-      for (int k = 0; k < 3; ++k) m[12 + k] += m[k] * o.position_offset.x + m[4 + k] * o.position_offset.y + m[8 + k] * o.position_offset.z;
+      for (int k = 0; k < 3; ++k) {
+        m[12 + k] += m[k] * o.position_offset.x + m[4 + k] * o.position_offset.y + m[8 + k] * o.position_offset.z;
+      }
       for (int k = 0; k < 12; ++k) m[k] /= o.position_scale;
     }
   }
