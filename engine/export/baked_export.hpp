@@ -19,7 +19,7 @@ namespace odeskin {
 struct BakedExport {
   std::size_t frames = 0;
   std::size_t vertices = 0;
-  BakedQuantization quantization;  // zeros unless quantized
+  QuantizationCost quantization;  // zeros unless quantized
 };
 
 // Frames at f / fps seconds up to the end of the asset, plus the end itself when it falls between

@@ -108,10 +108,11 @@ void morphBoth(const WrittenField& base, const std::vector<WrittenField>& target
   }
 }
 
-// What the rounding costs at the base shape and at every weight key (glTF morphs before skinning,
-// and skinning moves an error rigidly, never enlarging it): the largest position error and the
-// angles between the exact and the written normals.
-void measureQuantization(const Quantization& q, const WeightKeys& weights, GlbSummary& summary) {
+// What the rounding costs at the base shape and at every weight key.
+QuantizationCost measureQuantization(const Quantization& q, const WeightKeys& weights) {
+  QuantizationCost cost;
+  cost.step = q.grid->step;
+  cost.float_deltas = q.float_deltas;
   const std::size_t targets = weights.weightCount();
   std::vector<Vec3> exact, written;
   NormalAngles angles;
@@ -121,13 +122,14 @@ void measureQuantization(const Quantization& q, const WeightKeys& weights, GlbSu
                                                 : std::span<const double>();
     morphBoth(q.positions, q.position_targets, w, exact, written);
     for (std::size_t i = 0; i < exact.size(); ++i) {
-      summary.quantization_error = std::max(summary.quantization_error, glm::length(written[i] - exact[i]));
+      cost.position_error = std::max(cost.position_error, glm::length(written[i] - exact[i]));
     }
     morphBoth(q.normals, q.normal_targets, w, exact, written);
     for (std::size_t i = 0; i < exact.size(); ++i) angles.add(exact[i], written[i]);
   }
-  summary.normal_p99_degrees = angles.p99();
-  summary.normal_max_degrees = angles.largest();
+  cost.normal_p99_degrees = angles.p99();
+  cost.normal_max_degrees = angles.largest();
+  return cost;
 }
 
 // The index accessor of every primitive with triangles (-1 for one without), then the vertex
@@ -442,8 +444,7 @@ Result<GlbSummary> writeExportGlb(const std::filesystem::path& path, const GlbCo
   if (quantization.grid) {
     b.model.extensionsUsed.push_back("KHR_mesh_quantization");
     b.model.extensionsRequired.push_back("KHR_mesh_quantization");
-    measureQuantization(quantization, *contents.weights, summary);
-    summary.float_deltas = quantization.float_deltas;
+    summary.quantization = measureQuantization(quantization, *contents.weights);
   }
   if (contents.materials != nullptr) gltf::addMaterialLibrary(b.model, *contents.materials);
   std::vector<unsigned char>& data = b.model.buffers[0].data;

@@ -13,6 +13,7 @@
 
 #include "../core/status.hpp"
 #include "../io/gltf_materials.hpp"
+#include "../io/gltf_quantized.hpp"
 #include "export_mesh.hpp"
 #include "mode_targets.hpp"
 #include "skeleton_keys.hpp"
@@ -41,14 +42,7 @@ struct GlbSummary {
   std::size_t morph_targets = 0;
   std::size_t sparse_targets = 0;  // written as sparse accessors
   std::size_t buffer_bytes = 0;
-  // Quantized only: the largest position error the rounding makes at any weight key (absolute),
-  // the angles of the morphed normals from the exact ones at the same keys (99th percentile and
-  // largest, where the morphed normal nearly cancels), and the morph-target POSITION or NORMAL
-  // accessors that stay float32, their deltas beyond 16 bits.
-  double quantization_error = 0.0;
-  double normal_p99_degrees = 0.0;
-  double normal_max_degrees = 0.0;
-  std::size_t float_deltas = 0;
+  QuantizationCost quantization;  // at the weight keys; zeros unless quantized
 };
 
 // kInvalidArgument for more than 65536 joints, values that are not finite, key times that are not

@@ -14,7 +14,6 @@
 #include "../offline/residual_fit.hpp"
 #include "baked_export.hpp"
 #include "glb_assembly.hpp"
-#include "../io/gltf_quantized.hpp"
 
 namespace odeskin {
 namespace {
@@ -36,6 +35,17 @@ std::vector<std::vector<BoneTransform>> keyBones(const DeformAsset& asset) {
     for (const RigidTransform& bone : key) bones.push_back(bone.matrix());
   }
   return out;
+}
+
+// The report's quantization figures: the writer's, lengths as fractions of the box.
+void reportQuantization(const QuantizationCost& cost, GltfExportReport& report) {
+  const double box = report.box > 0.0 ? report.box : 1.0;
+  report.quantized = true;
+  report.quantization_error = cost.position_error / box;
+  report.quantization_step = cost.step / box;
+  report.normal_quantization_p99_degrees = cost.normal_p99_degrees;
+  report.normal_quantization_max_degrees = cost.normal_max_degrees;
+  report.float_deltas = cost.float_deltas;
 }
 
 std::uintmax_t fileSize(const std::filesystem::path& path) {
@@ -92,15 +102,7 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
     ODESKIN_ASSIGN_OR_RETURN(const BakedExport baked, writeBakedExport(asset, player, path, o.bake_fps, o.generator,
                                                                         o.progress, library, o.quantize));
     report.frames = baked.frames;
-    const double box = report.box > 0.0 ? report.box : 1.0;
-    report.quantized = o.quantize;
-    if (o.quantize) {
-      report.quantization_error = baked.quantization.position_error / box;
-      report.quantization_step = baked.quantization.step / box;
-      report.normal_quantization_p99_degrees = baked.quantization.normal_p99_degrees;
-      report.normal_quantization_max_degrees = baked.quantization.normal_max_degrees;
-      report.float_deltas = baked.quantization.float_deltas;
-    }
+    if (o.quantize) reportQuantization(baked.quantization, report);
     report.vertices = baked.vertices;
     report.morph_targets = baked.frames - 1;
     report.bytes = fileSize(path);
@@ -159,14 +161,7 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
   report.max_influences = mesh.max_influences;
   report.pruned_vertices = mesh.pruned_vertices;
   report.prune_error = mesh.max_prune_error / box;
-  report.quantized = o.quantize;
-  if (o.quantize) {
-    report.quantization_error = summary.quantization_error / box;
-    report.quantization_step = positionGrid(mesh.positions).step / box;
-    report.normal_quantization_p99_degrees = summary.normal_p99_degrees;
-    report.normal_quantization_max_degrees = summary.normal_max_degrees;
-    report.float_deltas = summary.float_deltas;
-  }
+  if (o.quantize) reportQuantization(summary.quantization, report);
   report.bytes = fileSize(path);
   return report;
 }

@@ -60,10 +60,8 @@ struct GltfExportReport {
   std::uintmax_t bytes = 0;        // of the written file
   std::size_t materials = 0;       // copied from options.materials (0 without)
   std::size_t images = 0;          // embedded with them
-  // Quantized only: the largest position error the rounding makes at any weight key (baked: any
-  // frame), / box; the grid step, / box; the angles of the morphed normals from the exact ones
-  // there, in degrees (99th percentile of the (vertex, key) pairs, and largest); the morph-target
-  // POSITION or NORMAL accessors that stay float32, their deltas beyond 16 bits.
+  // Quantized only: the writer's QuantizationCost (gltf_quantized.hpp; at the weight keys, or a
+  // bake's frames), its lengths as fractions of the box.
   bool quantized = false;
   double quantization_error = 0.0;
   double quantization_step = 0.0;

@@ -79,7 +79,7 @@ std::vector<Vec3> frameValues(std::span<const std::vector<Vec3>> values, std::si
 // grid steps, normal deltas 16-bit), and what the rounding cost at each frame into `cost`.
 void writeQuantizedFrames(tinygltf::Model& m, const PositionGrid& grid, const std::vector<std::vector<Vec3>>& frames,
                           std::span<const std::vector<Vec3>> normals, tinygltf::Primitive& primitive,
-                          BakedQuantization* cost) {
+                          QuantizationCost* cost) {
   const std::size_t count = frames[0].size();
   const std::vector<std::uint32_t> all = allVertexIndices(count);
   std::vector<Vec3> base, base_normals, written;
@@ -93,7 +93,7 @@ void writeQuantizedFrames(tinygltf::Model& m, const PositionGrid& grid, const st
     primitive.attributes["NORMAL"] =
         appendVec3Accessor(m, Vec3Encoding::kByteNormalized, count, all, normals[0], false, sparse, &base_normals);
   }
-  BakedQuantization measured;
+  QuantizationCost measured;
   measured.step = grid.step;
   NormalAngles angles;
   for (std::size_t i = 0; i < count; ++i) {
@@ -128,7 +128,7 @@ void writeQuantizedFrames(tinygltf::Model& m, const PositionGrid& grid, const st
 
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
-                     const BakedGlbOptions& options, const BakedVertexData& data, BakedQuantization* quantization) {
+                     const BakedGlbOptions& options, const BakedVertexData& data, QuantizationCost* quantization) {
   if (Status s = checkInput(faces, frames, seconds, data); !s.ok()) return Status(s.code(), path.string() + ": " + s.message());
   const std::span<const std::vector<Vec3>> normals = data.normals;
   tinygltf::Model m = gltf::newModel(options.generator);

@@ -15,6 +15,7 @@
 #include "../core/status.hpp"
 #include "../core/types.hpp"
 #include "gltf_materials.hpp"
+#include "gltf_quantized.hpp"
 
 namespace tinygltf {
 class Model;
@@ -33,19 +34,6 @@ struct BakedGlbOptions {
   bool quantize = false;
 };
 
-// What quantization cost (zeros without it): at each frame, where its one target has weight 1,
-// the largest position error (absolute) and the angles of the normals from the exact ones, in
-// degrees (99th percentile of the (vertex, frame) pairs, and largest); LINEAR cross-fades stay
-// within them. Also the grid step and the morph-target POSITION or NORMAL accessors that stay
-// float32 because their deltas need more than 16 bits (grid steps, or a normal's [-1, 1]).
-struct BakedQuantization {
-  double step = 0.0;
-  double position_error = 0.0;
-  double normal_p99_degrees = 0.0;
-  double normal_max_degrees = 0.0;
-  std::size_t float_deltas = 0;
-};
-
 // What a baked file may carry besides the positions.
 struct BakedVertexData {
   // Empty, or one unit normal per vertex of every frame, written as the mesh's NORMAL and each
@@ -61,11 +49,12 @@ struct BakedVertexData {
 // Polygons are triangulated as fans. Written through a temporary file and rename. Errors:
 // kInvalidArgument naming the path (sizes, indices, non-finite values, positions beyond glTF's
 // float32 range: gltf::checkFloat32Positions, times not increasing), kIoError naming the path.
-// `quantization`, when given, receives what options.quantize cost.
+// `quantization`, when given, receives what options.quantize cost, measured at every frame (where
+// its one target has weight 1; the LINEAR cross-fades stay within the frames' errors).
 Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
                      const std::vector<std::vector<Vec3>>& frames, std::span<const double> seconds,
                      const BakedGlbOptions& options = {}, const BakedVertexData& data = {},
-                     BakedQuantization* quantization = nullptr);
+                     QuantizationCost* quantization = nullptr);
 
 // kInvalidArgument "baking F frames of V vertices needs 2 GiB or more" when a baked GLB of `frames`
 // x `vertices` (a float32 position and normal each) would reach 2 GiB: tinygltf reads no larger

@@ -57,6 +57,21 @@ std::vector<std::uint32_t> allVertexIndices(std::size_t count);
 int appendVec3Accessor(tinygltf::Model& m, Vec3Encoding encoding, std::size_t count, std::vector<std::uint32_t> indices,
                        std::vector<Vec3> values, bool bounds, bool& sparse, std::vector<Vec3>* decoded = nullptr);
 
+// What quantization cost a writer, in mesh units (zeros without it): the grid step, the largest
+// position error the rounding makes where the file is exact (the compact export's weight keys, a
+// bake's frames; glTF morphs before skinning, which moves an error rigidly, never enlarging it),
+// the angles of the morphed normals from the exact ones there in degrees (99th percentile of the
+// (vertex, key) pairs, and largest, found where the morphed normal nearly cancels), and the
+// morph-target POSITION or NORMAL accessors that stay float32 because their deltas need more
+// than 16 bits (grid steps, or a normal's [-1, 1]).
+struct QuantizationCost {
+  double step = 0.0;
+  double position_error = 0.0;
+  double normal_p99_degrees = 0.0;
+  double normal_max_degrees = 0.0;
+  std::size_t float_deltas = 0;
+};
+
 // Angles between exact and written normals, in degrees, gathered over vertices and times.
 class NormalAngles {
  public:

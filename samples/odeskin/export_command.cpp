@@ -12,6 +12,7 @@
 #include "file_extension.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
+#include "quantization_summary.hpp"
 
 namespace odeskin {
 namespace {
@@ -50,14 +51,9 @@ void printMaterials(std::ostream& out, const ExportCommandOptions& o, const Gltf
 
 void printQuantization(std::ostream& out, const GltfExportReport& r) {
   if (!r.quantized) return;
-  out << "quantized (KHR_mesh_quantization): grid step " << scientific(r.quantization_step)
-      << " of the box; rounding moves positions by at most " << scientific(r.quantization_error) << " of the box at the "
-      << (r.baked ? "frames" : "weight keys") << "; normals: 99% within " << fixedText(r.normal_quantization_p99_degrees, 2)
-      << " degrees of the unrounded ones, at most " << fixedText(r.normal_quantization_max_degrees, 1);
-  if (r.float_deltas > 0) {
-    out << "; " << r.float_deltas << " morph-target attributes stay float32 (deltas beyond 16 bits)";
-  }
-  out << "\n";
+  const QuantizationCost relative{r.quantization_step, r.quantization_error, r.normal_quantization_p99_degrees,
+                                  r.normal_quantization_max_degrees, r.float_deltas};
+  printQuantization(out, relative, 1.0, r.baked ? "frames" : "weight keys");
 }
 
 void printSummary(std::ostream& out, const ExportCommandOptions& o, const DeformAsset& asset, const GltfExportReport& r,

@@ -20,6 +20,7 @@
 #include "engine/visual/png_writer.hpp"
 #include "file_extension.hpp"
 #include "progress.hpp"
+#include "quantization_summary.hpp"
 #include "render_session.hpp"
 
 namespace odeskin {
@@ -325,7 +326,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   }
   bar.finish();
   if (Status s = playback->checkValidation(); !s.ok()) return reportFailure(console, s);
-  BakedQuantization quantization;
+  QuantizationCost quantization;
   double quantization_box = 0.0;
   if (glb && write_meshes) {
     std::vector<double> seconds;
@@ -392,15 +393,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       console.out << "\n";
     }
     if (o.quantize && glb && write_meshes) {
-      const double box = quantization_box > 0.0 ? quantization_box : 1.0;
-      console.out << "quantized (KHR_mesh_quantization): grid step " << scientific(quantization.step / box)
-                  << " of the box; rounding moves positions by at most " << scientific(quantization.position_error / box)
-                  << " of the box at the frames; normals: 99% within " << fixedText(quantization.normal_p99_degrees, 2)
-                  << " degrees of the unrounded ones, at most " << fixedText(quantization.normal_max_degrees, 1);
-      if (quantization.float_deltas > 0) {
-        console.out << "; " << quantization.float_deltas << " morph-target attributes stay float32 (deltas beyond 16 bits)";
-      }
-      console.out << "\n";
+      printQuantization(console.out, quantization, quantization_box > 0.0 ? quantization_box : 1.0, "frames");
     }
     console.out << "device: " << playback->device() << ", " << timing << " per frame (deformation only)\n";
     if (!pictures.empty()) {
