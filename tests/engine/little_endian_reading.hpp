@@ -1,23 +1,14 @@
 // SPDX-License-Identifier: MIT
-// Reading back the binary files odeskin writes for other tools (PC2, PLY): the whole file, and
-// little-endian values at byte offsets, decoded by hand so the tests do not trust the writers'
-// own helpers.
+// Reading back the binary files odeskin writes for other tools (PC2, PLY): little-endian values at
+// byte offsets, decoded by hand so the tests do not trust the writers' own helpers.
 #pragma once
 
 #include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 namespace odeskin::testing {
-
-inline std::string fileBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 inline std::uint32_t u32At(const std::string& bytes, std::size_t at) {
   std::uint32_t v = 0;

@@ -19,7 +19,6 @@ class PlyWriter : public testing::TempDirTest {
  protected:
   PlyWriter() : TempDirTest("odeskin_ply_writer_test_") {}
 
-  std::string bytes(const std::string& name) const { return testing::fileBytes(dir_ / name); }
 };
 
 using testing::f32At;
@@ -38,7 +37,7 @@ TEST_F(PlyWriter, WritesColoursQualityAndFaces) {
   const std::vector<std::array<std::uint8_t, 3>> colours{{1, 2, 3}, {4, 5, 6}, {7, 8, 9}, {10, 11, 12}, {255, 0, 128}};
   const std::vector<float> quality{0.0F, 0.25F, 0.5F, 0.75F, 1.0F};
   ASSERT_TRUE(writePly(dir_ / "m.ply", kPositions, quadAndTriangle(), {colours, quality}, "made by a test").ok());
-  const std::string b = bytes("m.ply");
+  const std::string b = read("m.ply");
   const std::string header =
       "ply\nformat binary_little_endian 1.0\ncomment made by a test\nelement vertex 5\nproperty float x\n"
       "property float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
@@ -62,7 +61,7 @@ TEST_F(PlyWriter, WritesColoursQualityAndFaces) {
 
 TEST_F(PlyWriter, PositionsOnly) {
   ASSERT_TRUE(writePly(dir_ / "m.ply", kPositions, quadAndTriangle()).ok());
-  const std::string b = bytes("m.ply");
+  const std::string b = read("m.ply");
   EXPECT_EQ(b.find("red"), std::string::npos);
   EXPECT_EQ(b.find("quality"), std::string::npos);
   EXPECT_EQ(b.find("comment"), std::string::npos);

@@ -22,7 +22,6 @@ class PointCache : public testing::TempDirTest {
  protected:
   PointCache() : TempDirTest("odeskin_point_cache_test_") {}
 
-  std::string bytes(const std::string& name) const { return testing::fileBytes(dir_ / name); }
 };
 
 using testing::f32At;
@@ -37,7 +36,7 @@ TEST_F(PointCache, WritesTheLayoutOtherToolsRead) {
   EXPECT_EQ(cache.samples(), 2u);
   ASSERT_TRUE(cache.write(dir_ / "out.pc2", PointCacheTiming{30.0, 1.0}).ok());
 
-  const std::string b = bytes("out.pc2");
+  const std::string b = read("out.pc2");
   ASSERT_EQ(b.size(), kPc2HeaderBytes + std::size_t{2} * 2 * 12);
   EXPECT_EQ(std::memcmp(b.data(), "POINTCACHE2\0", 12), 0);
   EXPECT_EQ(u32At(b, 12), 1u);     // version
@@ -67,7 +66,7 @@ TEST_F(PointCache, WritesMddBigEndianWithSecondsPerSample) {
   PointCacheBuilder cache(PointCacheFormat::kMdd, 2, 3);
   for (const auto* frame : {&first, &second, &third}) ASSERT_TRUE(cache.add(*frame).ok());
   ASSERT_TRUE(cache.write(dir_ / "out.mdd", PointCacheTiming{4.0, 0.0}).ok());
-  const std::string b = bytes("out.mdd");
+  const std::string b = read("out.mdd");
   ASSERT_EQ(b.size(), 8 + 3 * 4 + std::size_t{3} * 2 * 12);
   EXPECT_EQ(bigEndianU32At(b, 0), 3u);  // samples
   EXPECT_EQ(bigEndianU32At(b, 4), 2u);  // vertices
@@ -80,7 +79,7 @@ TEST_F(PointCache, WritesMddBigEndianWithSecondsPerSample) {
   }
   // Writing again gives the same file: the header is not left in the samples.
   ASSERT_TRUE(cache.write(dir_ / "again.mdd", PointCacheTiming{4.0, 0.0}).ok());
-  EXPECT_EQ(bytes("again.mdd"), b);
+  EXPECT_EQ(read("again.mdd"), b);
 }
 
 TEST_F(PointCache, RefusesFramesThatDoNotFit) {
