@@ -16,10 +16,9 @@ Result<Buffer> Buffer::create(const Device& device, VkDeviceSize size_bytes, VkB
   Buffer buffer;
   buffer.device_ = device.handle();
   buffer.size_ = size_bytes;
-  // Staged buffers are copy destinations (upload) and sources (readback).
-  if (use != MemoryUse::kHostVisible) {
-    usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
-  }
+  // Every buffer can be a copy destination (staged upload) and source (staged readback): whether a
+  // mapped one is read directly depends on the memory type the device gives it.
+  usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
 
   // Exclusive: a single queue family touches it.
   VkBufferCreateInfo info{};
@@ -36,10 +35,13 @@ Result<Buffer> Buffer::create(const Device& device, VkDeviceSize size_bytes, VkB
   vkGetBufferMemoryRequirements(device.handle(), handle, &requirements);
   constexpr VkMemoryPropertyFlags kHost = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   constexpr VkMemoryPropertyFlags kLocal = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-  VkMemoryPropertyFlags required = use == MemoryUse::kHostVisible ? kHost : kLocal;
-  VkMemoryPropertyFlags preferred = use == MemoryUse::kDeviceLocalStaged ? kLocal : (kHost | kLocal);
+  const bool host = use == MemoryUse::kHostVisible || use == MemoryUse::kHostReadback;
+  VkMemoryPropertyFlags required = host ? kHost : kLocal;
+  VkMemoryPropertyFlags preferred = use == MemoryUse::kDeviceLocalStaged ? kLocal
+                                    : use == MemoryUse::kHostReadback  ? (kHost | VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
+                                                                       : (kHost | kLocal);
   Result<std::uint32_t> type = device.findMemoryType(requirements.memoryTypeBits, required, preferred);
-  if (!type.ok() && use != MemoryUse::kHostVisible) {
+  if (!type.ok() && !host) {
     // Some devices expose no DEVICE_LOCAL type for a given buffer; any type will still work.
     type = device.findMemoryType(requirements.memoryTypeBits, 0, preferred);
   }
@@ -58,6 +60,7 @@ Result<Buffer> Buffer::create(const Device& device, VkDeviceSize size_bytes, VkB
 
   // Persistently mapped: coherent memory needs no flush, and mapping once costs nothing per frame.
   VkMemoryPropertyFlags flags = device.memoryProperties().memoryTypes[*type].propertyFlags;
+  buffer.memory_flags_ = flags;
   if (use != MemoryUse::kDeviceLocalStaged && (flags & kHost) == kHost) {
     void* pointer = nullptr;
     ODESKIN_VK_TRY(vkMapMemory(device.handle(), memory, 0, VK_WHOLE_SIZE, 0, &pointer));
@@ -76,6 +79,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     device_ = std::exchange(other.device_, VK_NULL_HANDLE);
     size_ = std::exchange(other.size_, 0);
     mapped_ = std::exchange(other.mapped_, nullptr);
+    memory_flags_ = std::exchange(other.memory_flags_, 0);
   }
   return *this;
 }
@@ -124,12 +128,12 @@ Status Buffer::download(const Device& device, std::span<std::byte> out, VkDevice
                            std::to_string(offset) + " exceed the buffer size " + std::to_string(size_));
   }
   if (out.empty()) return okStatus();
-  if (mapped_ != nullptr) {
+  if (mapped_ != nullptr && hostReadsDirectly(memory_flags_)) {
     std::memcpy(out.data(), mapped_ + offset, out.size());
     return okStatus();
   }
   ODESKIN_ASSIGN_OR_RETURN(Buffer staging, create(device, out.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                  MemoryUse::kHostVisible));
+                                                  MemoryUse::kHostReadback));
   VkBufferCopy region{offset, 0, out.size()};
   VkBuffer src = handle();
   ODESKIN_TRY(device.submitAndWait([&](VkCommandBuffer cmd) {

@@ -23,7 +23,16 @@ enum class MemoryUse {
   kDeviceLocalStaged,
   // Written by the host every frame and kept mapped (HOST_VISIBLE|HOST_COHERENT required).
   kHostVisible,
+  // Written by the device, read by the host: HOST_VISIBLE|HOST_COHERENT, HOST_CACHED preferred. A
+  // discrete GPU's device-local mappable (ReBAR) memory is uncached for the CPU: reading a
+  // tessellated 1000 x 1000 patch back from it took 652 ms on an H200 (docs/performance.md).
+  kHostReadback,
 };
+
+// Whether the host reads a mapped buffer of these memory properties at memory speed: only cached
+// memory; uncached mappings (ReBAR, write-combined host memory) are written fast and read slowly, so
+// download() stages those through kHostReadback memory.
+inline bool hostReadsDirectly(VkMemoryPropertyFlags flags) { return (flags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0; }
 
 // Usage of a buffer a shader reads: as a storage buffer, or as a uniform texel buffer
 // (TexelBinding in compute_pipeline.hpp).
@@ -38,8 +47,8 @@ inline constexpr VkBufferUsageFlags kOutputBufferUsage = kShaderInputUsage | VK_
 class Buffer {
  public:
   // `size_bytes` > 0 (a zero-sized VkBuffer is invalid; callers round empty arrays up). Transfer
-  // usage is added for staged buffers. kDeviceError on allocation failure, kUnavailable when no
-  // memory type fits.
+  // usage is added to every buffer (staged uploads and readbacks). kDeviceError on allocation
+  // failure, kUnavailable when no memory type fits.
   static Result<Buffer> create(const Device& device, VkDeviceSize size_bytes, VkBufferUsageFlags usage,
                                MemoryUse use = MemoryUse::kDeviceLocal);
 
@@ -59,8 +68,10 @@ class Buffer {
   // buffer and a one-off submit. kInvalidArgument when the range exceeds the buffer. The caller
   // makes sure the GPU is not using the range.
   Status upload(const Device& device, std::span<const std::byte> bytes, VkDeviceSize offset = 0);
-  // Copies [offset, offset + out.size()) to `out`; the caller has waited for the writes.
+  // Copies [offset, offset + out.size()) to `out`; the caller has waited for the writes. Reads the
+  // mapping when hostReadsDirectly(memoryFlags()), else copies through a kHostReadback buffer.
   Status download(const Device& device, std::span<std::byte> out, VkDeviceSize offset = 0) const;
+  VkMemoryPropertyFlags memoryFlags() const { return memory_flags_; }
 
  private:
   void destroy();
@@ -70,6 +81,7 @@ class Buffer {
   VkDevice device_ = VK_NULL_HANDLE;
   VkDeviceSize size_ = 0;
   std::byte* mapped_ = nullptr;
+  VkMemoryPropertyFlags memory_flags_ = 0;
 };
 
 // A shader input buffer (storage or uniform texel) holding `bytes`, at least 16 bytes long so

@@ -218,7 +218,7 @@ Result<RenderTarget> RenderTarget::create(const Device& device, std::uint32_t wi
   target.framebuffer_ = UniqueFramebuffer(device.handle(), framebuffer);
 
   ODESKIN_ASSIGN_OR_RETURN(target.readback_, Buffer::create(device, VkDeviceSize(width) * height * 4,
-                                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::kHostVisible));
+                                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::kHostReadback));
   return target;
 }
 

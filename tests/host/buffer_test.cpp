@@ -15,13 +15,13 @@ TEST_F(GpuTest, BufferRoundTripMappedAndStaged) {
   std::vector<std::uint32_t> data(1000);
   std::iota(data.begin(), data.end(), 7u);
   for (vk::MemoryUse use : {vk::MemoryUse::kDeviceLocal, vk::MemoryUse::kDeviceLocalStaged,
-                            vk::MemoryUse::kHostVisible}) {
+                            vk::MemoryUse::kHostVisible, vk::MemoryUse::kHostReadback}) {
     Result<vk::Buffer> buffer = vk::Buffer::create(device(), data.size() * 4, vk::kOutputBufferUsage, use);
     ASSERT_TRUE(buffer.ok()) << buffer.status().toString();
     if (use == vk::MemoryUse::kDeviceLocalStaged) {
       EXPECT_EQ(buffer->mapped(), nullptr);
     }
-    if (use == vk::MemoryUse::kHostVisible) {
+    if (use == vk::MemoryUse::kHostVisible || use == vk::MemoryUse::kHostReadback) {
       EXPECT_NE(buffer->mapped(), nullptr);
     }
     ASSERT_TRUE(vk::uploadSpan<std::uint32_t>(device(), *buffer, data).ok());
@@ -36,6 +36,29 @@ TEST_F(GpuTest, BufferRoundTripMappedAndStaged) {
     EXPECT_EQ(back[12], 3u);
     EXPECT_EQ(back[13], data[13]);
   }
+}
+
+// Only cached mappings are read in place: a discrete GPU's mappable device memory (ReBAR) and
+// write-combined host memory are slow for the CPU to read, so downloads stage those.
+TEST(BufferMemory, OnlyCachedMappingsAreReadDirectly) {
+  constexpr VkMemoryPropertyFlags kVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  EXPECT_TRUE(vk::hostReadsDirectly(kVisible | VK_MEMORY_PROPERTY_HOST_CACHED_BIT));  // host memory, cached
+  EXPECT_TRUE(vk::hostReadsDirectly(kVisible | VK_MEMORY_PROPERTY_HOST_CACHED_BIT |
+                                    VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT));          // lavapipe, integrated GPUs
+  EXPECT_FALSE(vk::hostReadsDirectly(kVisible | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT));  // ReBAR
+  EXPECT_FALSE(vk::hostReadsDirectly(kVisible));                                       // write-combined host memory
+}
+
+// A readback buffer is the host's to read: cached wherever the device offers cached memory.
+TEST_F(GpuTest, ReadbackBuffersPreferCachedMemory) {
+  Result<vk::Buffer> buffer = vk::Buffer::create(device(), 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::kHostReadback);
+  ASSERT_TRUE(buffer.ok()) << buffer.status().toString();
+  bool device_has_cached = false;
+  const VkPhysicalDeviceMemoryProperties& memory = device().memoryProperties();
+  for (std::uint32_t t = 0; t < memory.memoryTypeCount; ++t) {
+    device_has_cached |= (memory.memoryTypes[t].propertyFlags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
+  }
+  EXPECT_EQ((buffer->memoryFlags() & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0, device_has_cached);
 }
 
 TEST_F(GpuTest, BufferRejectsOutOfRangeAndEmpty) {
