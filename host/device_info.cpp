@@ -2,6 +2,7 @@
 #include "device_info.hpp"
 
 #include <cstring>
+#include <utility>
 
 #include "device.hpp"
 
@@ -11,6 +12,24 @@ namespace {
 std::string versionString(std::uint32_t v) {
   return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
          std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+std::string memoryTypeFlags(VkMemoryPropertyFlags flags) {
+  static constexpr std::pair<VkMemoryPropertyFlags, const char*> kNames[] = {
+      {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, "device-local"},
+      {VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT, "host-visible"},
+      {VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, "coherent"},
+      {VK_MEMORY_PROPERTY_HOST_CACHED_BIT, "cached"},
+      {VK_MEMORY_PROPERTY_LAZILY_ALLOCATED_BIT, "lazy"},
+      {VK_MEMORY_PROPERTY_PROTECTED_BIT, "protected"},
+  };
+  std::string text;
+  for (const auto& [bit, name] : kNames) {
+    if ((flags & bit) == 0) continue;
+    if (!text.empty()) text += '+';
+    text += name;
+  }
+  return text.empty() ? "none" : text;
 }
 
 }  // namespace
@@ -48,7 +67,11 @@ Result<std::vector<DeviceInfo>> queryDeviceInfo(const Instance& instance) {
     vkGetPhysicalDeviceMemoryProperties(devices[i], &memory);
     for (std::uint32_t h = 0; h < memory.memoryHeapCount; ++h) {
       info.heaps.push_back({memory.memoryHeaps[h].size,
-                            (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) != 0});
+                            (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) != 0, {}});
+    }
+    for (std::uint32_t t = 0; t < memory.memoryTypeCount; ++t) {
+      const VkMemoryType& type = memory.memoryTypes[t];
+      if (type.heapIndex < info.heaps.size()) info.heaps[type.heapIndex].types.push_back(memoryTypeFlags(type.propertyFlags));
     }
     infos.push_back(std::move(info));
   }
@@ -76,7 +99,13 @@ Status printDeviceInfo(std::ostream& out, std::string_view selector) {
         << (d.timestamp_compute_and_graphics ? "yes" : "no") << "\n";
     for (std::size_t h = 0; h < d.heaps.size(); ++h) {
       out << "    heap " << h << ": " << d.heaps[h].size_bytes / (std::uint64_t{1024} * 1024) << " MiB"
-          << (d.heaps[h].device_local ? " device-local" : "") << "\n";
+          << (d.heaps[h].device_local ? " device-local" : "");
+      const char* separator = "; memory types: ";
+      for (const std::string& type : d.heaps[h].types) {
+        out << separator << type;
+        separator = ", ";
+      }
+      out << "\n";
     }
   }
   if (!selected.ok()) return selected.status();

@@ -17,6 +17,9 @@ namespace odeskin::vk {
 struct MemoryHeapInfo {
   std::uint64_t size_bytes = 0;
   bool device_local = false;
+  // The heap's memory types, each as its property flags ("device-local+host-visible+coherent"):
+  // which buffers odeskin maps and which it stages (buffer.hpp) follows from them.
+  std::vector<std::string> types;
 };
 
 struct DeviceInfo {

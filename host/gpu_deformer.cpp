@@ -5,6 +5,7 @@
 
 #include "engine/kernels/fourier_deform_fast_job.hpp"
 #include "shaders/fourier_deform.spv.h"
+#include "shaders/fourier_deform_storage.spv.h"
 
 namespace odeskin {
 namespace {
@@ -65,6 +66,7 @@ Result<GpuDeformer> GpuDeformer::create(const vk::Device& device, const PackedDe
   SingleMeshDispatchDesc desc;
   desc.name = "fourier deform gpu";
   desc.spirv = kFourierDeformSpirv;
+  desc.storage_spirv = kFourierDeformStorageSpirv;
   desc.vertex_count = data.vertex_count;
   desc.bone_count = data.bone_count;
   desc.skinning = data.skinning;

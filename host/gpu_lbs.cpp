@@ -5,6 +5,7 @@
 
 #include "engine/kernels/fourier_deform_fast_job.hpp"
 #include "shaders/lbs.spv.h"
+#include "shaders/lbs_storage.spv.h"
 
 namespace odeskin {
 
@@ -40,6 +41,7 @@ Result<GpuLbs> GpuLbs::create(const vk::Device& device, const PackedDeformData& 
   SingleMeshDispatchDesc desc;
   desc.name = "lbs gpu";
   desc.spirv = kLbsSpirv;
+  desc.storage_spirv = kLbsStorageSpirv;
   desc.vertex_count = data.vertex_count;
   desc.bone_count = data.bone_count;
   desc.skinning = data.skinning;

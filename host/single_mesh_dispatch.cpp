@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "engine/runtime/runtime_layout.hpp"
+#include "shader_inputs.hpp"
 #include "shaders/fold_series.spv.h"
 #include "texel_bindings.hpp"
 
@@ -49,11 +50,12 @@ Result<SingleMeshDispatch> SingleMeshDispatch::create(const vk::Device& device, 
   if (desc.fold_series) d.record_offset_ = layout.add(ODESKIN_RT_BINDING_INSTANCES, sizeof(gpu::InstanceRecord));
   ODESKIN_TRY(layout.checkLimits(desc.name.c_str()));
 
+  ODESKIN_ASSIGN_OR_RETURN(const vk::ShaderInputs inputs, vk::deformShaderInputs());
   vk::ComputeDispatcherDesc dispatcher;
-  dispatcher.spirv = desc.spirv;
+  dispatcher.spirv = vk::deformSpirv(inputs, desc.spirv, desc.storage_spirv);
   dispatcher.static_bindings = statics;
   dispatcher.frame_bindings = layout.bindings();
-  dispatcher.texel_bindings = vk::kDeformTexelBindings;
+  dispatcher.texel_bindings = vk::deformTexelTable(inputs);
   dispatcher.frame_bytes = layout.totalBytes();
   dispatcher.push_constant_bytes = desc.push_constant_bytes;
   dispatcher.frames_in_flight = 2;

@@ -23,7 +23,8 @@ namespace odeskin {
 
 struct SingleMeshDispatchDesc {
   std::string name;                             // "fourier deform gpu": prefixes every message
-  std::span<const std::uint32_t> spirv;         // gpu_layout.h bindings
+  std::span<const std::uint32_t> spirv;         // gpu_layout.h bindings, read as texel buffers
+  std::span<const std::uint32_t> storage_spirv; // the same shader reading storage buffers (shader_inputs.hpp)
   std::uint32_t vertex_count = 0;
   std::uint32_t bone_count = 0;
   SkinningMode skinning = SkinningMode::kLinear;
@@ -40,7 +41,8 @@ struct SingleMeshDispatchDesc {
 class SingleMeshDispatch {
  public:
   // `device` must outlive the object and stay where it is. kUnavailable when a per-frame slice
-  // exceeds maxStorageBufferRange; kDeviceError from the driver.
+  // exceeds maxStorageBufferRange; kInvalidArgument for a bad ODESKIN_SHADER_INPUTS; kDeviceError
+  // from the driver.
   static Result<SingleMeshDispatch> create(const vk::Device& device, const SingleMeshDispatchDesc& desc);
 
   // Writes `bones` and `basis` (sizes checked by the caller) into the next frame slot, waiting for

@@ -10,7 +10,7 @@ layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
 
 #include "deform_inputs.glsl"
 layout(std430, set = 0, binding = ODESKIN_RT_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { Float4 out_positions[]; };
-layout(set = 0, binding = ODESKIN_RT_BINDING_INSTANCES) uniform usamplerBuffer instances;  // InstanceRecord
+ODESKIN_INPUT(ODESKIN_RT_BINDING_INSTANCES, Instances, uvec4, instances)  // InstanceRecord
 layout(std430, set = 0, binding = ODESKIN_RT_BINDING_BOUNDS) buffer Bounds { BoundsKeys bounds[]; };
 
 layout(push_constant) uniform Push { InstancedPushConstants pc; };
@@ -38,7 +38,7 @@ void main() {
   vec3 lo = vec3(uintBitsToFloat(0x7F800000u));  // +inf
   vec3 hi = -lo;
   if (i < pc.vertex_count) {
-    uvec4 t = texelFetch(instances, int(instance));
+    uvec4 t = uvec4(ODESKIN_FETCH(instances, instance));
     InstanceRecord r = InstanceRecord(t.x, t.y, t.z, t.w);
     // The fold pass (fold_series.comp) has folded the instance's basis into its own coefficients.
     DeformSource src = DeformSource(r.segment, r.remainder_base, instance * pc.curve_count * (2u * pc.modes + 2u),

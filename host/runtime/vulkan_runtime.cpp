@@ -8,12 +8,15 @@
 #include <string>
 
 #include "host/compute_dispatcher.hpp"
+#include "host/shader_inputs.hpp"
 #include "host/texel_bindings.hpp"
 #include "shaders/fold_series.spv.h"
 #include "shaders/instance_normals.spv.h"
 #include "shaders/instance_tangents.spv.h"
 #include "shaders/instanced_deform.spv.h"
 #include "shaders/instanced_deform_shared.spv.h"
+#include "shaders/instanced_deform_shared_storage.spv.h"
+#include "shaders/instanced_deform_storage.spv.h"
 #include "shaders/render_gather.spv.h"
 
 namespace odeskin {
@@ -224,11 +227,12 @@ Status VulkanRuntime::createPipelines(const vk::FrameInputLayout& layout) {
   for (const vk::FrameBinding& b : layout.bindings()) shared.push_back(b.binding);
   std::vector<std::uint32_t> deform_bindings = {ODESKIN_RT_BINDING_OUT_POSITIONS, ODESKIN_RT_BINDING_BOUNDS};
   deform_bindings.insert(deform_bindings.end(), shared.begin(), shared.end());
+  ODESKIN_ASSIGN_OR_RETURN(const vk::ShaderInputs inputs, vk::deformShaderInputs());
   const std::span<const std::uint32_t> deform_spirv =
-      subgroup_bounds_ ? std::span<const std::uint32_t>(kInstancedDeformSpirv)
-                       : std::span<const std::uint32_t>(kInstancedDeformSharedSpirv);
+      subgroup_bounds_ ? vk::deformSpirv(inputs, kInstancedDeformSpirv, kInstancedDeformStorageSpirv)
+                       : vk::deformSpirv(inputs, kInstancedDeformSharedSpirv, kInstancedDeformSharedStorageSpirv);
   ODESKIN_ASSIGN_OR_RETURN(deform_,
-                           vk::createSortedPipeline(*device_, deform_spirv, deform_bindings, vk::kDeformTexelBindings,
+                           vk::createSortedPipeline(*device_, deform_spirv, deform_bindings, vk::deformTexelTable(inputs),
                                                     sizeof(gpu::InstancedPushConstants), framesInFlight()));
   ODESKIN_TRY(vk::bindListed(deform_, shared, statics, layout.bindings(), ring_));
   for (std::uint32_t s = 0; s < framesInFlight(); ++s) {
