@@ -17,14 +17,27 @@
 
 namespace odeskin::bench {
 
-double odeskinOverLbs(const BenchReport& report, const BenchRecord& odeskin) {
+namespace {
+
+double ratioToLbs(const BenchReport& report, const BenchRecord& odeskin, double BenchRecord::*seconds) {
+  if (odeskin.*seconds <= 0.0) return 0.0;
   for (const BenchRecord& r : report.records) {
     if (r.kernel == "lbs" && r.backend == odeskin.backend && r.threads == odeskin.threads &&
-        r.vertices == odeskin.vertices && r.seconds_per_frame > 0.0) {
-      return odeskin.seconds_per_frame / r.seconds_per_frame;
+        r.vertices == odeskin.vertices && r.*seconds > 0.0) {
+      return odeskin.*seconds / r.*seconds;
     }
   }
   return 0.0;
+}
+
+}  // namespace
+
+double odeskinOverLbs(const BenchReport& report, const BenchRecord& odeskin) {
+  return ratioToLbs(report, odeskin, &BenchRecord::seconds_per_frame);
+}
+
+double gpuOdeskinOverLbs(const BenchReport& report, const BenchRecord& odeskin) {
+  return ratioToLbs(report, odeskin, &BenchRecord::gpu_seconds_per_frame);
 }
 
 std::string toJson(const BenchReport& report) {
@@ -35,8 +48,12 @@ std::string toJson(const BenchReport& report) {
   j["mesh"] = report.mesh;
   j["quick"] = report.quick;
   j["validation"] = report.validation;
+  if (!report.shader_inputs.empty()) j["shader_inputs"] = report.shader_inputs;
   if (report.device_copy_bytes_per_second > 0.0) {
-    j["device_copy"] = {{"bytes", report.device_copy_bytes}, {"bytes_per_second", report.device_copy_bytes_per_second}};
+    j["device_copy"] = {{"bytes", report.device_copy_bytes},
+                        {"bytes_per_second", report.device_copy_bytes_per_second},
+                        {"buffer_copy_bytes_per_second", report.buffer_copy_bytes_per_second},
+                        {"shader_copy_bytes_per_second", report.shader_copy_bytes_per_second}};
   } else {
     j["device_copy"] = {{"note", report.device_copy_note}};
   }
@@ -56,9 +73,12 @@ std::string toJson(const BenchReport& report) {
     e["max_error"] = r.max_error;
     e["bytes_per_frame"] = r.bytes_per_frame;
     e["bytes_per_second"] = r.bytesPerSecond();
+    if (r.backend == "vulkan") e["gpu_bytes_per_second"] = r.gpuBytesPerSecond();
     if (r.kernel == "odeskin") {
       const double ratio = odeskinOverLbs(report, r);
       if (ratio > 0.0) e["odeskin_over_lbs"] = ratio;
+      const double gpu_ratio = gpuOdeskinOverLbs(report, r);
+      if (gpu_ratio > 0.0) e["gpu_odeskin_over_lbs"] = gpu_ratio;
     }
     j["records"].push_back(std::move(e));
   }
@@ -83,13 +103,15 @@ std::string toCsv(const BenchReport& report) {
   std::ostringstream out;
   out.precision(9);
   out << "case,backend,threads,vertices,terms,seconds_per_frame,vertices_per_second,gpu_seconds_per_frame,"
-         "upload_seconds,frames,max_error,odeskin_over_lbs,bytes_per_frame,bytes_per_second\n";
+         "upload_seconds,frames,max_error,odeskin_over_lbs,bytes_per_frame,bytes_per_second,gpu_odeskin_over_lbs\n";
   for (const BenchRecord& r : report.records) {
     out << r.kernel << ',' << r.backend << ',' << r.threads << ',' << r.vertices << ',' << r.terms << ','
         << r.seconds_per_frame << ',' << r.verticesPerSecond() << ',' << r.gpu_seconds_per_frame << ','
         << r.upload_seconds << ',' << r.frames << ',' << r.max_error << ',';
     if (r.kernel == "odeskin") out << odeskinOverLbs(report, r);
-    out << ',' << r.bytes_per_frame << ',' << r.bytesPerSecond() << '\n';
+    out << ',' << r.bytes_per_frame << ',' << r.bytesPerSecond() << ',';
+    if (r.kernel == "odeskin") out << gpuOdeskinOverLbs(report, r);
+    out << '\n';
   }
   return out.str();
 }

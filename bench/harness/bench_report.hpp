@@ -28,6 +28,8 @@ struct BenchRecord {
 
   double verticesPerSecond() const { return seconds_per_frame > 0.0 ? static_cast<double>(vertices) / seconds_per_frame : 0.0; }
   double bytesPerSecond() const { return seconds_per_frame > 0.0 ? bytes_per_frame / seconds_per_frame : 0.0; }
+  // vulkan: the same over the timestamp-query time, what the device's memory saw; 0 without one.
+  double gpuBytesPerSecond() const { return gpu_seconds_per_frame > 0.0 ? bytes_per_frame / gpu_seconds_per_frame : 0.0; }
 };
 
 // The thesis's Table 6.3 columns for one fit, in seconds.
@@ -54,9 +56,13 @@ struct BenchReport {
   std::string mesh;          // what was tiled
   bool quick = false;
   bool validation = false;   // the Khronos validation layer checked the Vulkan cases: its work is in their times
-  // The Vulkan device's buffer-copy rate (device_bandwidth.hpp), 0 when not measured, and why not.
+  std::string shader_inputs; // vulkan: "texel buffers" or "storage buffers" (host/shader_inputs.hpp); empty without
+  // The Vulkan device's copy rate (device_bandwidth.hpp): the faster of vkCmdCopyBuffer and the
+  // shader copy, each also kept; 0 when not measured, and why not.
   double device_copy_bytes_per_second = 0.0;
   double device_copy_bytes = 0.0;
+  double buffer_copy_bytes_per_second = 0.0;
+  double shader_copy_bytes_per_second = 0.0;
   std::string device_copy_note;
   std::vector<BenchRecord> records;
   std::vector<FitStageRecord> fit_stages;
@@ -64,6 +70,9 @@ struct BenchReport {
 
 // odeskin / lbs per-frame time of the same backend, threads and size; 0 when either is missing.
 double odeskinOverLbs(const BenchReport& report, const BenchRecord& odeskin);
+// The same from the timestamp-query times (vulkan): what the frame costs the GPU, without the
+// submit-and-wait latency that dominates a real GPU's wall time at small sizes.
+double gpuOdeskinOverLbs(const BenchReport& report, const BenchRecord& odeskin);
 
 std::string toJson(const BenchReport& report);
 std::string toCsv(const BenchReport& report);  // the records, one per line, with a header

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // What the device's memory sustains, measured rather than read from a data sheet (Vulkan reports no
-// bandwidth): vkCmdCopyBuffer between two device-local buffers, timed by timestamp queries (by the
+// bandwidth), two ways between two device-local buffers: vkCmdCopyBuffer (on lavapipe a memcpy on
+// the host; on a GPU perhaps a copy engine), and shaders/copy_probe.comp (a GPU's load and store
+// units, as the deformation shaders use them). Each is timed by timestamp queries (by the
 // submission's wall time where the queue has none), the best of a few copies, counted as 2 x bytes
 // per copy since every byte is read once and written once. The Vulkan records' bytes per second are
-// set against it. On lavapipe it is a memcpy on the host.
+// set against the faster of the two.
 #pragma once
 
 #include <cstdint>
@@ -24,5 +26,8 @@ struct CopyBandwidth {
 // kInvalidArgument for bytes = 0 or repeats < 1; the buffer and driver errors otherwise (out of
 // device memory: kUnavailable or kDeviceError, naming the size).
 Result<CopyBandwidth> deviceCopyBandwidth(const vk::Device& device, VkDeviceSize bytes, int repeats = 5);
+// The same through copy_probe.comp (`bytes` a multiple of 16; kInvalidArgument otherwise, or when
+// the buffers exceed maxStorageBufferRange).
+Result<CopyBandwidth> shaderCopyBandwidth(const vk::Device& device, VkDeviceSize bytes, int repeats = 5);
 
 }  // namespace odeskin::bench

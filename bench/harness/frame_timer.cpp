@@ -20,10 +20,15 @@ double median(std::vector<double> values) {
 
 }  // namespace
 
-Result<FrameTiming> timeFrames(const FrameBody& body, double min_seconds, int min_frames, int max_frames) {
+Result<FrameTiming> timeFrames(const FrameBody& body, double min_seconds, int min_frames, int max_frames,
+                               double warmup_seconds) {
   using Clock = std::chrono::steady_clock;
   double gpu = 0.0;
-  ODESKIN_TRY(body(gpu));  // warm-up: caches, lazy driver work, page faults of the output
+  // Warm-up: caches, lazy driver work, page faults of the output, and a GPU's clocks.
+  const Clock::time_point warmup = Clock::now();
+  do {
+    ODESKIN_TRY(body(gpu));
+  } while (std::chrono::duration<double>(Clock::now() - warmup).count() < warmup_seconds);
   std::vector<double> wall;
   std::vector<double> gpu_times;
   double total = 0.0;

@@ -2,9 +2,11 @@
 // The benchmark harness's parts: tiling keeps every vertex's deformation, subdivision keeps the poses
 // one mesh, the timer returns medians and failures, the reports keep the issue's JSON layout, and
 // the cases verify every backend (Vulkan under the validation layer) before timing it.
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <thread>
 
 #include <unistd.h>
 
@@ -131,6 +133,21 @@ TEST(TimeFrames, ReturnsTheMedianAndStopsOnFailure) {
   EXPECT_EQ(failed.status().message(), "frame 3");
 }
 
+// A GPU case is warmed up for a time, not a frame count: its clocks take that long to rise.
+TEST(TimeFrames, WarmsUpForTheGivenTimeBeforeTiming) {
+  int calls = 0;
+  const auto start = std::chrono::steady_clock::now();
+  Result<FrameTiming> t = timeFrames([&](double&) {
+    ++calls;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    return okStatus();
+  }, 0.0, 3, 100000, 0.05);
+  ASSERT_TRUE(t.ok());
+  EXPECT_EQ(t->frames, 3);
+  EXPECT_GE(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.05);
+  EXPECT_GT(calls - 3, 1);  // 50 ms of 2 ms frames: the warm-up ran several, not the one it used to
+}
+
 BenchReport sampleReport() {
   BenchReport r;
   r.device = "test device";
@@ -144,6 +161,7 @@ TEST(BenchReport, JsonKeepsTheIssueLayout) {
   const nlohmann::json j = nlohmann::json::parse(toJson(sampleReport()));
   EXPECT_EQ(j["device"], "test device");
   EXPECT_EQ(j["validation"], false);
+  EXPECT_FALSE(j.contains("shader_inputs"));  // no Vulkan device in this report
   ASSERT_EQ(j["records"].size(), 3u);
   for (const auto& r : j["records"]) {
     for (const char* key : {"case", "backend", "threads", "vertices", "terms", "seconds_per_frame", "vertices_per_second"}) {
@@ -160,6 +178,22 @@ TEST(BenchReport, JsonKeepsTheIssueLayout) {
   const std::string csv = toCsv(sampleReport());
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
   EXPECT_EQ(csv.rfind("case,backend,threads,vertices,terms,seconds_per_frame,vertices_per_second", 0), 0u);
+}
+
+// A real GPU's wall time at small sizes is mostly submit-and-wait latency, so the report also gives
+// the ratio of the timestamp-query times, and only where both records have one.
+TEST(BenchReport, GpuRatioComesFromTheTimestampTimes) {
+  BenchReport r = sampleReport();
+  r.shader_inputs = "storage buffers";
+  r.records.push_back({"lbs", "vulkan", 1, 1000, 0, 3.5e-3, 1e-3, 0.1, 10, 1e-7, 1e5});
+  const nlohmann::json j = nlohmann::json::parse(toJson(r));
+  EXPECT_EQ(j["shader_inputs"], "storage buffers");
+  EXPECT_DOUBLE_EQ(j["records"][2]["odeskin_over_lbs"].get<double>(), 4e-3 / 3.5e-3);
+  EXPECT_DOUBLE_EQ(j["records"][2]["gpu_odeskin_over_lbs"].get<double>(), 3.0);
+  EXPECT_FALSE(j["records"][0].contains("gpu_odeskin_over_lbs"));  // cpu_fast has no GPU time
+  const std::string csv = toCsv(r);
+  EXPECT_NE(csv.find(",gpu_odeskin_over_lbs\n"), std::string::npos);
+  EXPECT_NE(csv.find(",200000,50000000,3\n"), std::string::npos);  // the vulkan odeskin line ends in its GPU ratio
 }
 
 TEST(BenchPlot, WritesAPngAndRefusesAnEmptyReport) {
@@ -259,6 +293,18 @@ TEST_F(DeformCases, TheDeviceCopyRateIsMeasured) {
   EXPECT_TRUE(std::isfinite(copy->bytes_per_second));
   EXPECT_EQ(deviceCopyBandwidth(device(), 0).status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(deviceCopyBandwidth(device(), 16, 0).status().code(), StatusCode::kInvalidArgument);
+}
+
+// The shader copy (copy_probe.comp) moves its bytes, and refuses sizes it cannot copy whole.
+TEST_F(DeformCases, TheShaderCopyRateIsMeasured) {
+  Result<CopyBandwidth> copy = shaderCopyBandwidth(device(), VkDeviceSize{1} << 20, 2);
+  ASSERT_TRUE(copy.ok()) << copy.status().toString();
+  EXPECT_EQ(copy->bytes, VkDeviceSize{1} << 20);
+  EXPECT_GT(copy->bytes_per_second, 1e6);
+  EXPECT_TRUE(std::isfinite(copy->bytes_per_second));
+  EXPECT_EQ(shaderCopyBandwidth(device(), 24).status().code(), StatusCode::kInvalidArgument);
+  const VkDeviceSize too_big = VkDeviceSize{device().limits().maxStorageBufferRange} + 16;
+  EXPECT_EQ(shaderCopyBandwidth(device(), too_big).status().code(), StatusCode::kInvalidArgument);
 }
 
 TEST_F(DeformCases, VerifiesAndTimesEveryBackendAndKernel) {
