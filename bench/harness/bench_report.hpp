@@ -60,7 +60,7 @@ struct BenchReport {
   // The Vulkan device's copy rate (device_bandwidth.hpp): the faster of vkCmdCopyBuffer and the
   // shader copy, each also kept; 0 when not measured, and why not.
   double device_copy_bytes_per_second = 0.0;
-  double device_copy_bytes = 0.0;
+  double device_copy_bytes = 0.0;  // of each buffer of the faster probe
   double buffer_copy_bytes_per_second = 0.0;
   double shader_copy_bytes_per_second = 0.0;
   std::string device_copy_note;

@@ -292,7 +292,8 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
       if (!shader.ok()) progress("bench: shader copy rate not measured: " + shader.status().message());
       report.device_copy_bytes_per_second = std::max(report.buffer_copy_bytes_per_second, report.shader_copy_bytes_per_second);
       if (report.device_copy_bytes_per_second > 0.0) {
-        report.device_copy_bytes = static_cast<double>(kCopyProbeBytes);
+        const bool shader_faster = report.shader_copy_bytes_per_second > report.buffer_copy_bytes_per_second;
+        report.device_copy_bytes = static_cast<double>(shader_faster ? shader_bytes : kCopyProbeBytes);
       } else {
         report.device_copy_note = "not measured: " + copy.status().message();
       }
