@@ -284,7 +284,7 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
       Result<bench::CopyBandwidth> copy = bench::deviceCopyBandwidth(gpu->device, kCopyProbeBytes);
       // A shader sees at most maxStorageBufferRange of a buffer (lavapipe: 128 MiB).
       const VkDeviceSize shader_bytes =
-          std::min<VkDeviceSize>(kCopyProbeBytes, gpu->device.limits().maxStorageBufferRange / 16 * 16);
+          std::min<VkDeviceSize>(kCopyProbeBytes, VkDeviceSize{gpu->device.limits().maxStorageBufferRange} / 16 * 16);
       Result<bench::CopyBandwidth> shader = bench::shaderCopyBandwidth(gpu->device, shader_bytes);
       if (copy.ok()) report.buffer_copy_bytes_per_second = copy->bytes_per_second;
       if (shader.ok()) report.shader_copy_bytes_per_second = shader->bytes_per_second;
