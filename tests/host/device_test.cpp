@@ -120,29 +120,29 @@ TEST_F(GpuTest, PrintDeviceInfoNamesTheDevice) {
 
 // Texel buffers unless the environment asks for storage buffers (the storage_inputs ctest entries
 // run the parity tests that way on lavapipe); a value it does not know is refused by name rather
-// than ignored.
+// than ignored. The environment changes while no other thread of the test reads it (the NOLINTs).
 TEST(ShaderInputs, TexelBuffersUnlessTheEnvironmentSaysOtherwise) {
   const char* saved = std::getenv("ODESKIN_SHADER_INPUTS");
   const std::string restore = saved != nullptr ? saved : "";
-  ::unsetenv("ODESKIN_SHADER_INPUTS");
+  ::unsetenv("ODESKIN_SHADER_INPUTS");  // NOLINT(concurrency-mt-unsafe)
   Result<vk::ShaderInputs> inputs = vk::deformShaderInputs();
   ASSERT_TRUE(inputs.ok()) << inputs.status().toString();
   EXPECT_EQ(*inputs, vk::ShaderInputs::kTexel);
   EXPECT_EQ(vk::deformTexelTable(vk::ShaderInputs::kTexel).size(), std::size(vk::kDeformTexelBindings));
   EXPECT_TRUE(vk::deformTexelTable(vk::ShaderInputs::kStorage).empty());
 
-  ::setenv("ODESKIN_SHADER_INPUTS", "storage", 1);
+  ::setenv("ODESKIN_SHADER_INPUTS", "storage", 1);  // NOLINT(concurrency-mt-unsafe)
   EXPECT_EQ(*vk::deformShaderInputs(), vk::ShaderInputs::kStorage);
-  ::setenv("ODESKIN_SHADER_INPUTS", "texel", 1);
+  ::setenv("ODESKIN_SHADER_INPUTS", "texel", 1);  // NOLINT(concurrency-mt-unsafe)
   EXPECT_EQ(*vk::deformShaderInputs(), vk::ShaderInputs::kTexel);
-  ::setenv("ODESKIN_SHADER_INPUTS", "ssbo", 1);
+  ::setenv("ODESKIN_SHADER_INPUTS", "ssbo", 1);  // NOLINT(concurrency-mt-unsafe)
   Result<vk::ShaderInputs> bad = vk::deformShaderInputs();
   EXPECT_EQ(bad.status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(bad.status().message(), "ODESKIN_SHADER_INPUTS=ssbo: expected texel or storage");
   if (saved != nullptr) {
-    ::setenv("ODESKIN_SHADER_INPUTS", restore.c_str(), 1);
+    ::setenv("ODESKIN_SHADER_INPUTS", restore.c_str(), 1);  // NOLINT(concurrency-mt-unsafe)
   } else {
-    ::unsetenv("ODESKIN_SHADER_INPUTS");
+    ::unsetenv("ODESKIN_SHADER_INPUTS");  // NOLINT(concurrency-mt-unsafe)
   }
 }
 
