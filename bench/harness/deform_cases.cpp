@@ -24,9 +24,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Untimed frames before a Vulkan case is timed. An H200 idles at 345 MHz and runs at 1980; without
-// this, cases that followed CPU cases were timed partly at the idle clock, up to 4x slower
-// (docs/performance.md, "On a GPU"). CPUs reach their clock within the one warm-up frame.
+// Untimed frames before a Vulkan case is timed: a GPU idles at a low clock (an H200 at 345 MHz,
+// against 1,980 busy). In the one mixed CPU and Vulkan run on an H200 some Vulkan cases took up to
+// 4.7x their Vulkan-only GPU time, for a reason not established (docs/performance.md, "On a GPU");
+// a warm GPU at least rules the clock out. CPUs reach their clock within one warm-up frame.
 constexpr double kGpuWarmupSeconds = 0.25;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
