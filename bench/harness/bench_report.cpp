@@ -49,9 +49,9 @@ std::string toJson(const BenchReport& report) {
   j["quick"] = report.quick;
   j["validation"] = report.validation;
   if (!report.shader_inputs.empty()) j["shader_inputs"] = report.shader_inputs;
-  if (report.device_copy_bytes_per_second > 0.0) {
-    j["device_copy"] = {{"bytes", report.device_copy_bytes},
-                        {"bytes_per_second", report.device_copy_bytes_per_second},
+  if (report.deviceCopyBytesPerSecond() > 0.0) {
+    j["device_copy"] = {{"bytes", report.deviceCopyBytes()},
+                        {"bytes_per_second", report.deviceCopyBytesPerSecond()},
                         {"buffer_copy_bytes_per_second", report.buffer_copy_bytes_per_second},
                         {"shader_copy_bytes_per_second", report.shader_copy_bytes_per_second}};
   } else {

@@ -5,6 +5,7 @@
 // renamed.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -57,15 +58,21 @@ struct BenchReport {
   bool quick = false;
   bool validation = false;   // the Khronos validation layer checked the Vulkan cases: its work is in their times
   std::string shader_inputs; // vulkan: "texel buffers" or "storage buffers" (host/shader_inputs.hpp); empty without
-  // The Vulkan device's copy rate (device_bandwidth.hpp): the faster of vkCmdCopyBuffer and the
-  // shader copy, each also kept; 0 when not measured, and why not.
-  double device_copy_bytes_per_second = 0.0;
-  double device_copy_bytes = 0.0;  // of each buffer of the faster probe
+  // The Vulkan device's copy rates (device_bandwidth.hpp), vkCmdCopyBuffer's and the shader
+  // copy's, each with the size of its buffers; 0 when not measured, and device_copy_note says why
+  // when neither was. The Vulkan records are set against the faster.
+  double buffer_copy_bytes = 0.0;
   double buffer_copy_bytes_per_second = 0.0;
+  double shader_copy_bytes = 0.0;
   double shader_copy_bytes_per_second = 0.0;
   std::string device_copy_note;
   std::vector<BenchRecord> records;
   std::vector<FitStageRecord> fit_stages;
+
+  double deviceCopyBytesPerSecond() const { return std::max(buffer_copy_bytes_per_second, shader_copy_bytes_per_second); }
+  double deviceCopyBytes() const {
+    return shader_copy_bytes_per_second > buffer_copy_bytes_per_second ? shader_copy_bytes : buffer_copy_bytes;
+  }
 };
 
 // odeskin / lbs per-frame time of the same backend, threads and size; 0 when either is missing.

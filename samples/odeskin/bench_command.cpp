@@ -108,10 +108,10 @@ void printBandwidth(const BenchReport& report, std::ostream& out) {
     if (!header) {
       out << "\nmemory traffic (vulkan, >= " << kBandwidthReportVertices
           << " vertices; least bytes a frame moves, over the GPU time): ";
-      if (report.device_copy_bytes_per_second > 0.0) {
+      if (report.deviceCopyBytesPerSecond() > 0.0) {
         char rate[128];
         std::snprintf(rate, sizeof rate, "device copy rate %.1f GB/s (buffer copy %.1f, shader copy %.1f)\n",
-                      report.device_copy_bytes_per_second * 1e-9, report.buffer_copy_bytes_per_second * 1e-9,
+                      report.deviceCopyBytesPerSecond() * 1e-9, report.buffer_copy_bytes_per_second * 1e-9,
                       report.shader_copy_bytes_per_second * 1e-9);
         out << rate;
       } else {
@@ -123,7 +123,8 @@ void printBandwidth(const BenchReport& report, std::ostream& out) {
     // The GPU time where the queue has timestamps: the wall time adds the submission's latency.
     const double seconds = r.gpu_seconds_per_frame > 0.0 ? r.gpu_seconds_per_frame : r.seconds_per_frame;
     const double rate = r.bytes_per_frame / seconds;
-    const double share = report.device_copy_bytes_per_second > 0.0 ? 100.0 * rate / report.device_copy_bytes_per_second : 0.0;
+    const double copy_rate = report.deviceCopyBytesPerSecond();
+    const double share = copy_rate > 0.0 ? 100.0 * rate / copy_rate : 0.0;
     const std::string what = r.kernel + (r.terms > 0 ? " N=" + std::to_string(r.terms) : std::string());
     std::snprintf(line, sizeof line, "  %s, %zu vertices: %.1f Mvert/s, %.0f bytes/vertex, %.2f GB/s = %.1f%% of the copy rate\n",
                   what.c_str(), r.vertices, static_cast<double>(r.vertices) / seconds * 1e-6,
@@ -286,17 +287,19 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
       const VkDeviceSize shader_bytes =
           std::min<VkDeviceSize>(kCopyProbeBytes, VkDeviceSize{gpu->device.limits().maxStorageBufferRange} / 16 * 16);
       Result<bench::CopyBandwidth> shader = bench::shaderCopyBandwidth(gpu->device, shader_bytes);
-      if (copy.ok()) report.buffer_copy_bytes_per_second = copy->bytes_per_second;
-      if (shader.ok()) report.shader_copy_bytes_per_second = shader->bytes_per_second;
-      if (!copy.ok()) progress("bench: buffer copy rate not measured: " + copy.status().message());
-      if (!shader.ok()) progress("bench: shader copy rate not measured: " + shader.status().message());
-      report.device_copy_bytes_per_second = std::max(report.buffer_copy_bytes_per_second, report.shader_copy_bytes_per_second);
-      if (report.device_copy_bytes_per_second > 0.0) {
-        const bool shader_faster = report.shader_copy_bytes_per_second > report.buffer_copy_bytes_per_second;
-        report.device_copy_bytes = static_cast<double>(shader_faster ? shader_bytes : kCopyProbeBytes);
+      if (copy.ok()) {
+        report.buffer_copy_bytes = static_cast<double>(copy->bytes);
+        report.buffer_copy_bytes_per_second = copy->bytes_per_second;
       } else {
-        report.device_copy_note = "not measured: " + copy.status().message();
+        progress("bench: buffer copy rate not measured: " + copy.status().message());
       }
+      if (shader.ok()) {
+        report.shader_copy_bytes = static_cast<double>(shader->bytes);
+        report.shader_copy_bytes_per_second = shader->bytes_per_second;
+      } else {
+        progress("bench: shader copy rate not measured: " + shader.status().message());
+      }
+      if (!copy.ok() && !shader.ok()) report.device_copy_note = "not measured: " + copy.status().message();
     } else if (backends->vulkan_required) {
       return fail(Status(opened.status().code(), "vulkan: " + opened.status().message()));
     } else {
