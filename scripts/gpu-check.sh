@@ -4,7 +4,8 @@
 #     shaders (ODESKIN_SHADER_INPUTS), under the validation layer when it is installed;
 #  2. `odeskin bench`, Vulkan only (CPU cases in between left the GPU cases up to 4x slower in the
 #     one mixed run on an H200), texel against storage, twice in alternation;
-#  3. the runtime sample, 1,000 cats, texel against storage;
+#  3. the runtime sample, 1,000 cats, texel against storage, and the boxes read from their
+#     mapping against staged through cached memory (`read bounds` in its totals);
 #  4. the full harness (CPU fast path and Vulkan), for the targets in one run.
 # Usage: scripts/gpu-check.sh [BUILD_DIR] [DATA_DIR] [OUT_DIR]
 # (defaults build, ../shared/data, gpu-check). Each step's log lands in OUT_DIR; nothing stops the rest.
@@ -46,7 +47,12 @@ done
 for inputs in texel storage; do
   step "runtime sample, 1,000 cats, $inputs inputs"
   ODESKIN_SHADER_INPUTS=$inputs timeout 300 "$sample" --backend vulkan --instances 1000 --seconds 5 -q --data "$data" \
-    2>&1 | tee "$out/runtime_$inputs.txt" | grep -E "totals|check"
+    2>&1 | tee "$out/runtime_$inputs.txt" | grep -E "backend|totals|check"
+done
+for bounds in mapped staged mapped staged; do
+  step "runtime sample, 1,000 cats, bounds $bounds"
+  timeout 300 "$sample" --backend vulkan --instances 1000 --seconds 2 -q --bounds $bounds --data "$data" \
+    2>&1 | tee -a "$out/runtime_bounds_$bounds.txt" | grep -E "backend|totals"
 done
 
 step "full harness"

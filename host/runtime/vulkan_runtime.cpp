@@ -112,7 +112,7 @@ Status checkDeviceLimits(const vk::Device& device, const RuntimeAsset& asset, co
 }  // namespace
 
 Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const RuntimeAsset& asset,
-                                            const RuntimeOptions& options, bool allow_subgroups) {
+                                            const RuntimeOptions& options, VulkanRuntimePaths paths) {
   ODESKIN_TRY(checkOptions(asset, options));
   ODESKIN_TRY(checkDeviceLimits(device, asset, options));
   VulkanRuntime rt(asset, options);
@@ -120,7 +120,7 @@ Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const Runt
   rt.reuse_stages_ = vk::outputReuseStages(device);
   rt.groups_x_ = gpu::workgroupsFor(asset.vertexCount());
   rt.render_groups_x_ = gpu::workgroupsFor(asset.renderVertexCount());
-  rt.subgroup_bounds_ = allow_subgroups && subgroupArithmetic(device);
+  rt.subgroup_bounds_ = paths.allow_subgroups && subgroupArithmetic(device);
   rt.recorded_frames_.assign(options.frames_in_flight, 0);
   rt.records_.resize(options.capacity);
   rt.bones_.resize(std::size_t{options.capacity} * asset.boneCount());
@@ -136,7 +136,7 @@ Result<VulkanRuntime> VulkanRuntime::create(const vk::Device& device, const Runt
   ODESKIN_TRY(layout.checkLimits("vulkan runtime"));
   ODESKIN_ASSIGN_OR_RETURN(rt.ring_, vk::FrameRing::create(device, vk::FrameRingDesc{options.frames_in_flight,
                                                                                      layout.totalBytes()}));
-  ODESKIN_TRY(rt.createSlots());
+  ODESKIN_TRY(rt.createSlots(paths.bounds));
   ODESKIN_TRY(rt.createPipelines(layout));
   return rt;
 }
@@ -178,8 +178,8 @@ Status VulkanRuntime::uploadAsset() {
   return okStatus();
 }
 
-Status VulkanRuntime::createSlots() {
-  // Each slot's outputs: positions and normals (storage + vertex + copy source), bounds mapped.
+Status VulkanRuntime::createSlots(BoundsReadback bounds) {
+  // Each slot's outputs: positions and normals (storage + vertex + copy source), bounds readable.
   const VkDeviceSize out_bytes = VkDeviceSize{capacity()} * asset().vertexCount() * sizeof(gpu::Float4);
   const VkDeviceSize bytes = out_bytes < 16 ? 16 : out_bytes;
   const VkDeviceSize bounds_bytes = std::max<VkDeviceSize>(VkDeviceSize{capacity()} * sizeof(gpu::BoundsKeys), 32);
@@ -191,9 +191,7 @@ Status VulkanRuntime::createSlots() {
     if (options().normals && !computesRenderNormals()) {
       ODESKIN_ASSIGN_OR_RETURN(slot.normals, vk::Buffer::create(*device_, bytes, vk::kOutputBufferUsage));
     }
-    ODESKIN_ASSIGN_OR_RETURN(slot.bounds, vk::Buffer::create(*device_, bounds_bytes,
-                                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                             vk::MemoryUse::kHostVisible));
+    ODESKIN_TRY(createBounds(slot, bounds_bytes, bounds));
     if (gathersRenderVertices()) {
       const VkDeviceSize render_bytes =
           std::max<VkDeviceSize>(VkDeviceSize{capacity()} * asset().renderVertexCount() * sizeof(gpu::Float4), 16);
@@ -209,6 +207,30 @@ Status VulkanRuntime::createSlots() {
     }
     slots_.push_back(std::move(slot));
   }
+  return okStatus();
+}
+
+Status VulkanRuntime::createBounds(Slot& slot, VkDeviceSize bytes, BoundsReadback readback) {
+  // The host reads every frame's bounds. On a discrete GPU the mappable memory is uncached device
+  // memory (ReBAR), which the host reads across the bus: 16 MB of a tessellated patch came back at
+  // about 25 MB/s on an H200 (docs/performance.md), so 1,000 instances' boxes (32 KB) would cost
+  // about 1.3 ms a frame. There the boxes are reduced in plain device memory and the frame's last
+  // commands copy them into cached host memory.
+  const bool first = slots_.empty();
+  if (first) staged_bounds_ = readback == BoundsReadback::kStaged;
+  if (!staged_bounds_) {
+    ODESKIN_ASSIGN_OR_RETURN(slot.bounds,
+                             vk::Buffer::create(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::kHostVisible));
+    // The first slot's memory type decides for every slot: they all get the same one.
+    if (!first || readback == BoundsReadback::kMapped || vk::hostReadsDirectly(slot.bounds.memoryFlags())) {
+      return okStatus();
+    }
+    staged_bounds_ = true;
+  }
+  ODESKIN_ASSIGN_OR_RETURN(slot.bounds, vk::Buffer::create(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                           vk::MemoryUse::kDeviceLocalStaged));
+  ODESKIN_ASSIGN_OR_RETURN(slot.bounds_readback,
+                           vk::Buffer::create(*device_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::kHostReadback));
   return okStatus();
 }
 
@@ -472,9 +494,18 @@ void VulkanRuntime::record(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_
       dispatch(cmd, tangents_, slot, &tpc, sizeof(tpc), gpu::workgroupsFor(outputVertexCount()), instance_count);
     }
   }
-  // A fence alone does not make device writes visible to the host (mapped bounds and outputs).
-  vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  VkPipelineStageFlags written_by = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  VkAccessFlags writes = VK_ACCESS_SHADER_WRITE_BIT;
+  if (staged_bounds_) {
+    vk::recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    const VkBufferCopy region{0, 0, VkDeviceSize{instance_count} * sizeof(gpu::BoundsKeys)};
+    vkCmdCopyBuffer(cmd, slots_[slot].bounds.handle(), slots_[slot].bounds_readback.handle(), 1, &region);
+    written_by |= VK_PIPELINE_STAGE_TRANSFER_BIT;
+    writes |= VK_ACCESS_TRANSFER_WRITE_BIT;
+  }
+  // A fence alone does not make device writes visible to the host (bounds and mapped outputs).
+  vk::recordMemoryBarrier(cmd, written_by, writes, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
 }
 
 Result<RuntimeFrameBuffers> VulkanRuntime::frameBuffers(std::uint64_t frame) const {
@@ -520,7 +551,8 @@ Status VulkanRuntime::copyTangents(std::uint32_t slot, std::uint32_t instance, s
 }
 
 Status VulkanRuntime::copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) {
-  const std::byte* keys = slots_[slot].bounds.mapped();
+  const vk::Buffer& readable = staged_bounds_ ? slots_[slot].bounds_readback : slots_[slot].bounds;
+  const std::byte* keys = readable.mapped();
   if (keys == nullptr) return internalError("vulkan runtime: the bounds buffer is not mapped");
   for (std::size_t k = 0; k < out.size(); ++k) {
     gpu::BoundsKeys entry;

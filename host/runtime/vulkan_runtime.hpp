@@ -57,6 +57,20 @@ struct RuntimeOutputBarriers {
   }
 };
 
+// How the host reads each frame's bounds.
+enum class BoundsReadback {
+  kAuto,    // kMapped where the bounds' host-visible memory is cached for the host, else kStaged
+  kMapped,  // the bounds buffer's own mapping, whatever its memory (a discrete GPU's is uncached)
+  kStaged,  // the frame's last commands copy the bounds into cached host memory
+};
+
+// Choices a caller normally leaves to the device (tests and benchmarks force the other path).
+struct VulkanRuntimePaths {
+  // False forces the shared-memory bounds reduction even where subgroup arithmetic exists.
+  bool allow_subgroups = true;
+  BoundsReadback bounds = BoundsReadback::kAuto;
+};
+
 class VulkanRuntime final : public DeformRuntime {
  public:
   // `device` and `asset` must outlive the runtime and stay where they are. kInvalidArgument for
@@ -65,10 +79,9 @@ class VulkanRuntime final : public DeformRuntime {
   // outputs (capacity x V x 16 bytes; with render_layout, or tangents, also capacity x R x 16), folded
   // coefficients (capacity x C x (2N + 2) x 16 bytes) or inputs exceed maxStorageBufferRange (lavapipe: 128 MiB, i.e. about 8.4 million instance
   // vertices per runtime; use several runtimes beyond);
-  // kDeviceError from the driver. `allow_subgroups` = false forces the shared-memory bounds
-  // reduction even where subgroup arithmetic exists (tests, benchmarks).
+  // kDeviceError from the driver.
   static Result<VulkanRuntime> create(const vk::Device& device, const RuntimeAsset& asset,
-                                      const RuntimeOptions& options, bool allow_subgroups = true);
+                                      const RuntimeOptions& options, VulkanRuntimePaths paths = {});
 
   VulkanRuntime(VulkanRuntime&&) noexcept = default;
   // Not assignable: the old runtime's frames would have to finish first; hold runtimes by value
@@ -106,6 +119,9 @@ class VulkanRuntime final : public DeformRuntime {
   // True when the bounds are reduced with subgroup operations (instanced_deform.comp), false on
   // devices without subgroup arithmetic in compute (instanced_deform_shared.comp).
   bool subgroupBounds() const { return subgroup_bounds_; }
+  // True when each frame ends by copying its bounds into cached host memory (BoundsReadback's
+  // kStaged, chosen or forced); false when readBounds() reads the bounds buffer's mapping.
+  bool stagedBounds() const { return staged_bounds_; }
 
  protected:
   Status submitSlot(std::uint32_t slot, std::uint32_t instance_count, FrameTimes& times) override;
@@ -120,7 +136,7 @@ class VulkanRuntime final : public DeformRuntime {
  private:
   VulkanRuntime(const RuntimeAsset& asset, const RuntimeOptions& options) : DeformRuntime(asset, options) {}
   Status uploadAsset();
-  Status createSlots();
+  Status createSlots(BoundsReadback bounds);
   Status createPipelines(const vk::FrameInputLayout& layout);
   // `statics`: the buffers every slot shares (createPipelines' list).
   Status createFoldPipeline(std::span<const vk::StaticBinding> statics, const vk::FrameInputLayout& layout);
@@ -139,17 +155,21 @@ class VulkanRuntime final : public DeformRuntime {
   struct Slot {
     vk::Buffer positions;         // capacity x V Float4
     vk::Buffer normals;           // likewise, when normals are on (and not computesRenderNormals())
-    vk::Buffer bounds;            // capacity BoundsKeys, host-visible
+    vk::Buffer bounds;            // capacity BoundsKeys: host-visible, or device-local when staged_bounds_
+    vk::Buffer bounds_readback;   // the frame's copy of bounds in cached host memory, when staged_bounds_
     vk::Buffer render_positions;  // capacity x R Float4, when gathersRenderVertices()
     vk::Buffer render_normals;    // likewise, when normals are on too
     vk::Buffer tangents;          // capacity x outputVertexCount() Float4, when tangents are on
   };
+  // The slot's bounds buffer, and its readback buffer when the bounds are staged.
+  Status createBounds(Slot& slot, VkDeviceSize bytes, BoundsReadback readback);
   const vk::Device* device_ = nullptr;
   VkPipelineStageFlags reuse_stages_ = 0;
   std::uint32_t groups_x_ = 0;       // ceil(V / 64)
   std::uint32_t fold_groups_x_ = 0;  // ceil(C (2N + 2) / 64)
   gpu::FoldPushConstants fold_push_{};
   bool subgroup_bounds_ = false;
+  bool staged_bounds_ = false;
   // Host copies of one frame's inputs, prepared before waiting for the slot, then copied in.
   std::vector<gpu::InstanceRecord> records_;
   std::vector<gpu::BoneMatrix> bones_;

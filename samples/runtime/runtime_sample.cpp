@@ -52,7 +52,13 @@ struct SampleOptions {
   unsigned threads = 0;
   bool quiet = false;
   bool record = false;  // Vulkan: frames recorded into the sample's command buffers (EngineSubmissions)
+  std::string bounds = "auto";  // Vulkan: how the host reads the boxes (BoundsReadback)
 };
+
+BoundsReadback readback(const std::string& name) {
+  if (name == "mapped") return BoundsReadback::kMapped;
+  return name == "staged" ? BoundsReadback::kStaged : BoundsReadback::kAuto;
+}
 
 int fail(const Status& status) {
   std::fprintf(stderr, "odeskin_runtime_sample: error: %s\n", status.message().c_str());
@@ -92,8 +98,8 @@ void engineBones(const RuntimeAsset& asset, double t, std::uint32_t instance, st
 }
 
 struct Totals {
-  double host = 0.0, prepare = 0.0, deform = 0.0, worst_host = 0.0, worst_deform = 0.0;
-  std::uint64_t frames = 0;
+  double host = 0.0, prepare = 0.0, deform = 0.0, worst_host = 0.0, worst_deform = 0.0, read_bounds = 0.0;
+  std::uint64_t frames = 0, bounds_reads = 0;
 };
 
 void report(const FrameTimes& t, std::uint64_t frame, double set_seconds, bool gpu, bool quiet, Totals& totals) {
@@ -193,7 +199,7 @@ int run(const SampleOptions& o) {
   std::unique_ptr<DeformRuntime> runtime;
   VulkanRuntime* vulkan = nullptr;
   if (gpu) {
-    Result<VulkanRuntime> created = VulkanRuntime::create(gpu->device, *asset, options);
+    Result<VulkanRuntime> created = VulkanRuntime::create(gpu->device, *asset, options, {.bounds = readback(o.bounds)});
     if (!created.ok()) return fail(created.status());
     runtime = std::make_unique<VulkanRuntime>(std::move(created).value());
     vulkan = static_cast<VulkanRuntime*>(runtime.get());
@@ -210,8 +216,9 @@ int run(const SampleOptions& o) {
     engine.emplace(std::move(created).value());
   }
   if (gpu) {
-    std::printf("backend: vulkan on %s%s\n", gpu->device.name(),
-                engine ? ", frames recorded into the sample's own command buffers" : "");
+    std::printf("backend: vulkan on %s%s; bounds %s\n", gpu->device.name(),
+                engine ? ", frames recorded into the sample's own command buffers" : "",
+                vulkan->stagedBounds() ? "copied to cached host memory" : "read from their mapping");
   } else {
     std::printf("backend: cpu, %u threads\n", WorkerArena(o.threads).threads());
   }
@@ -255,9 +262,12 @@ int run(const SampleOptions& o) {
       if (engine) {  // the engine's fence for it, and its word to the runtime
         if (Status s = engine->complete(*frame - 1); !s.ok()) return fail(s);
       }
-      if (Status s = rt.readBounds(*frame - 1, bounds); !s.ok()) return fail(s);
-      Result<FrameTimes> times = rt.frameTimes(*frame - 1);
+      Result<FrameTimes> times = rt.frameTimes(*frame - 1);  // waits for the frame
       if (!times.ok()) return fail(times.status());
+      const auto read_start = std::chrono::steady_clock::now();  // so this times the read alone
+      if (Status s = rt.readBounds(*frame - 1, bounds); !s.ok()) return fail(s);
+      totals.read_bounds += secondsSince(read_start);
+      ++totals.bounds_reads;
       report(*times, *frame - 1, set_seconds[(*frame - 1) % set_seconds.size()], vulkan != nullptr, o.quiet, totals);
     }
   }
@@ -279,10 +289,10 @@ int run(const SampleOptions& o) {
   if (totals.frames > 0) {
     const double n = static_cast<double>(totals.frames);
     const double vertices = static_cast<double>(o.instances) * asset->vertexCount();
-    std::printf("totals: %llu frames in %.2f s wall; per frame: host %.3f ms (worst %.3f, prepare %.3f), %s %.3f ms "
-                "(worst %.3f); %.1f M vertices/s deformed\n",
+    std::printf("totals: %llu frames in %.2f s wall; per frame: host %.3f ms (worst %.3f, prepare %.3f, read bounds "
+                "%.3f), %s %.3f ms (worst %.3f); %.1f M vertices/s deformed\n",
                 static_cast<unsigned long long>(totals.frames), wall, 1e3 * totals.host / n, 1e3 * totals.worst_host,
-                1e3 * totals.prepare / n, vulkan ? "gpu" : "cpu deform", 1e3 * totals.deform / n,
+                1e3 * totals.prepare / n, 1e3 * totals.read_bounds / static_cast<double>(std::max<std::uint64_t>(totals.bounds_reads, 1)), vulkan ? "gpu" : "cpu deform", 1e3 * totals.deform / n,
                 1e3 * totals.worst_deform, totals.deform > 0.0 ? vertices * n / totals.deform * 1e-6 : 0.0);
     InstanceBounds scene;
     for (const InstanceBounds& b : bounds) {
@@ -338,6 +348,10 @@ int parseAndRun(int argc, char** argv) {
   app.add_flag("--record", o.record,
                "Vulkan: record each frame into the sample's own command buffers and submit them, as an engine "
                "does with its draws (VulkanRuntime::recordFrame), instead of the runtime submitting");
+  app.add_option("--bounds", o.bounds,
+                 "Vulkan: how the host reads each frame's boxes: auto (mapped where that memory is cached for the "
+                 "host, else staged), mapped (the GPU's buffer itself), staged (copied into cached host memory)")
+      ->check(CLI::IsMember({"auto", "mapped", "staged"}));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -348,6 +362,10 @@ int parseAndRun(int argc, char** argv) {
   }
   if (o.record && o.backend != "vulkan") {
     std::fprintf(stderr, "odeskin_runtime_sample: --record needs --backend vulkan\n");
+    return 2;
+  }
+  if (o.bounds != "auto" && o.backend != "vulkan") {
+    std::fprintf(stderr, "odeskin_runtime_sample: --bounds needs --backend vulkan\n");
     return 2;
   }
   return odeskin::run(o);

@@ -237,7 +237,7 @@ TEST_F(GpuTest, RuntimeHandlesZeroOneAndManyInstances) {
 TEST_F(GpuTest, RuntimeSharedMemoryBoundsMatchToo) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
   Result<VulkanRuntime> subgroup = VulkanRuntime::create(device(), asset, withCapacity(6));
-  Result<VulkanRuntime> shared = VulkanRuntime::create(device(), asset, withCapacity(6), /*allow_subgroups=*/false);
+  Result<VulkanRuntime> shared = VulkanRuntime::create(device(), asset, withCapacity(6), {.allow_subgroups = false});
   Result<CpuRuntime> cpu = CpuRuntime::create(asset, withCapacity(6));
   ASSERT_TRUE(subgroup.ok() && shared.ok() && cpu.ok());
   EXPECT_FALSE(shared->subgroupBounds());
@@ -248,6 +248,31 @@ TEST_F(GpuTest, RuntimeSharedMemoryBoundsMatchToo) {
   Result<std::uint64_t> c = cpu->submitFrame();
   ASSERT_TRUE(g.ok() && c.ok());
   expectSameFrame(*cpu, *c, *shared, *g, 6, "shared-memory bounds");
+}
+
+// The discrete-GPU path, forced: boxes reduced in device-local memory and copied into cached host
+// memory by every frame's last commands. Four frames through the two slots with changing instance
+// counts; expectSameFrame holds each box to the positions of its own frame, so a stale copy fails.
+TEST_F(GpuTest, RuntimeStagedBoundsMatchToo) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(6), {.bounds = BoundsReadback::kStaged});
+  Result<CpuRuntime> cpu = CpuRuntime::create(asset, withCapacity(6));
+  Result<VulkanRuntime> plain = VulkanRuntime::create(device(), asset, withCapacity(1));
+  ASSERT_TRUE(gpu.ok() && cpu.ok() && plain.ok()) << gpu.status().toString();
+  EXPECT_TRUE(gpu->stagedBounds());
+  std::printf("bounds on %s: %s\n", device().name(), plain->stagedBounds() ? "copied to cached memory" : "read in place");
+  const std::uint32_t counts[] = {3, 6, 4, 5};
+  for (std::uint32_t f = 0; f < 4; ++f) {
+    const std::uint32_t count = counts[f];
+    ASSERT_TRUE(gpu->setInstanceCount(count).ok() && cpu->setInstanceCount(count).ok());
+    for (std::uint32_t k = 0; k < count; ++k) {
+      setBoth(*cpu, *gpu, k, InstanceState::atTime(0.5 * k + 0.3 * f).withPreset(k % 3));
+    }
+    Result<std::uint64_t> g = gpu->submitFrame();
+    Result<std::uint64_t> c = cpu->submitFrame();
+    ASSERT_TRUE(g.ok() && c.ok()) << g.status().toString();
+    expectSameFrame(*cpu, *c, *gpu, *g, count, "staged bounds, frame " + std::to_string(f));
+  }
 }
 
 TEST_F(GpuTest, RuntimeWithoutNormals) {
