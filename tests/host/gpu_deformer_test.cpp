@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // CPU/GPU parity of shaders/fourier_deform.comp and shaders/lbs.comp against FourierDeformFastJob
 // and LbsFastJob on synthetic data: sizes 0, 1, 63, 65 (not multiples of the 64-wide workgroup)
-// and 1000, every influence layout, both residual spaces, both skinning modes. Tolerance 1e-5
-// absolute: both follow the same float order of operations; the gap is GPU cos/sin, sqrt and
+// and 1000, every influence layout, both residual spaces, both skinning modes, N from 1 to 17.
+// Tolerance 1e-5 absolute: both follow the same float order of operations; the gap is GPU cos/sin, sqrt and
 // fused multiply-adds.
 #include <algorithm>
 #include <cmath>
@@ -51,7 +51,8 @@ void expectClose(const std::vector<gpu::Float4>& expected, const std::vector<gpu
 }
 
 std::string describe(const RandomPackedOptions& o) {
-  return "V=" + std::to_string(o.vertex_count) + " layout=" + std::to_string(o.influence_layout) +
+  return "V=" + std::to_string(o.vertex_count) + " N=" + std::to_string(o.modes) +
+         " layout=" + std::to_string(o.influence_layout) +
          (o.residual_space == ResidualSpace::kBind ? " bind" : " posed") + (o.rates ? " rates" : " no-rates") +
          (o.skinning == SkinningMode::kDualQuaternion ? " dqs" : " lbs");
 }
@@ -62,7 +63,10 @@ std::vector<RandomPackedOptions> parityCases(SkinningMode skinning = SkinningMod
   for (std::uint32_t v : {0u, 1u, 63u, 65u, 1000u}) {
     for (std::uint32_t layout : {0u, 4u, 8u}) {
       for (ResidualSpace space : {ResidualSpace::kBind, ResidualSpace::kPosed}) {
-        cases.push_back({v, layout, space, /*rates=*/(seed % 3) != 0, seed, skinning});
+        // N odd and even, from 1 to 17: the fold and the series index the coefficients by N, so a
+        // layout change that holds at one N can break at another.
+        constexpr std::uint32_t kModes[] = {3, 1, 2, 4, 9, 6, 17};
+        cases.push_back({v, layout, space, /*rates=*/(seed % 3) != 0, seed, skinning, kModes[seed % 7]});
         ++seed;
       }
     }
