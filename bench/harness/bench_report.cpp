@@ -79,6 +79,8 @@ std::string toJson(const BenchReport& report) {
       if (ratio > 0.0) e["odeskin_over_lbs"] = ratio;
       const double gpu_ratio = gpuOdeskinOverLbs(report, r);
       if (gpu_ratio > 0.0) e["gpu_odeskin_over_lbs"] = gpu_ratio;
+      if (r.paired_over_lbs > 0.0) e["paired_odeskin_over_lbs"] = r.paired_over_lbs;
+      if (r.paired_gpu_over_lbs > 0.0) e["paired_gpu_odeskin_over_lbs"] = r.paired_gpu_over_lbs;
     }
     j["records"].push_back(std::move(e));
   }
@@ -103,7 +105,8 @@ std::string toCsv(const BenchReport& report) {
   std::ostringstream out;
   out.precision(9);
   out << "case,backend,threads,vertices,terms,seconds_per_frame,vertices_per_second,gpu_seconds_per_frame,"
-         "upload_seconds,frames,max_error,odeskin_over_lbs,bytes_per_frame,bytes_per_second,gpu_odeskin_over_lbs\n";
+         "upload_seconds,frames,max_error,odeskin_over_lbs,bytes_per_frame,bytes_per_second,gpu_odeskin_over_lbs,"
+         "paired_odeskin_over_lbs,paired_gpu_odeskin_over_lbs\n";
   for (const BenchRecord& r : report.records) {
     out << r.kernel << ',' << r.backend << ',' << r.threads << ',' << r.vertices << ',' << r.terms << ','
         << r.seconds_per_frame << ',' << r.verticesPerSecond() << ',' << r.gpu_seconds_per_frame << ','
@@ -111,6 +114,10 @@ std::string toCsv(const BenchReport& report) {
     if (r.kernel == "odeskin") out << odeskinOverLbs(report, r);
     out << ',' << r.bytes_per_frame << ',' << r.bytesPerSecond() << ',';
     if (r.kernel == "odeskin") out << gpuOdeskinOverLbs(report, r);
+    out << ',';
+    if (r.paired_over_lbs > 0.0) out << r.paired_over_lbs;
+    out << ',';
+    if (r.paired_gpu_over_lbs > 0.0) out << r.paired_gpu_over_lbs;
     out << '\n';
   }
   return out.str();

@@ -26,6 +26,10 @@ struct BenchRecord {
   int frames = 0;                   // frames timed
   double max_error = 0.0;           // worst |p - p_ref| / longest box side against cpu_ref
   double bytes_per_frame = 0.0;     // the least a frame moves (frame_traffic.hpp)
+  // odeskin on cpu_fast and vulkan: odeskin / LBS on the same subject, backend and threads, frame
+  // against frame (timePairedFrames), wall and GPU time; 0 where not measured.
+  double paired_over_lbs = 0.0;
+  double paired_gpu_over_lbs = 0.0;
 
   double verticesPerSecond() const { return seconds_per_frame > 0.0 ? static_cast<double>(vertices) / seconds_per_frame : 0.0; }
   double bytesPerSecond() const { return seconds_per_frame > 0.0 ? bytes_per_frame / seconds_per_frame : 0.0; }

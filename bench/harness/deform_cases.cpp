@@ -104,11 +104,31 @@ class CaseRunner {
 
   Status check(BenchRecord& r, std::span<const gpu::Float4> actual) const {
     r.max_error = worstError(expected_, actual, box_);
-    if (!(r.max_error <= kVerifyTolerance)) {
-      return internalError("bench: " + r.kernel + " on " + r.backend + " (" + std::to_string(r.threads) +
+    return checkError(r.kernel, r, r.max_error);
+  }
+
+  Status checkError(const std::string& kernel, const BenchRecord& r, double error) const {
+    if (!(error <= kVerifyTolerance)) {
+      return internalError("bench: " + kernel + " on " + r.backend + " (" + std::to_string(r.threads) +
                            " threads, " + std::to_string(r.vertices) + " vertices) differs from cpu_ref by " +
-                           messageNumber(r.max_error) + " of the box (limit 1e-4)");
+                           messageNumber(error) + " of the box (limit 1e-4)");
     }
+    return okStatus();
+  }
+
+  // odeskin only: its frames against LBS frames of the same subject on the same backend, alternated
+  // (timePairedFrames), into r's paired ratios. `skin` has run once into `skinned`, which is checked
+  // against the LBS reference first, so the pairing never times a wrong kernel.
+  Status pairWithLbs(BenchRecord& r, const FrameBody& deform, const FrameBody& skin,
+                     std::span<const gpu::Float4> skinned, double warmup_seconds) const {
+    std::vector<Vec3> lbs_expected(s_.vertexCount());
+    const LbsJob reference{s_.asset.rest_positions, s_.asset.influences, s_.frame.bones, lbs_expected, s_.asset.skinning};
+    ODESKIN_TRY(reference.run());
+    ODESKIN_TRY(checkError("lbs (paired with odeskin)", r, worstError(lbs_expected, skinned, box_)));
+    ODESKIN_ASSIGN_OR_RETURN(const PairedTiming paired,
+                             timePairedFrames(deform, skin, options_.min_seconds, 3, 100000, warmup_seconds));
+    r.paired_over_lbs = paired.ratio;
+    r.paired_gpu_over_lbs = paired.gpu_ratio;
     return okStatus();
   }
 
@@ -134,6 +154,12 @@ class CaseRunner {
     ODESKIN_TRY(frame(unused));
     ODESKIN_TRY(check(r, out));
     ODESKIN_ASSIGN_OR_RETURN(const FrameTiming t, timeFrames(frame, options_.min_seconds));
+    if (deforms()) {
+      std::vector<gpu::Float4> skinned(s_.vertexCount());
+      const FrameBody skin = [&](double&) { return kernel.skin(f.gpu_bones, skinned, threads); };
+      ODESKIN_TRY(skin(unused));
+      ODESKIN_TRY(pairWithLbs(r, frame, skin, skinned, 0.0));
+    }
     return finish(std::move(r), t);
   }
 
@@ -150,6 +176,10 @@ class CaseRunner {
       ODESKIN_ASSIGN_OR_RETURN(lbs, GpuLbs::create(*options_.device, s_.packed));
     }
     r.upload_seconds = secondsSince(upload);
+    // odeskin's frames are also paired with LBS frames on the same device (pairWithLbs).
+    if (deforms()) {
+      ODESKIN_ASSIGN_OR_RETURN(lbs, GpuLbs::create(*options_.device, s_.packed));
+    }
     const GpuDeformFrame deform_frame{s_.frame.segment, s_.frame.gpu_bones, s_.frame.gpu_basis};
     const GpuLbsFrame lbs_frame{s_.frame.gpu_bones};
     auto frame = [&](double& gpu_seconds) {
@@ -163,6 +193,16 @@ class CaseRunner {
     ODESKIN_TRY(check(r, out));
     ODESKIN_ASSIGN_OR_RETURN(const FrameTiming t,
                              timeFrames(frame, options_.min_seconds, 3, 100000, kGpuWarmupSeconds));
+    if (deforms()) {
+      const FrameBody skin = [&](double& gpu_seconds) {
+        Status status = lbs->run(lbs_frame);
+        gpu_seconds = lbs->lastGpuSeconds();
+        return status;
+      };
+      ODESKIN_TRY(skin(unused));
+      ODESKIN_TRY(lbs->readPositions(out));
+      ODESKIN_TRY(pairWithLbs(r, frame, skin, out, kGpuWarmupSeconds));
+    }
     return finish(std::move(r), t);
   }
 

@@ -3,7 +3,8 @@
 // DQS on the same tiled mesh, per backend (cpu_ref: the double reference; cpu_fast: CpuDeformKernel,
 // the float SIMD path, with 1 and all threads; vulkan: one dispatch per frame). Every backend's frame
 // is checked against cpu_ref before it is timed; upload (GPU) or preparation (CpuDeformKernel::create)
-// is timed apart from the frames.
+// is timed apart from the frames. Each odeskin case on cpu_fast and vulkan then runs again,
+// alternating with LBS frames of the same mesh, for the frame-against-frame ratio (PairedTiming).
 #pragma once
 
 #include <cstddef>

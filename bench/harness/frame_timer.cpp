@@ -18,11 +18,57 @@ double median(std::vector<double> values) {
   return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid)));
 }
 
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
 }  // namespace
+
+Result<PairedTiming> timePairedFrames(const FrameBody& a, const FrameBody& b, double min_seconds, int min_pairs,
+                                      int max_pairs, double warmup_seconds) {
+  double gpu = 0.0;
+  const Clock::time_point warmup = Clock::now();
+  do {
+    ODESKIN_TRY(a(gpu));
+    ODESKIN_TRY(b(gpu));
+  } while (secondsSince(warmup) < warmup_seconds);
+  // One frame of `body`: its wall time, and its GPU time in `gpu_seconds`.
+  auto timed = [](const FrameBody& body, double& seconds, double& gpu_seconds) -> Status {
+    gpu_seconds = 0.0;
+    const Clock::time_point start = Clock::now();
+    ODESKIN_TRY(body(gpu_seconds));
+    seconds = secondsSince(start);
+    return okStatus();
+  };
+  std::vector<double> ratios;
+  std::vector<double> gpu_ratios;
+  bool every_gpu = true;
+  double total = 0.0;
+  while (static_cast<int>(ratios.size()) < max_pairs &&
+         (total < min_seconds || static_cast<int>(ratios.size()) < min_pairs)) {
+    double a_seconds = 0.0, b_seconds = 0.0, a_gpu = 0.0, b_gpu = 0.0;
+    if (ratios.size() % 2 == 0) {
+      ODESKIN_TRY(timed(a, a_seconds, a_gpu));
+      ODESKIN_TRY(timed(b, b_seconds, b_gpu));
+    } else {
+      ODESKIN_TRY(timed(b, b_seconds, b_gpu));
+      ODESKIN_TRY(timed(a, a_seconds, a_gpu));
+    }
+    // A clock too coarse for an empty frame can read 0; such a pair says nothing.
+    ratios.push_back(b_seconds > 0.0 ? a_seconds / b_seconds : 0.0);
+    every_gpu = every_gpu && a_gpu > 0.0 && b_gpu > 0.0;
+    gpu_ratios.push_back(b_gpu > 0.0 ? a_gpu / b_gpu : 0.0);
+    total += a_seconds + b_seconds;
+  }
+  PairedTiming timing;
+  timing.pairs = static_cast<int>(ratios.size());
+  timing.ratio = median(std::move(ratios));
+  timing.gpu_ratio = every_gpu ? median(std::move(gpu_ratios)) : 0.0;
+  return timing;
+}
 
 Result<FrameTiming> timeFrames(const FrameBody& body, double min_seconds, int min_frames, int max_frames,
                                double warmup_seconds) {
-  using Clock = std::chrono::steady_clock;
   double gpu = 0.0;
   // Warm-up: caches, lazy driver work, page faults of the output, and a GPU's clocks.
   const Clock::time_point warmup = Clock::now();

@@ -133,6 +133,17 @@ void printBandwidth(const BenchReport& report, std::ostream& out) {
   }
 }
 
+// "2.21 frame against frame (1.42 from the two cases' medians)", or the one that was measured.
+std::string ratioText(double paired, double separate) {
+  char text[128];
+  if (paired > 0.0 && separate > 0.0) {
+    std::snprintf(text, sizeof text, "%.2f frame against frame (%.2f from the two cases' medians)", paired, separate);
+  } else {
+    std::snprintf(text, sizeof text, "%.2f", paired > 0.0 ? paired : separate);
+  }
+  return text;
+}
+
 // The issue's targets, each read from this run's records (ratios within one run, not across runs).
 void printTargets(const BenchReport& report, std::ostream& out) {
   out << "\ntargets (issue 6, from this run):\n";
@@ -144,19 +155,25 @@ void printTargets(const BenchReport& report, std::ostream& out) {
   for (const char* backend : {"cpu_fast", "vulkan"}) {
     for (const BenchRecord& r : report.records) {
       if (r.kernel != "odeskin" || r.terms != 9 || r.backend != backend || r.threads != 1) continue;
-      const double ratio = bench::odeskinOverLbs(report, r);
+      // The verdict comes from the frame-against-frame ratio where it was measured: the two cases'
+      // medians were timed seconds apart, under whatever the machine's neighbours did then.
+      const double separate = bench::odeskinOverLbs(report, r);
+      const double ratio = r.paired_over_lbs > 0.0 ? r.paired_over_lbs : separate;
       if (ratio <= 0.0) continue;
-      char line[200];
+      char line[256];
       const bool met = ratio <= 1.5;
-      std::snprintf(line, sizeof line, "  odeskin N=9 / lbs, %s 1 thread, %zu vertices: %.2f (target <= 1.5: %s)\n",
-                    backend, r.vertices, ratio, r.backend == "vulkan" ? vulkan_verdict(met) : verdict(met));
+      std::snprintf(line, sizeof line, "  odeskin N=9 / lbs, %s 1 thread, %zu vertices: %s (target <= 1.5: %s)\n",
+                    backend, r.vertices, ratioText(r.paired_over_lbs, separate).c_str(),
+                    r.backend == "vulkan" ? vulkan_verdict(met) : verdict(met));
       out << line;
       // On a real GPU the wall time is mostly submit-and-wait latency below 10^6 vertices; the
       // timestamp queries give what the frame costs the GPU, which is what an engine pays.
-      const double gpu_ratio = r.backend == "vulkan" ? bench::gpuOdeskinOverLbs(report, r) : 0.0;
+      const double gpu_separate = r.backend == "vulkan" ? bench::gpuOdeskinOverLbs(report, r) : 0.0;
+      const double gpu_ratio = r.paired_gpu_over_lbs > 0.0 ? r.paired_gpu_over_lbs : gpu_separate;
       if (gpu_ratio > 0.0) {
-        std::snprintf(line, sizeof line, "  odeskin N=9 / lbs, vulkan GPU time, %zu vertices: %.2f (target <= 1.5: %s)\n",
-                      r.vertices, gpu_ratio, vulkan_verdict(gpu_ratio <= 1.5));
+        std::snprintf(line, sizeof line, "  odeskin N=9 / lbs, vulkan GPU time, %zu vertices: %s (target <= 1.5: %s)\n",
+                      r.vertices, ratioText(r.paired_gpu_over_lbs, gpu_separate).c_str(),
+                      vulkan_verdict(gpu_ratio <= 1.5));
         out << line;
       }
     }

@@ -148,6 +148,53 @@ TEST(TimeFrames, WarmsUpForTheGivenTimeBeforeTiming) {
   EXPECT_GT(calls - 3, 1);  // 50 ms of 2 ms frames: the warm-up ran several, not the one it used to
 }
 
+// Busy for `seconds` of steady-clock time (a sleep could oversleep by more than a short frame).
+void spin(double seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds) {
+  }
+}
+
+TEST(TimePairedFrames, AlternatesTheOrderAndTakesTheMedianRatio) {
+  std::string order;
+  Result<PairedTiming> t = timePairedFrames(
+      [&](double& gpu) {
+        order += 'a';
+        gpu = 3.0;
+        spin(2e-3);
+        return okStatus();
+      },
+      [&](double& gpu) {
+        order += 'b';
+        gpu = 1.5;
+        spin(1e-3);
+        return okStatus();
+      },
+      0.0, 9);
+  ASSERT_TRUE(t.ok());
+  EXPECT_EQ(t->pairs, 9);
+  EXPECT_EQ(order.substr(0, 8), "ab" "ab" "ba" "ab");  // the warm-up pair, then pairs 1, 2, 3
+  EXPECT_EQ(t->gpu_ratio, 2.0);
+  // 2 ms against 1 ms of spinning; a preempted pair moves its own ratio, not the median.
+  EXPECT_NEAR(t->ratio, 2.0, 0.25);
+}
+
+TEST(TimePairedFrames, NeedsBothGpuTimesAndStopsOnFailure) {
+  Result<PairedTiming> cpu = timePairedFrames([](double&) { return okStatus(); },
+                                              [](double& gpu) {
+                                                gpu = 1.0;
+                                                return okStatus();
+                                              },
+                                              0.0, 3);
+  ASSERT_TRUE(cpu.ok());
+  EXPECT_EQ(cpu->gpu_ratio, 0.0);  // `a` reports no GPU time
+  int calls = 0;
+  Result<PairedTiming> failed = timePairedFrames([](double&) { return okStatus(); },
+                                                 [&](double&) { return ++calls == 4 ? internalError("frame 4") : okStatus(); },
+                                                 1.0);
+  EXPECT_EQ(failed.status().message(), "frame 4");
+}
+
 BenchReport sampleReport() {
   BenchReport r;
   r.device = "test device";
@@ -192,8 +239,25 @@ TEST(BenchReport, GpuRatioComesFromTheTimestampTimes) {
   EXPECT_DOUBLE_EQ(j["records"][2]["gpu_odeskin_over_lbs"].get<double>(), 3.0);
   EXPECT_FALSE(j["records"][0].contains("gpu_odeskin_over_lbs"));  // cpu_fast has no GPU time
   const std::string csv = toCsv(r);
-  EXPECT_NE(csv.find(",gpu_odeskin_over_lbs\n"), std::string::npos);
-  EXPECT_NE(csv.find(",200000,50000000,3\n"), std::string::npos);  // the vulkan odeskin line ends in its GPU ratio
+  EXPECT_NE(csv.find(",gpu_odeskin_over_lbs,paired_odeskin_over_lbs,paired_gpu_odeskin_over_lbs\n"), std::string::npos);
+  EXPECT_NE(csv.find(",200000,50000000,3,,\n"), std::string::npos);  // the vulkan odeskin line's GPU ratio, no pairing
+}
+
+// The frame-against-frame ratios are the odeskin record's own, written only where measured.
+TEST(BenchReport, PairedRatiosAreWrittenWhereMeasured) {
+  BenchReport r = sampleReport();
+  r.records[0].paired_over_lbs = 2.25;
+  r.records[2].paired_over_lbs = 1.5;
+  r.records[2].paired_gpu_over_lbs = 2.5;
+  const nlohmann::json j = nlohmann::json::parse(toJson(r));
+  EXPECT_DOUBLE_EQ(j["records"][0]["paired_odeskin_over_lbs"].get<double>(), 2.25);
+  EXPECT_DOUBLE_EQ(j["records"][0]["odeskin_over_lbs"].get<double>(), 3.0);  // the separate cases' ratio stays
+  EXPECT_FALSE(j["records"][0].contains("paired_gpu_odeskin_over_lbs"));
+  EXPECT_FALSE(j["records"][1].contains("paired_odeskin_over_lbs"));  // lbs
+  EXPECT_DOUBLE_EQ(j["records"][2]["paired_gpu_odeskin_over_lbs"].get<double>(), 2.5);
+  const std::string csv = toCsv(r);
+  EXPECT_NE(csv.find(",0,2.25,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",1.5,2.5\n"), std::string::npos) << csv;
 }
 
 TEST(BenchPlot, WritesAPngAndRefusesAnEmptyReport) {
@@ -336,6 +400,10 @@ TEST_F(DeformCases, VerifiesAndTimesEveryBackendAndKernel) {
     if (r.backend == "vulkan") {
       EXPECT_GT(r.gpu_seconds_per_frame, 0.0);
     }
+    // odeskin on the timed fast paths is also paired with LBS frame against frame.
+    const bool paired = r.kernel == "odeskin" && r.backend != "cpu_ref";
+    EXPECT_EQ(r.paired_over_lbs > 0.0, paired) << r.kernel << " " << r.backend;
+    EXPECT_EQ(r.paired_gpu_over_lbs > 0.0, paired && r.backend == "vulkan") << r.kernel << " " << r.backend;
   }
 }
 
