@@ -43,25 +43,26 @@ Result<PairedTiming> timePairedFrames(const FrameBody& a, const FrameBody& b, do
   std::vector<double> ratios;
   std::vector<double> gpu_ratios;
   bool every_gpu = true;
+  int pairs = 0;
   double total = 0.0;
-  while (static_cast<int>(ratios.size()) < max_pairs &&
-         (total < min_seconds || static_cast<int>(ratios.size()) < min_pairs)) {
+  while (pairs < max_pairs && (total < min_seconds || pairs < min_pairs)) {
     double a_seconds = 0.0, b_seconds = 0.0, a_gpu = 0.0, b_gpu = 0.0;
-    if (ratios.size() % 2 == 0) {
+    if (pairs % 2 == 0) {
       ODESKIN_TRY(timed(a, a_seconds, a_gpu));
       ODESKIN_TRY(timed(b, b_seconds, b_gpu));
     } else {
       ODESKIN_TRY(timed(b, b_seconds, b_gpu));
       ODESKIN_TRY(timed(a, a_seconds, a_gpu));
     }
-    // A clock too coarse for an empty frame can read 0; such a pair says nothing.
-    ratios.push_back(b_seconds > 0.0 ? a_seconds / b_seconds : 0.0);
-    every_gpu = every_gpu && a_gpu > 0.0 && b_gpu > 0.0;
-    gpu_ratios.push_back(b_gpu > 0.0 ? a_gpu / b_gpu : 0.0);
+    ++pairs;
     total += a_seconds + b_seconds;
+    // A clock too coarse for an empty frame can read 0: such a pair gives no ratio.
+    if (b_seconds > 0.0) ratios.push_back(a_seconds / b_seconds);
+    every_gpu = every_gpu && a_gpu > 0.0 && b_gpu > 0.0;
+    if (every_gpu) gpu_ratios.push_back(a_gpu / b_gpu);
   }
   PairedTiming timing;
-  timing.pairs = static_cast<int>(ratios.size());
+  timing.pairs = pairs;
   timing.ratio = median(std::move(ratios));
   timing.gpu_ratio = every_gpu ? median(std::move(gpu_ratios)) : 0.0;
   return timing;
