@@ -22,6 +22,15 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
+// One frame of `body`: its wall time into `seconds`, the GPU time it reports into `gpu_seconds`.
+Status timeFrame(const FrameBody& body, double& seconds, double& gpu_seconds) {
+  gpu_seconds = 0.0;
+  const Clock::time_point start = Clock::now();
+  ODESKIN_TRY(body(gpu_seconds));
+  seconds = secondsSince(start);
+  return okStatus();
+}
+
 }  // namespace
 
 Result<PairedTiming> timePairedFrames(const FrameBody& a, const FrameBody& b, double min_seconds, int min_pairs,
@@ -32,14 +41,6 @@ Result<PairedTiming> timePairedFrames(const FrameBody& a, const FrameBody& b, do
     ODESKIN_TRY(a(gpu));
     ODESKIN_TRY(b(gpu));
   } while (secondsSince(warmup) < warmup_seconds);
-  // One frame of `body`: its wall time, and its GPU time in `gpu_seconds`.
-  auto timed = [](const FrameBody& body, double& seconds, double& gpu_seconds) -> Status {
-    gpu_seconds = 0.0;
-    const Clock::time_point start = Clock::now();
-    ODESKIN_TRY(body(gpu_seconds));
-    seconds = secondsSince(start);
-    return okStatus();
-  };
   std::vector<double> ratios;
   std::vector<double> gpu_ratios;
   bool every_gpu = true;
@@ -48,11 +49,11 @@ Result<PairedTiming> timePairedFrames(const FrameBody& a, const FrameBody& b, do
   while (pairs < max_pairs && (total < min_seconds || pairs < min_pairs)) {
     double a_seconds = 0.0, b_seconds = 0.0, a_gpu = 0.0, b_gpu = 0.0;
     if (pairs % 2 == 0) {
-      ODESKIN_TRY(timed(a, a_seconds, a_gpu));
-      ODESKIN_TRY(timed(b, b_seconds, b_gpu));
+      ODESKIN_TRY(timeFrame(a, a_seconds, a_gpu));
+      ODESKIN_TRY(timeFrame(b, b_seconds, b_gpu));
     } else {
-      ODESKIN_TRY(timed(b, b_seconds, b_gpu));
-      ODESKIN_TRY(timed(a, a_seconds, a_gpu));
+      ODESKIN_TRY(timeFrame(b, b_seconds, b_gpu));
+      ODESKIN_TRY(timeFrame(a, a_seconds, a_gpu));
     }
     ++pairs;
     total += a_seconds + b_seconds;
@@ -75,16 +76,14 @@ Result<FrameTiming> timeFrames(const FrameBody& body, double min_seconds, int mi
   const Clock::time_point warmup = Clock::now();
   do {
     ODESKIN_TRY(body(gpu));
-  } while (std::chrono::duration<double>(Clock::now() - warmup).count() < warmup_seconds);
+  } while (secondsSince(warmup) < warmup_seconds);
   std::vector<double> wall;
   std::vector<double> gpu_times;
   double total = 0.0;
   while (static_cast<int>(wall.size()) < max_frames &&
          (total < min_seconds || static_cast<int>(wall.size()) < min_frames)) {
-    gpu = 0.0;
-    const Clock::time_point start = Clock::now();
-    ODESKIN_TRY(body(gpu));
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    double seconds = 0.0;
+    ODESKIN_TRY(timeFrame(body, seconds, gpu));
     wall.push_back(seconds);
     gpu_times.push_back(gpu);
     total += seconds;
