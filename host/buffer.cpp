@@ -56,6 +56,7 @@ Result<Buffer> Buffer::create(const Device& device, VkDeviceSize size_bytes, VkB
   if (allocated == VK_SUCCESS) allocated = vkAllocateMemory(device.handle(), &alloc, nullptr, &memory);
   ODESKIN_TRY(vkStatus(allocated, "vkAllocateMemory"));
   buffer.memory_ = UniqueMemory(device.handle(), memory);
+  buffer.allocated_ = requirements.size;
   ODESKIN_VK_TRY(vkBindBufferMemory(device.handle(), handle, memory, 0));
 
   // Persistently mapped: coherent memory needs no flush, and mapping once costs nothing per frame.
@@ -78,6 +79,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     memory_ = std::move(other.memory_);
     device_ = std::exchange(other.device_, VK_NULL_HANDLE);
     size_ = std::exchange(other.size_, 0);
+    allocated_ = std::exchange(other.allocated_, 0);
     mapped_ = std::exchange(other.mapped_, nullptr);
     memory_flags_ = std::exchange(other.memory_flags_, 0);
   }

@@ -61,6 +61,8 @@ class Buffer {
 
   VkBuffer handle() const { return buffer_.get(); }
   VkDeviceSize size() const { return size_; }
+  // Bytes of its memory allocation: size() rounded up as the device requires; 0 for no buffer.
+  VkDeviceSize allocatedBytes() const { return allocated_; }
   // Host pointer to the whole buffer when it is mapped, else null.
   std::byte* mapped() const { return mapped_; }
 
@@ -80,8 +82,20 @@ class Buffer {
   UniqueMemory memory_;
   VkDevice device_ = VK_NULL_HANDLE;
   VkDeviceSize size_ = 0;
+  VkDeviceSize allocated_ = 0;
   std::byte* mapped_ = nullptr;
   VkMemoryPropertyFlags memory_flags_ = 0;
+};
+
+// Memory of a set of buffers, for reports (RuntimeMemory): their allocations' bytes, and how many
+// of them are device-local.
+struct BufferTally {
+  std::uint64_t bytes = 0;
+  std::uint64_t device_local = 0;
+  void add(const Buffer& buffer) {
+    bytes += buffer.allocatedBytes();
+    if ((buffer.memoryFlags() & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) != 0) device_local += buffer.allocatedBytes();
+  }
 };
 
 // A shader input buffer (storage or uniform texel) holding `bytes`, at least 16 bytes long so

@@ -172,4 +172,9 @@ Status FrameRing::waitAll() {
   return okStatus();
 }
 
+void FrameRing::countBuffers(BufferTally& tally) const {
+  tally.add(finished_);
+  for (const Slot& slot : slots_) tally.add(slot.inputs);
+}
+
 }  // namespace odeskin::vk

@@ -76,6 +76,8 @@ class FrameRing {
   // or without timestamps).
   double gpuSeconds(std::uint32_t slot) const { return slots_[slot].gpu_seconds; }
   double lastGpuSeconds() const { return last_gpu_seconds_; }
+  // Adds the ring's buffers (every slot's inputs, the completion words) to `tally`.
+  void countBuffers(BufferTally& tally) const;
 
  private:
   struct Slot {

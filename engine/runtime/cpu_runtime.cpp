@@ -227,6 +227,19 @@ Status CpuRuntime::copyTangents(std::uint32_t slot, std::uint32_t instance, std:
   return okStatus();
 }
 
+RuntimeMemory CpuRuntime::memory() const {
+  RuntimeMemory m;
+  m.capacity = capacity();
+  for (const CpuDeformKernel& kernel : deformers_) m.asset += kernel.stats().bytes;
+  m.inputs = instanceStateBytes() + reservedBytes(records_) + reservedBytes(bones_) + reservedBytes(basis_) +
+             reservedBytes(chunk_bounds_);
+  for (const Slot& slot : slots_) {
+    m.outputs += reservedBytes(slot.positions) + reservedBytes(slot.normals) + reservedBytes(slot.bounds) +
+                 reservedBytes(slot.render_positions) + reservedBytes(slot.render_normals) + reservedBytes(slot.tangents);
+  }
+  return m;
+}
+
 Status CpuRuntime::copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) {
   std::copy_n(slots_[slot].bounds.begin(), out.size(), out.begin());
   return okStatus();

@@ -32,6 +32,7 @@ class CpuRuntime final : public DeformRuntime {
 
   std::string_view backendName() const override { return "cpu"; }
   Status wait() override { return okStatus(); }
+  RuntimeMemory memory() const override;
 
   // Zero-copy views of a finished frame's outputs, valid until its slot is reused (framesInFlight()
   // submissions later): every instance's positions (instance k at k * outputVertexCount()),

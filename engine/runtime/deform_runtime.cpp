@@ -224,4 +224,8 @@ Result<FrameTimes> DeformRuntime::frameTimes(std::uint64_t frame) {
   return times;
 }
 
+std::uint64_t DeformRuntime::instanceStateBytes() const {
+  return reservedBytes(instances_) + reservedBytes(engine_bones_);
+}
+
 }  // namespace odeskin

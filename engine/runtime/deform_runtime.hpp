@@ -104,6 +104,29 @@ struct FrameTimes {
   double deform_seconds = 0.0;
 };
 
+// Memory a runtime holds, in bytes, so that an engine can budget its characters' deformation (as
+// Unreal budgets its skin cache) and see what one more instance of capacity costs. Host arrays
+// count at their reserved size, GPU buffers at their allocations' (each rounded up to the device's
+// alignment); pipelines, descriptor sets and query pools (a few KiB) are left out. The RuntimeAsset
+// is the caller's and is not counted: runtimes may share one.
+struct RuntimeMemory {
+  std::uint32_t capacity = 0;
+  std::uint64_t asset = 0;    // prepared from the asset once: the CPU kernels' blocks, or the uploaded arrays
+  std::uint64_t inputs = 0;   // the instances' states and their frame inputs (Vulkan: every slot's, and the folded series)
+  std::uint64_t outputs = 0;  // every slot's positions, normals, tangents, render-vertex copies and bounds
+  std::uint64_t device_local = 0;  // of the total, in device-local GPU memory (0 on the CPU backend)
+
+  std::uint64_t total() const { return asset + inputs + outputs; }
+  // Inputs and outputs per instance of capacity: nearly all of both grows with it.
+  double perInstance() const { return capacity == 0 ? 0.0 : static_cast<double>(inputs + outputs) / capacity; }
+};
+
+// A host array's share of RuntimeMemory.
+template <typename T>
+std::uint64_t reservedBytes(const std::vector<T>& array) {
+  return std::uint64_t{array.capacity()} * sizeof(T);
+}
+
 class DeformRuntime {
  public:
   virtual ~DeformRuntime() = default;
@@ -155,6 +178,8 @@ class DeformRuntime {
   // One box per instance of the frame: `out` has exactly that frame's instance count.
   Status readBounds(std::uint64_t frame, std::span<InstanceBounds> out);
   Result<FrameTimes> frameTimes(std::uint64_t frame);
+  // What this runtime holds now; constant after create() (nothing is allocated per frame).
+  virtual RuntimeMemory memory() const = 0;
 
  protected:
   // kInvalidArgument for frames_in_flight = 0, or tangents on an asset without them, without
@@ -169,6 +194,8 @@ class DeformRuntime {
   void prepareInputs(std::span<gpu::InstanceRecord> records, std::span<gpu::BoneMatrix> bones,
                      std::span<gpu::ModeBasis> basis) const;
   const WorkerArena& arena() const { return arena_; }
+  // Host bytes of the instances' states (the backends' memory() counts them as inputs).
+  std::uint64_t instanceStateBytes() const;
 
   // Backends: deform instanceCount() instances into `slot`, preparing the inputs with
   // prepareInputs, and store its host times. Frame bookkeeping is the base's.

@@ -210,6 +210,33 @@ Status VulkanRuntime::createSlots(BoundsReadback bounds) {
   return okStatus();
 }
 
+RuntimeMemory VulkanRuntime::memory() const {
+  vk::BufferTally asset;
+  for (const auto& [binding, buffer] : deform_statics_) asset.add(buffer);
+  for (const vk::Buffer* b : {&corner_offsets_, &corners_, &render_corner_offsets_, &render_corners_, &render_topology_,
+                              &tangent_frames_, &tangent_weights_}) {
+    asset.add(*b);
+  }
+  vk::BufferTally inputs;
+  inputs.add(folded_);
+  ring_.countBuffers(inputs);
+  vk::BufferTally outputs;
+  for (const Slot& slot : slots_) {
+    for (const vk::Buffer* b : {&slot.positions, &slot.normals, &slot.bounds, &slot.bounds_readback, &slot.render_positions,
+                                &slot.render_normals, &slot.tangents}) {
+      outputs.add(*b);
+    }
+  }
+  RuntimeMemory m;
+  m.capacity = capacity();
+  m.asset = asset.bytes;
+  // Host memory too: the instances' states, and the copy of a frame's inputs prepared before its slot is free.
+  m.inputs = inputs.bytes + instanceStateBytes() + reservedBytes(records_) + reservedBytes(bones_) + reservedBytes(basis_);
+  m.outputs = outputs.bytes;
+  m.device_local = asset.device_local + inputs.device_local + outputs.device_local;
+  return m;
+}
+
 Status VulkanRuntime::createBounds(Slot& slot, VkDeviceSize bytes, BoundsReadback readback) {
   // The host reads every frame's bounds. On a discrete GPU the mappable memory is uncached device
   // memory (ReBAR), which the host reads across the bus: 16 MB of a tessellated patch came back at

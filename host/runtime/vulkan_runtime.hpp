@@ -92,6 +92,7 @@ class VulkanRuntime final : public DeformRuntime {
   std::string_view backendName() const override { return "vulkan"; }
   // kInvalidArgument, naming it, while a recorded frame is not completed (it cannot wait for those).
   Status wait() override;
+  RuntimeMemory memory() const override;
 
   // Instead of submitFrame(): the frame recorded into `cmd`, a primary command buffer of the
   // engine's in the recording state, outside a render pass, from a pool of the device's queue

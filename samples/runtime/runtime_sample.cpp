@@ -222,6 +222,15 @@ int run(const SampleOptions& o) {
   } else {
     std::printf("backend: cpu, %u threads\n", WorkerArena(o.threads).threads());
   }
+  {
+    const RuntimeMemory memory = runtime->memory();
+    constexpr double kMiB = 1024.0 * 1024.0;
+    std::printf("memory: %.2f MiB (asset %.2f, inputs %.2f, outputs %.2f for %u frames in flight; %.1f KiB per "
+                "instance; %.2f MiB device-local)\n",
+                static_cast<double>(memory.total()) / kMiB, static_cast<double>(memory.asset) / kMiB,
+                static_cast<double>(memory.inputs) / kMiB, static_cast<double>(memory.outputs) / kMiB,
+                runtime->framesInFlight(), memory.perInstance() / 1024.0, static_cast<double>(memory.device_local) / kMiB);
+  }
   const std::uint64_t frame_count = static_cast<std::uint64_t>(std::llround(o.seconds * kHz));
   std::printf("animating %u instances x %u vertices for %.2f s at %.0f Hz (%llu frames)\n", o.instances,
               asset->vertexCount(), o.seconds, kHz, static_cast<unsigned long long>(frame_count));

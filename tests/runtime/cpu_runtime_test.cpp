@@ -319,6 +319,45 @@ TEST(CpuRuntime, ThreadCountDoesNotChangeTheResult) {
   EXPECT_EQ(worstGap(*one.normals(*a), *all.normals(*b)).gap, 0.0);
 }
 
+// memory(): the outputs are exactly every slot's arrays, the asset's share does not depend on the
+// capacity, the inputs grow with it, and a frame allocates nothing more.
+TEST(CpuRuntime, MemoryCountsWhatTheRuntimeHolds) {
+  const RuntimeAsset asset = makeAsset(cylinderAsset());
+  const std::uint64_t v = asset.vertexCount();
+  for (const bool normals : {true, false}) {
+    RuntimeOptions options;
+    options.frames_in_flight = 2;
+    options.normals = normals;
+    options.threads = 1;
+    options.capacity = 3;
+    Result<CpuRuntime> small = CpuRuntime::create(asset, options);
+    options.capacity = 7;
+    Result<CpuRuntime> big = CpuRuntime::create(asset, options);
+    ASSERT_TRUE(small.ok() && big.ok());
+    const RuntimeMemory a = small->memory();
+    const RuntimeMemory b = big->memory();
+    const std::uint64_t per_instance = v * sizeof(gpu::Float4) * (normals ? 2 : 1) + sizeof(InstanceBounds);
+    EXPECT_EQ(a.capacity, 3u);
+    EXPECT_EQ(a.outputs, per_instance * 2 * 3) << "normals " << normals;
+    EXPECT_EQ(b.outputs, per_instance * 2 * 7) << "normals " << normals;
+    // The kernel holds at least every vertex's rest position.
+    EXPECT_GT(a.asset, v * 3 * sizeof(float));
+    EXPECT_EQ(a.asset, b.asset);
+    EXPECT_GT(b.inputs, a.inputs);
+    EXPECT_EQ(a.device_local, 0u);
+    EXPECT_EQ(a.total(), a.asset + a.inputs + a.outputs);
+    EXPECT_DOUBLE_EQ(b.perInstance(), static_cast<double>(b.inputs + b.outputs) / 7.0);
+
+    ASSERT_TRUE(big->setInstanceCount(7).ok());
+    ASSERT_TRUE(big->submitFrame().ok());
+    ASSERT_TRUE(big->submitFrame().ok());
+    const RuntimeMemory after = big->memory();
+    EXPECT_EQ(after.asset, b.asset);
+    EXPECT_EQ(after.inputs, b.inputs);
+    EXPECT_EQ(after.outputs, b.outputs);
+  }
+}
+
 // On 4 threads, instances left over after whole rounds of one per thread (all of 1, 2 or 3; the
 // fifth of 5, the last two of 6) take the other path: each one's vertices spread over the threads,
 // normals and bounds in chunks of 4,096 vertices (the cat has two). One thread takes the

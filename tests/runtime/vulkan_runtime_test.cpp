@@ -275,6 +275,48 @@ TEST_F(GpuTest, RuntimeStagedBoundsMatchToo) {
   }
 }
 
+// memory(): every slot's output buffers at no less than their sizes (allocations round up to the
+// device's alignment), the uploaded asset's share independent of the capacity, the folded series
+// growing with it, and nothing more after frames.
+TEST_F(GpuTest, RuntimeMemoryCountsItsBuffers) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  const PackedDeformData& data = asset.packed(0);
+  const std::uint64_t v = asset.vertexCount();
+  RuntimeOptions options = withCapacity(3);
+  Result<VulkanRuntime> small = VulkanRuntime::create(device(), asset, options);
+  options.capacity = 7;
+  Result<VulkanRuntime> big = VulkanRuntime::create(device(), asset, options);
+  ASSERT_TRUE(small.ok() && big.ok()) << small.status().toString();
+  const RuntimeMemory a = small->memory();
+  const RuntimeMemory b = big->memory();
+  std::printf("memory on %s, 3 / 7 instances: asset %llu, inputs %llu / %llu, outputs %llu / %llu bytes, device-local %llu / %llu\n",
+              device().name(), static_cast<unsigned long long>(a.asset), static_cast<unsigned long long>(a.inputs),
+              static_cast<unsigned long long>(b.inputs), static_cast<unsigned long long>(a.outputs),
+              static_cast<unsigned long long>(b.outputs), static_cast<unsigned long long>(a.device_local),
+              static_cast<unsigned long long>(b.device_local));
+  // Per slot: positions and normals (capacity x V Float4) and the bounds' keys; rounding up adds
+  // less than 64 KiB to each of those three buffers.
+  auto outputs = [&](std::uint64_t capacity) { return 2 * capacity * (2 * v * sizeof(gpu::Float4) + sizeof(gpu::BoundsKeys)); };
+  constexpr std::uint64_t kRounding = std::uint64_t{65536} * 2 * 3;
+  EXPECT_GE(a.outputs, outputs(3));
+  EXPECT_LT(a.outputs, outputs(3) + kRounding);
+  EXPECT_GE(b.outputs, outputs(7));
+  EXPECT_LT(b.outputs, outputs(7) + kRounding);
+  EXPECT_GE(a.asset, data.rest_positions.size() * sizeof(data.rest_positions[0]) +
+                         data.coefficients.size() * sizeof(data.coefficients[0]));
+  EXPECT_EQ(a.asset, b.asset);
+  // Four more instances' folded series at least.
+  EXPECT_GE(b.inputs - a.inputs, 4ull * data.curve_count * gpu::coefficientsPerCurve(data.modes) * sizeof(gpu::Float4));
+  EXPECT_LE(a.device_local, a.total());
+
+  ASSERT_TRUE(big->setInstanceCount(7).ok());
+  for (int f = 0; f < 3; ++f) ASSERT_TRUE(big->submitFrame().ok());
+  ASSERT_TRUE(big->wait().ok());
+  const RuntimeMemory after = big->memory();
+  EXPECT_EQ(after.total(), b.total());
+  EXPECT_EQ(after.device_local, b.device_local);
+}
+
 TEST_F(GpuTest, RuntimeWithoutNormals) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
   RuntimeOptions options = withCapacity(2);
