@@ -67,6 +67,15 @@ copy_if_there "$seeds/obj" "$data/cylinder/cylinder.obj"
 copy_if_there "$seeds/tgf" "$data/cylinder/cylinder.tgf" "$data/cheburashka/cheburashka.tgf"
 copy_if_there "$seeds/dmat" "$data/cylinder/cylinder.DMAT" "$data/cylinder/poses-1/cylinder-1.DMAT"
 cp "$root"/samples/surfaces/networks/*.json "$seeds/network/"
+# EXT_meshopt_compression (engine/io/gltf_meshopt.hpp): the compact arm through gltfpack, without and
+# with its filters (-cc), and with a fallback buffer (-cf; the fuzzer reads no .bin beside a file,
+# and odeskin skips a fallback buffer, so its .bin is dropped).
+if command -v gltfpack > /dev/null; then
+  for mode in c cc cf; do
+    gltfpack -$mode -i "$seeds/gltf/arm-compact.glb" -o "$seeds/gltf/arm-meshopt-$mode.glb" > /dev/null
+  done
+  rm -f "$seeds"/gltf/*.bin
+fi
 printf 'v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nv 0 0 1e-1\r\nf 1 2 3\r\nf 1/1 -1/2 -2/3\r\nf 1//1 2/2/2 4//3 3\r\n' > "$seeds/obj/tetra-crlf.obj"
 printf 'v 0 0 0 # x y z\nvt 0 0\nvn 0 0 1\ng part\nv 1 0 0\nv 1 1 0\nf 1 2 3' > "$seeds/obj/triangle-no-newline.obj"
 printf '1 0 0 0\n2 0 1 0\n3 0 2 0\n#\n1 2\n2 3\n#\n' > "$seeds/tgf/chain.tgf"

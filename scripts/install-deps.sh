@@ -9,6 +9,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools
   libglm-dev libeigen3-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev libstb-dev zlib1g-dev libopenmesh-dev
+  libmeshoptimizer-dev  # EXT_meshopt_compression input (gltfpack -c)
   libcli11-dev libgtest-dev libbenchmark-dev
   clang clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and the sanitizers
   cppcheck clang-tidy

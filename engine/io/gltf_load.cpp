@@ -16,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gltf_meshopt.hpp"
+
 namespace odeskin::gltf {
 namespace {
 
@@ -24,7 +26,7 @@ constexpr std::array<std::string_view, 6> kGeometryNeutralExtensions{
     "EXT_texture_avif",      "KHR_lights_punctual", "KHR_materials_"};
 
 bool handled(std::string_view name) {
-  if (name == "KHR_mesh_quantization") return true;
+  if (name == "KHR_mesh_quantization" || name == kMeshoptExtension) return true;
   return std::any_of(kGeometryNeutralExtensions.begin(), kGeometryNeutralExtensions.end(), [&](std::string_view e) {
     return e.back() == '_' ? name.starts_with(e) : name == e;
   });
@@ -225,6 +227,34 @@ Status checkGlb(std::string_view bytes, const std::string& source) {
   return okStatus();
 }
 
+// The file with its EXT_meshopt_compression placeholder buffers replaced (gltf_meshopt.hpp), or
+// nullopt when it has none, or when its JSON is too deep or its GLB framing too broken to look at
+// (the checks that follow report those).
+std::optional<std::string> withMeshoptPlaceholdersReplaced(const std::string& bytes, bool glb) {
+  if (!glb) {
+    if (jsonNesting(bytes) > kMaxJsonDepth) return std::nullopt;
+    return withoutMeshoptPlaceholders(bytes, false);
+  }
+  if (bytes.size() < 20) return std::nullopt;
+  const std::uint64_t declared = littleEndian32(bytes, 8);
+  const std::uint64_t json_length = littleEndian32(bytes, 12);
+  if (20 + json_length > bytes.size() || 20 + json_length > declared) return std::nullopt;
+  const std::string_view json = std::string_view(bytes).substr(20, static_cast<std::size_t>(json_length));
+  if (jsonNesting(json) > kMaxJsonDepth) return std::nullopt;
+  std::optional<std::string> replaced = withoutMeshoptPlaceholders(json, true);
+  if (!replaced) return std::nullopt;
+  replaced->append((4 - replaced->size() % 4) % 4, ' ');  // chunks are 4-byte aligned
+  auto put32 = [](std::string& out, std::size_t at, std::uint64_t value) {
+    for (std::size_t k = 0; k < 4; ++k) out[at + k] = static_cast<char>((value >> (8 * k)) & 0xff);
+  };
+  std::string out = bytes.substr(0, 20);  // header and JSON chunk header, lengths rewritten below
+  put32(out, 8, declared - json_length + replaced->size());
+  put32(out, 12, replaced->size());
+  out += *replaced;
+  out.append(bytes, static_cast<std::size_t>(20 + json_length));  // the BIN chunk, as it was
+  return out;
+}
+
 // tinygltf's load (it reports a bad file by returning false, but a few paths throw).
 Result<tinygltf::Model> runLoader(const std::string& source,
                                   const std::function<bool(tinygltf::Model&, std::string&, std::string&)>& load) {
@@ -254,18 +284,27 @@ Result<tinygltf::Model> loadBytes(const std::string& bytes, const std::string& s
     return ioError(source + ": " + std::to_string(bytes.size()) + " bytes, over the 2 GiB tinygltf 2.7 can read");
   }
   const bool glb = isGlb(bytes);
-  ODESKIN_TRY(glb ? checkGlb(bytes, source) : checkJson(bytes, false, source));
+  const std::optional<std::string> replaced = withMeshoptPlaceholdersReplaced(bytes, glb);
+  const std::string& input = replaced ? *replaced : bytes;
+  ODESKIN_TRY(glb ? checkGlb(input, source) : checkJson(input, false, source));
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keep_images ? keepEncodedImage : skipImage, nullptr);
   loader.SetFsCallbacks(base_dir ? tinygltf::FsCallbacks{existingFile, samePath, readRegularFile, noWrite, nullptr}
                                  : tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
   const std::string folder = base_dir ? *base_dir : std::string();
-  const auto length = static_cast<unsigned int>(bytes.size());
-  return runLoader(source, [&](tinygltf::Model& model, std::string& err, std::string& warn) {
-    return glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                             length, folder)
-               : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), length, folder);
-  });
+  if (input.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+    return ioError(source + ": " + std::to_string(input.size()) + " bytes, over the 2 GiB tinygltf 2.7 can read");
+  }
+  const auto length = static_cast<unsigned int>(input.size());
+  ODESKIN_ASSIGN_OR_RETURN(tinygltf::Model model,
+                           runLoader(source, [&](tinygltf::Model& m, std::string& err, std::string& warn) {
+                             return glb ? loader.LoadBinaryFromMemory(&m, &err, &warn,
+                                                                      reinterpret_cast<const unsigned char*>(input.data()),
+                                                                      length, folder)
+                                        : loader.LoadASCIIFromString(&m, &err, &warn, input.data(), length, folder);
+                           }));
+  ODESKIN_TRY(decodeMeshoptViews(model, source));
+  return model;
 }
 
 }  // namespace

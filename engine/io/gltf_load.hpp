@@ -20,6 +20,8 @@ namespace odeskin::gltf {
 // with two buffers without a uri, each of which tinygltf 2.7 would fill with a copy of that chunk,
 // or an image whose bufferView lies outside its buffer, which tinygltf 2.7 would point past; an
 // external file that is not a regular file, or is over 2 GiB, is not read (tinygltf's message).
+// EXT_meshopt_compression bufferViews come back decoded, with decodeMeshoptViews' errors
+// (gltf_meshopt.hpp); its placeholder and fallback buffers are not read.
 Result<tinygltf::Model> loadModel(const std::filesystem::path& path);
 
 // loadModel keeping every image it can read as its encoded bytes (Image::image, as_is), not
@@ -33,7 +35,7 @@ Result<tinygltf::Model> loadModelWithImages(const std::filesystem::path& path);
 Result<tinygltf::Model> loadModelFromMemory(const std::string& bytes, const std::string& source);
 
 // kInvalidArgument naming the first extensionsRequired entry odeskin does not handle. Handled:
-// KHR_mesh_quantization (decoded), and extensions confined to materials, textures and lights
+// KHR_mesh_quantization and EXT_meshopt_compression (decoded), and extensions confined to materials, textures and lights
 // (KHR_materials_*, KHR_texture_transform, KHR_texture_basisu, EXT_texture_webp, EXT_texture_avif,
 // KHR_lights_punctual), which cannot change geometry, skins, morph targets or animation.
 Status checkRequiredExtensions(const tinygltf::Model& model);
