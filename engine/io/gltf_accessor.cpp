@@ -8,6 +8,8 @@
 #include <cstring>
 #include <limits>
 
+#include "gltf_meshopt.hpp"
+
 namespace odeskin::gltf {
 namespace {
 
@@ -20,9 +22,10 @@ static_assert(std::endian::native == std::endian::little, "glTF buffers are litt
 constexpr std::size_t kMaxUnbackedValues = std::size_t{1} << 27;
 constexpr std::size_t kMinUnbackedCount = std::size_t{1} << 16;
 
+// The file's own bytes: decoded copies of its compressed bufferViews are not counted.
 std::size_t bufferBytes(const tinygltf::Model& model) {
   std::size_t bytes = 0;
-  for (const tinygltf::Buffer& b : model.buffers) bytes += b.data.size();
+  for (const tinygltf::Buffer& b : model.buffers) bytes += b.name == kDecodedBufferName ? 0 : b.data.size();
   return bytes;
 }
 

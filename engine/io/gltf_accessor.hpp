@@ -55,8 +55,9 @@ struct AccessorData {
 // target it fills with zeros. Each accessor alone is bounded by the bytes behind it, but accessors
 // may share those bytes, and primitives, morph targets and animation channels may repeat them, so a
 // file of a few kilobytes could otherwise ask for gigabytes. The total may reach kValuesPerByte per
-// byte of the file's buffers, and kMinValues in any case: a file that reads each byte once stays
-// far inside it, even when dozens of primitives share one vertex buffer.
+// byte of the file's buffers (as stored: compressed bufferViews count at their compressed size),
+// and kMinValues in any case: a file that reads each byte once stays far inside it, even when
+// dozens of primitives share one vertex buffer.
 class DecodeBudget {
  public:
   static constexpr std::size_t kValuesPerByte = 32;

@@ -210,6 +210,7 @@ Status decodeMeshoptViews(tinygltf::Model& model, const std::string& source) {
     }
     decoded += size;
     tinygltf::Buffer out;
+    out.name = kDecodedBufferName;
     out.data.resize(static_cast<std::size_t>(size));
     ODESKIN_TRY(decodeInto(c, from.data() + c.byte_offset, out.data, source, v));
     model.buffers.push_back(std::move(out));

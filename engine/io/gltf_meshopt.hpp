@@ -22,6 +22,10 @@
 namespace odeskin::gltf {
 
 inline constexpr const char* kMeshoptExtension = "EXT_meshopt_compression";
+// The name of the buffers decodeMeshoptViews adds. The limits on what a read may decode
+// (DecodeBudget) count the file's own bytes, not these: a few compressed bytes must not buy a
+// budget of gigabytes.
+inline constexpr const char* kDecodedBufferName = "odeskin: EXT_meshopt_compression, decoded";
 
 // `json` (a .gltf, or a GLB's JSON chunk) with its placeholder buffers replaced, or nullopt when it
 // has none: it does not use the extension, or does not parse (tinygltf then says why). In a GLB,

@@ -13,6 +13,7 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/io/gltf_accessor.hpp"
 #include "engine/io/gltf_load.hpp"
 
 namespace odeskin::gltf {
@@ -187,6 +188,20 @@ TEST(GltfMeshopt, FiltersDecodeAsTheCodecDoes) {
     ASSERT_TRUE(m.ok()) << c.filter << ": " << m.status().toString();
     EXPECT_EQ(viewBytes(*m, 0), expected) << c.filter << " stride " << c.stride;
   }
+}
+
+// 4 MiB of zeros compress to 64 KiB; the read's decode budget stays that of a 64 KiB file
+// (DecodeBudget's floor), not the 2^27 values 4 MiB of buffers would allow.
+TEST(GltfMeshopt, DecodedBytesDoNotRaiseTheDecodeBudget) {
+  const Bytes zeros(std::size_t{4} << 20, 0);
+  const Bytes packed = encodeAttributes(zeros, 16);
+  ASSERT_LT(packed.size() * DecodeBudget::kValuesPerByte, DecodeBudget::kMinValues);
+  Result<tinygltf::Model> m = load(oneView(packed, zeros.size(), 16, "ATTRIBUTES"));
+  ASSERT_TRUE(m.ok()) << m.status().toString();
+  EXPECT_EQ(viewBytes(*m, 0), zeros);
+  DecodeBudget budget(*m);
+  EXPECT_TRUE(budget.charge(DecodeBudget::kMinValues, "the floor").ok());
+  EXPECT_FALSE(budget.charge(1, "one more value").ok());
 }
 
 void expectRefused(const OneView& v, const std::string& words, StatusCode code = StatusCode::kParseError) {
