@@ -231,8 +231,9 @@ Status checkGlb(std::string_view bytes, const std::string& source) {
 // nullopt when it has none, or when its JSON is too deep or its GLB framing too broken to look at
 // (the checks that follow report those).
 std::optional<std::string> withMeshoptPlaceholdersReplaced(const std::string& bytes, bool glb) {
+  // Most files do not use the extension: a search for its name spares them the nesting scan.
   if (!glb) {
-    if (jsonNesting(bytes) > kMaxJsonDepth) return std::nullopt;
+    if (bytes.find(kMeshoptExtension) == std::string::npos || jsonNesting(bytes) > kMaxJsonDepth) return std::nullopt;
     return withoutMeshoptPlaceholders(bytes, false);
   }
   if (bytes.size() < 20) return std::nullopt;
@@ -240,7 +241,7 @@ std::optional<std::string> withMeshoptPlaceholdersReplaced(const std::string& by
   const std::uint64_t json_length = littleEndian32(bytes, 12);
   if (20 + json_length > bytes.size() || 20 + json_length > declared) return std::nullopt;
   const std::string_view json = std::string_view(bytes).substr(20, static_cast<std::size_t>(json_length));
-  if (jsonNesting(json) > kMaxJsonDepth) return std::nullopt;
+  if (json.find(kMeshoptExtension) == std::string_view::npos || jsonNesting(json) > kMaxJsonDepth) return std::nullopt;
   std::optional<std::string> replaced = withoutMeshoptPlaceholders(json, true);
   if (!replaced) return std::nullopt;
   replaced->append((4 - replaced->size() % 4) % 4, ' ');  // chunks are 4-byte aligned
