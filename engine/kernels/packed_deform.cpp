@@ -22,6 +22,18 @@ gpu::BoneMatrix toGpuBone(const BoneTransform& bone) {
   return gpu::BoneMatrix{row(0), row(1), row(2)};
 }
 
+BoneTransform fromGpuBone(const gpu::BoneMatrix& bone) {
+  const gpu::Float4 rows[3] = {bone.row0, bone.row1, bone.row2};
+  BoneTransform m;
+  for (int r = 0; r < 3; ++r) {
+    m[0][r] = rows[r].x;
+    m[1][r] = rows[r].y;
+    m[2][r] = rows[r].z;
+    m[3][r] = rows[r].w;
+  }
+  return m;
+}
+
 gpu::Float4 toGpuFloat4(const Vec3& v, float w) {
   return gpu::Float4{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), w};
 }
@@ -37,15 +49,7 @@ void toGpuBasis(std::span<const ModeBasisValue> basis, std::span<gpu::ModeBasis>
 }
 
 gpu::DualQuat toGpuDualQuaternion(const gpu::BoneMatrix& bone) {
-  const gpu::Float4 rows[3] = {bone.row0, bone.row1, bone.row2};
-  BoneTransform m;
-  for (int r = 0; r < 3; ++r) {
-    m[0][r] = rows[r].x;
-    m[1][r] = rows[r].y;
-    m[2][r] = rows[r].z;
-    m[3][r] = rows[r].w;
-  }
-  const DualQuaternion q = DualQuaternion::fromRigid(m);
+  const DualQuaternion q = DualQuaternion::fromRigid(fromGpuBone(bone));
   auto f4 = [](const glm::dquat& v) {
     return gpu::Float4{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
                        static_cast<float>(v.w)};

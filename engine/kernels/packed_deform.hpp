@@ -41,6 +41,9 @@ struct PackedDeformData {
 };
 
 gpu::BoneMatrix toGpuBone(const BoneTransform& bone);
+// The float rows back as a double matrix (exact): what a reference kernel plays for bones given as
+// the GPU gets them.
+BoneTransform fromGpuBone(const gpu::BoneMatrix& bone);
 gpu::Float4 toGpuFloat4(const Vec3& v, float w = 0.0f);
 // Converts per-frame values for the fast path and the GPU.
 void toGpuBones(std::span<const BoneTransform> bones, std::span<gpu::BoneMatrix> out);

@@ -27,6 +27,7 @@
 
 #include "engine/io/asset_file.hpp"
 #include "engine/io/obj_reader.hpp"
+#include "engine/kernels/packed_deform.hpp"
 #include "engine/offline/residual_fit.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "engine/runtime/cpu_runtime.hpp"
@@ -124,19 +125,6 @@ InstanceState stateOf(const RuntimeAsset& asset, std::uint32_t k, double seconds
   return k % 4 == 3 ? state.withBones(bones) : state;
 }
 
-// The float rows the runtime got, as the reference's double matrix (column-major, GLM).
-BoneTransform toDouble(const gpu::BoneMatrix& m) {
-  BoneTransform out;
-  const gpu::Float4 rows[3] = {m.row0, m.row1, m.row2};
-  for (int r = 0; r < 3; ++r) {
-    out[0][r] = rows[r].x;
-    out[1][r] = rows[r].y;
-    out[2][r] = rows[r].z;
-    out[3][r] = rows[r].w;
-  }
-  return out;
-}
-
 // Instance `k` of the last frame against the double-precision reference of what it played.
 Result<double> checkInstance(DeformRuntime& rt, std::uint64_t frame, std::uint32_t k, double seconds,
                              std::span<gpu::BoneMatrix> bones) {
@@ -155,7 +143,7 @@ Result<double> checkInstance(DeformRuntime& rt, std::uint64_t frame, std::uint32
   if (state.bones.empty()) {
     player.bonesAt(played, segment, tau, matrices);
   } else {
-    for (std::size_t b = 0; b < matrices.size(); ++b) matrices[b] = toDouble(bones[b]);
+    for (std::size_t b = 0; b < matrices.size(); ++b) matrices[b] = fromGpuBone(bones[b]);
   }
   std::vector<Vec3> expected(asset.vertexCount());
   ODESKIN_TRY(referenceJob(played, segment, basis, matrices, expected).run());

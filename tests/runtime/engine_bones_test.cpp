@@ -14,6 +14,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <gtest/gtest.h>
 
+#include "engine/kernels/packed_deform.hpp"
 #include "engine/runtime/cpu_runtime.hpp"
 #include "engine/runtime/engine_bones.hpp"
 #include "runtime_fixtures.hpp"
@@ -24,18 +25,8 @@ namespace {
 using testing::makeAsset;
 using testing::worstGap;
 
-// What an engine holds for a bone: the same matrix as a column-major glm::mat4.
-glm::mat4 asMat4(const gpu::BoneMatrix& b) {
-  glm::mat4 m(1.0f);
-  const gpu::Float4 rows[3] = {b.row0, b.row1, b.row2};
-  for (int r = 0; r < 3; ++r) {
-    m[0][r] = rows[r].x;
-    m[1][r] = rows[r].y;
-    m[2][r] = rows[r].z;
-    m[3][r] = rows[r].w;
-  }
-  return m;
-}
+// What an engine holds for a bone: the same matrix as a column-major glm::mat4 (every float kept).
+glm::mat4 asMat4(const gpu::BoneMatrix& b) { return glm::mat4(glm::dmat4(fromGpuBone(b))); }
 
 // The cylinder with named bones, so that an engine can find them.
 DeformAsset namedCylinder() {

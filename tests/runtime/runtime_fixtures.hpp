@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "../pipeline/dataset_fixtures.hpp"
+#include "engine/kernels/packed_deform.hpp"
 #include "engine/offline/deform_player.hpp"
 #include "engine/offline/residual_fit.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
@@ -196,15 +197,7 @@ inline std::vector<Vec3> referencePositions(const RuntimeAsset& runtime_asset, s
   if (bones.empty()) {
     player->bonesAt(played, segment, tau, matrices);
   } else {
-    for (std::size_t b = 0; b < matrices.size(); ++b) {
-      const gpu::Float4 rows[3] = {bones[b].row0, bones[b].row1, bones[b].row2};
-      for (int r = 0; r < 3; ++r) {
-        matrices[b][0][r] = rows[r].x;
-        matrices[b][1][r] = rows[r].y;
-        matrices[b][2][r] = rows[r].z;
-        matrices[b][3][r] = rows[r].w;
-      }
-    }
+    for (std::size_t b = 0; b < matrices.size(); ++b) matrices[b] = fromGpuBone(bones[b]);
   }
   EXPECT_TRUE(referenceJob(played, segment, basis, matrices, out).run().ok());
   return out;

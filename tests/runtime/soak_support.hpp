@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/status.hpp"
+#include "engine/kernels/packed_deform.hpp"
 #include "engine/runtime/deform_runtime.hpp"
 #include "runtime_fixtures.hpp"
 
@@ -175,15 +176,7 @@ class SoakReference {
     if (engine_bones.empty()) {
       player.bonesAt(played, segment, tau, bones_);
     } else {
-      for (std::size_t b = 0; b < bones_.size(); ++b) {
-        const gpu::Float4 rows[3] = {engine_bones[b].row0, engine_bones[b].row1, engine_bones[b].row2};
-        for (int r = 0; r < 3; ++r) {
-          bones_[b][0][r] = rows[r].x;
-          bones_[b][1][r] = rows[r].y;
-          bones_[b][2][r] = rows[r].z;
-          bones_[b][3][r] = rows[r].w;
-        }
-      }
+      for (std::size_t b = 0; b < bones_.size(); ++b) bones_[b] = fromGpuBone(engine_bones[b]);
     }
     const Status status = referenceJob(played, segment, basis_, bones_, out_).run();
     EXPECT_TRUE(status.ok()) << status.toString();
