@@ -204,6 +204,16 @@ Status checkJson(std::string_view json, bool glb, const std::string& source) {
   return okStatus();
 }
 
+// A GLB's JSON chunk, or nothing when the file is too short for the header or the chunk runs past
+// the file or its declared length (tinygltf reports those).
+std::optional<std::string_view> glbJsonChunk(std::string_view bytes) {
+  if (bytes.size() < 20) return std::nullopt;
+  const std::uint64_t length = std::min<std::uint64_t>(littleEndian32(bytes, 8), bytes.size());
+  const std::uint64_t json_length = littleEndian32(bytes, 12);
+  if (20 + json_length > length) return std::nullopt;
+  return bytes.substr(20, static_cast<std::size_t>(json_length));
+}
+
 // The GLB container (glTF 2.0, "Binary glTF Layout"). tinygltf 2.7 checks a BIN chunk's length
 // against the file's total length without the chunk's own 8-byte header, so a chunk declared up to
 // 8 bytes longer than what follows it passes, and tinygltf then copies those bytes from past the
@@ -211,12 +221,11 @@ Status checkJson(std::string_view json, bool glb, const std::string& source) {
 // geometry. Then the JSON chunk (checkJson). Everything else about the layout tinygltf checks and
 // reports itself.
 Status checkGlb(std::string_view bytes, const std::string& source) {
-  if (bytes.size() < 20) return okStatus();
+  const std::optional<std::string_view> json = glbJsonChunk(bytes);
+  if (!json) return okStatus();
+  ODESKIN_TRY(checkJson(*json, true, source));
   const std::uint64_t length = std::min<std::uint64_t>(littleEndian32(bytes, 8), bytes.size());
-  const std::uint64_t json_length = littleEndian32(bytes, 12);
-  const std::uint64_t bin_header = 20 + json_length;  // past the JSON chunk
-  if (bin_header > length) return okStatus();
-  ODESKIN_TRY(checkJson(bytes.substr(20, static_cast<std::size_t>(json_length)), true, source));
+  const std::uint64_t bin_header = 20 + json->size();  // past the JSON chunk
   if (bin_header + 8 > length) return okStatus();
   const std::uint64_t bin_length = littleEndian32(bytes, static_cast<std::size_t>(bin_header));
   if (bin_header + 8 + bin_length > length) {
@@ -231,19 +240,15 @@ Status checkGlb(std::string_view bytes, const std::string& source) {
 // nullopt when it has none, or when its JSON is too deep or its GLB framing too broken to look at
 // (the checks that follow report those).
 std::optional<std::string> withMeshoptPlaceholdersReplaced(const std::string& bytes, bool glb) {
-  // Most files do not use the extension: a search for its name spares them the nesting scan.
-  if (!glb) {
-    if (bytes.find(kMeshoptExtension) == std::string::npos || jsonNesting(bytes) > kMaxJsonDepth) return std::nullopt;
-    return withoutMeshoptPlaceholders(bytes, false);
+  const std::optional<std::string_view> json = glb ? glbJsonChunk(bytes) : std::optional<std::string_view>(bytes);
+  // Most files do not use the extension: a search for its name spares them the nesting scan and the parse.
+  if (!json || json->find(kMeshoptExtension) == std::string_view::npos || jsonNesting(*json) > kMaxJsonDepth) {
+    return std::nullopt;
   }
-  if (bytes.size() < 20) return std::nullopt;
+  std::optional<std::string> replaced = withoutMeshoptPlaceholders(*json, glb);
+  if (!replaced || !glb) return replaced;
   const std::uint64_t declared = littleEndian32(bytes, 8);
-  const std::uint64_t json_length = littleEndian32(bytes, 12);
-  if (20 + json_length > bytes.size() || 20 + json_length > declared) return std::nullopt;
-  const std::string_view json = std::string_view(bytes).substr(20, static_cast<std::size_t>(json_length));
-  if (json.find(kMeshoptExtension) == std::string_view::npos || jsonNesting(json) > kMaxJsonDepth) return std::nullopt;
-  std::optional<std::string> replaced = withoutMeshoptPlaceholders(json, true);
-  if (!replaced) return std::nullopt;
+  const std::uint64_t json_length = json->size();
   replaced->append((4 - replaced->size() % 4) % 4, ' ');  // chunks are 4-byte aligned
   auto put32 = [](std::string& out, std::size_t at, std::uint64_t value) {
     for (std::size_t k = 0; k < 4; ++k) out[at + k] = static_cast<char>((value >> (8 * k)) & 0xff);

@@ -153,7 +153,6 @@ Status decodeInto(const Compressed& c, const unsigned char* bytes, std::vector<u
 }  // namespace
 
 std::optional<std::string> withoutMeshoptPlaceholders(std::string_view json, bool glb) {
-  if (json.find(kMeshoptExtension) == std::string_view::npos) return std::nullopt;
   nlohmann::json doc = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object() || !usesExtension(doc)) return std::nullopt;
   const auto buffers = doc.find("buffers");

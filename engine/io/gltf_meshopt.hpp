@@ -30,7 +30,7 @@ inline constexpr const char* kDecodedBufferName = "odeskin: EXT_meshopt_compress
 // `json` (a .gltf, or a GLB's JSON chunk) with its placeholder buffers replaced, or nullopt when it
 // has none: it does not use the extension, or does not parse (tinygltf then says why). In a GLB,
 // buffer 0 without a uri is the BIN chunk, not a placeholder. The JSON must have passed the nesting
-// check first (the parser recurses).
+// check first (the parser recurses); the loader calls this only on JSON that names the extension.
 std::optional<std::string> withoutMeshoptPlaceholders(std::string_view json, bool glb);
 
 // Decodes every bufferView with an EXT_meshopt_compression object. `source` names the file in the
