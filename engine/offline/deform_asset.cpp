@@ -9,35 +9,12 @@
 
 #include "../core/float32_range.hpp"
 #include "../core/number_text.hpp"
-#include "../core/render_primitives.hpp"
+#include "../core/render_layout_check.hpp"
 #include "../core/smoothing_groups.hpp"
 #include "../kernels/fourier_deform_job.hpp"
 
 namespace odeskin {
 namespace {
-
-// Face rows that hold together: offsets from 0, never decreasing, ending at the index count, and
-// every index a vertex of the `vertex_count`. A .odsk file's rows are read as stored, and the
-// runtime and the export walk them.
-Status checkFaces(const std::string& what, const FaceList& faces, std::size_t vertex_count) {
-  const std::vector<std::uint32_t>& offsets = faces.face_offsets;
-  if (offsets.empty() || offsets.front() != 0 || offsets.back() != faces.indices.size()) {
-    return invalidArgument("deform asset: the " + what + " rows do not span the " +
-                           std::to_string(faces.indices.size()) + " " + what + " indices");
-  }
-  for (std::size_t f = 0; f + 1 < offsets.size(); ++f) {
-    if (offsets[f + 1] < offsets[f]) {
-      return invalidArgument("deform asset: " + what + " " + std::to_string(f) + " ends before it starts");
-    }
-  }
-  for (std::uint32_t index : faces.indices) {
-    if (index >= vertex_count) {
-      return invalidArgument("deform asset: a " + what + " uses vertex " + std::to_string(index) + " of " +
-                             std::to_string(vertex_count));
-    }
-  }
-  return okStatus();
-}
 
 Status fieldSize(const std::string& field, std::size_t got, std::size_t expected) {
   if (got == expected) return okStatus();
@@ -195,36 +172,9 @@ Status validateDeformAsset(const DeformAsset& a) {
     }
   }
   if (!a.bone_names.empty()) ODESKIN_TRY(fieldSize("bone_names", a.bone_names.size(), a.bone_count));
-  for (std::uint32_t t : a.render.topology_of_render) {
-    if (t >= v_count) return invalidArgument("deform asset: render vertex maps to topology vertex " + std::to_string(t));
-  }
-  ODESKIN_TRY(checkFaces("render face", a.render.faces, a.render.topology_of_render.size()));
-  ODESKIN_TRY(checkFaces("face", a.faces, v_count));
-  if (!a.render.normals.empty()) {
-    if (a.render.normals.size() != a.render.topology_of_render.size()) {
-      return invalidArgument("deform asset: " + std::to_string(a.render.normals.size()) + " render normals for " +
-                             std::to_string(a.render.topology_of_render.size()) + " render vertices");
-    }
-    for (std::size_t r = 0; r < a.render.normals.size(); ++r) {
-      if (!isUsableNormal(a.render.normals[r])) {
-        return invalidArgument("deform asset: render normal " + std::to_string(r) + " is zero or not finite");
-      }
-    }
-  }
-  if (const std::string problem = primitiveRunProblem(a.render.primitives, outputFaces(a).faceCount()); !problem.empty()) {
-    return invalidArgument("deform asset: " + problem);
-  }
-  if (!a.render.uvs.empty()) {
-    if (a.render.uvs.size() != outputVertexCount(a)) {
-      return invalidArgument("deform asset: " + std::to_string(a.render.uvs.size()) + " render UVs for " +
-                             std::to_string(outputVertexCount(a)) + " output vertices");
-    }
-    for (std::size_t r = 0; r < a.render.uvs.size(); ++r) {
-      if (!std::isfinite(a.render.uvs[r].x) || !std::isfinite(a.render.uvs[r].y)) {
-        return invalidArgument("deform asset: render UV " + std::to_string(r) + " is not finite");
-      }
-    }
-  }
+  ODESKIN_TRY(checkFaceList(a.faces, v_count, "deform asset", "face"));
+  // A .odsk file's rows are read as stored, and the runtime and the export walk them.
+  ODESKIN_TRY(checkRenderLayout(a.render, v_count, a.faces.faceCount(), "deform asset"));
   return validateInfluences(a.influences, v_count, a.bone_count);
 }
 
