@@ -158,11 +158,29 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
   const bool uvs = out.uv_warning.empty() && has(mesh.primitives.front().attributes, "TEXCOORD_0");
   const std::size_t target_count = mesh.primitives.front().targets.size();
   out.target_deltas.resize(target_count);
+  // Each primitive's first render vertex and count. Primitives over the same vertex accessors (the
+  // usual split of one mesh by material) share their render vertices: read once, not copied.
+  std::vector<std::pair<std::uint32_t, std::size_t>> ranges;
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
     const tinygltf::Primitive& prim = mesh.primitives[p];
     const std::string where = mesh_name + " primitive " + std::to_string(p);
     if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
       return parseError(where + " has mode " + std::to_string(prim.mode) + "; only TRIANGLES (4) is read");
+    }
+    if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size())) {
+      return parseError(where + " uses material " + std::to_string(prim.material) + " of " +
+                        std::to_string(model.materials.size()));
+    }
+    const auto shared = std::find_if(mesh.primitives.begin(), mesh.primitives.begin() + static_cast<std::ptrdiff_t>(p),
+                                     [&](const tinygltf::Primitive& q) {
+                                       return q.attributes == prim.attributes && q.targets == prim.targets;
+                                     });
+    if (shared != mesh.primitives.begin() + static_cast<std::ptrdiff_t>(p)) {
+      const auto [first, n] = ranges[static_cast<std::size_t>(shared - mesh.primitives.begin())];
+      ranges.emplace_back(first, n);
+      ODESKIN_TRY(readTriangles(model, prim, where, n, first, out.triangles, budget));
+      out.primitives.push_back({static_cast<std::uint32_t>(out.triangles.size() / 3), prim.material});
+      continue;
     }
     const auto position = prim.attributes.find("POSITION");
     if (position == prim.attributes.end()) return parseError(where + " has no POSITION");
@@ -176,12 +194,9 @@ Result<MeshData> readMesh(const tinygltf::Model& model, int mesh_index, bool qua
       return parseError(mesh_name + " has more than 2^32 - 1 vertices");
     }
     const auto first = static_cast<std::uint32_t>(out.positions.size());
+    ranges.emplace_back(first, n);
     for (std::size_t i = 0; i < n; ++i) out.positions.emplace_back(positions.at(i, 0), positions.at(i, 1), positions.at(i, 2));
     ODESKIN_TRY(readTriangles(model, prim, where, n, first, out.triangles, budget));
-    if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size())) {
-      return parseError(where + " uses material " + std::to_string(prim.material) + " of " +
-                        std::to_string(model.materials.size()));
-    }
     out.primitives.push_back({static_cast<std::uint32_t>(out.triangles.size() / 3), prim.material});
     if (normals) {
       const std::span<const AccessorFormat> normal_formats =

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // One glTF mesh as render vertices (internal to odeskin_gltf): every primitive's POSITION, NORMAL,
 // TEXCOORD_0, JOINTS_n / WEIGHTS_n and morph-target POSITION deltas, primitives concatenated in file order,
-// triangles (indexed or not) re-indexed into the concatenation.
+// triangles (indexed or not) re-indexed into the concatenation. A primitive whose attributes and
+// morph targets name the same accessors as an earlier one's shares that one's render vertices.
 #pragma once
 
 #include <cstdint>

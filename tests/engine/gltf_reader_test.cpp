@@ -892,6 +892,32 @@ TEST(GltfPipeline, MaterialsDressTheExports) {
   EXPECT_TRUE(written.materials.empty() && written.images.empty());
 }
 
+// odeskin's exports split a mesh into primitives over one set of vertex arrays. Read back, those
+// primitives share their render vertices: a file fitted, exported and fitted again keeps its
+// vertex count, where copying each primitive's arrays doubled it.
+TEST(GltfPipeline, PrimitivesOverTheSameAccessorsShareTheirVertices) {
+  const auto examples = read(write(dressedTube(), "split.glb", true), {0.5, 1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  Result<PipelineResult> fit = runFitPipeline(*examples, PipelineOptions{});
+  ASSERT_TRUE(fit.ok()) << fit.status().toString();
+  const fs::path exported = tempDir() / "split-export.glb";
+  ASSERT_TRUE(exportGltf(fit->asset, exported, GltfExportOptions{}).ok());
+  const tinygltf::Model written = loadWritten(exported);
+  ASSERT_EQ(written.meshes.at(0).primitives.size(), 2u);
+  ASSERT_EQ(written.meshes[0].primitives[0].attributes, written.meshes[0].primitives[1].attributes);
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  Result<ExampleSet> back = readGltfExamples(exported, request);
+  ASSERT_TRUE(back.ok()) << back.status().toString();
+  EXPECT_EQ(back->render.topology_of_render, examples->render.topology_of_render);
+  EXPECT_EQ(back->render.faces.indices, examples->render.faces.indices);
+  ASSERT_EQ(back->render.primitives.size(), examples->render.primitives.size());
+  for (std::size_t p = 0; p < back->render.primitives.size(); ++p) {
+    EXPECT_EQ(back->render.primitives[p].face_end, examples->render.primitives[p].face_end);  // no --materials: none
+  }
+  EXPECT_EQ(back->rest_positions.size(), examples->rest_positions.size());
+}
+
 // What --materials cannot use is refused before anything is written, naming the file.
 TEST(GltfPipeline, MaterialsThatDoNotFitAreRefused) {
   const fs::path source = write(dressedTube(), "two-materials.glb", true);
@@ -1326,19 +1352,29 @@ TEST(GltfReaderErrors, UnbackedAccessorCountIsBoundedByTheBuffers) {
 
 // Primitives, morph targets and animation channels may each repeat what a few bytes declare, and
 // every repetition is decoded again: what one read decodes is bounded by 32 values per byte of the
-// file's buffers, and 2^24 in any case. Each primitive below decodes 65,535 x 3 zeros and as many
-// triangle corners (262,140 values), so primitive 64 is the first past 2^24.
+// file's buffers, and 2^24 in any case. A primitive below decodes 65,535 x 3 zeros and as many
+// triangle corners (262,140 values), so with accessors of their own primitive 64 is the first past
+// 2^24. Primitives over the same accessor share their vertices and decode only their 65,535
+// corners again, so there primitive 253 is the first.
 TEST(GltfReaderErrors, RepeatedPrimitivesAreBoundedByTheBuffers) {
-  std::string primitives;
-  for (int p = 0; p < 70; ++p) primitives += std::string(p > 0 ? "," : "") + R"({"attributes":{"POSITION":0}})";
-  const std::string json = R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],"meshes":[{"primitives":[)" +
-                           primitives + R"(]}],"accessors":[{"componentType":5126,"count":65535,"type":"VEC3",)" +
-                           R"("min":[0,0,0],"max":[0,0,0]}]})";
-  GltfPoseRequest request;
-  request.min_poses = 1;
-  expectError(parseGltfExamples(json, "repeated.gltf", request), StatusCode::kParseError,
-              {"repeated.gltf: accessor 0 (mesh 0 primitive 64 POSITION): its 196605 values",
-               "past 16777216 values (32 per byte of its buffers, at least 16777216)", "repeat too often"});
+  for (const bool shared : {false, true}) {
+    const int count = shared ? 300 : 70;
+    std::string primitives, accessors;
+    for (int p = 0; p < count; ++p) {
+      const std::string separator = p > 0 ? "," : "";
+      primitives += separator + R"({"attributes":{"POSITION":)" + std::to_string(shared ? 0 : p) + "}}";
+      if (shared && p > 0) continue;
+      accessors += separator + R"({"componentType":5126,"count":65535,"type":"VEC3","min":[0,0,0],"max":[0,0,0]})";
+    }
+    const std::string json = R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],"meshes":[{"primitives":[)" + primitives +
+                             R"(]}],"accessors":[)" + accessors + "]}";
+    GltfPoseRequest request;
+    request.min_poses = 1;
+    const std::string first_past = shared ? "repeated.gltf: mesh 0 primitive 253 unindexed triangles: its 65535 values"
+                                          : "repeated.gltf: accessor 64 (mesh 0 primitive 64 POSITION): its 196605 values";
+    expectError(parseGltfExamples(json, "repeated.gltf", request), StatusCode::kParseError,
+                {first_past, "past 16777216 values (32 per byte of its buffers, at least 16777216)", "repeat too often"});
+  }
 }
 
 // A target without POSITION costs nothing in the file but 3 zeros per vertex in memory.
