@@ -5,8 +5,11 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <tiny_gltf.h>
 
+#include "../core/render_layout_check.hpp"
+#include "../core/render_primitives.hpp"
 #include "gltf_baked_writer.hpp"
 #include "gltf_buffer_builder.hpp"
 
@@ -20,33 +23,58 @@ std::vector<double> toDoubles(const Vec3& v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
 Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces, const Rig& rig,
-                   const std::string& generator) {
+                   const RigGlbLook& look, const std::string& generator) {
   const std::size_t v_count = positions.size();
   const std::size_t bones = rig.skeleton.boneCount();
+  const RenderLayout none;
+  const RenderLayout& render = look.render != nullptr ? *look.render : none;
   ODESKIN_TRY(validateRig(Rig{rig.skeleton, rig.influences, {}}, v_count, 0));
   if (bones == 0 || bones > 65536) return invalidArgument(path.string() + ": a glTF skin needs 1 to 65536 bones, got " + std::to_string(bones));
   if (rig.influences.vertexCount() != v_count) return invalidArgument(path.string() + ": the rig has no weights for the mesh");
-  std::vector<std::uint32_t> triangles;
-  for (std::size_t f = 0; f < faces.faceCount(); ++f) {
-    for (std::uint32_t k = faces.face_offsets[f] + 1; k + 1 < faces.face_offsets[f + 1]; ++k) {
-      for (const std::uint32_t v : {faces.indices[faces.face_offsets[f]], faces.indices[k], faces.indices[k + 1]}) {
-        if (v >= v_count) return invalidArgument(path.string() + ": face " + std::to_string(f) + " uses vertex " + std::to_string(v));
-        triangles.push_back(v);
-      }
-    }
-  }
+  ODESKIN_TRY(checkFaceList(faces, v_count, path.string(), "face"));
+  ODESKIN_TRY(checkRenderLayout(render, v_count, faces.faceCount(), path.string()));
   for (std::size_t i = 0; i < v_count; ++i) {
     for (int k = 0; k < 3; ++k) {
       if (!std::isfinite(positions[i][k])) return invalidArgument(path.string() + ": vertex " + std::to_string(i) + " is not finite");
     }
   }
   ODESKIN_TRY(gltf::checkFloat32Positions(positions, path.string()));
+
+  tinygltf::Model m = gltf::newModel(generator);
+  // One index accessor per primitive with faces, all over the same vertices.
+  const FaceList& out_faces = render.empty() ? faces : render.faces;
+  const std::vector<RenderPrimitive> runs = primitiveRuns(render.primitives, out_faces.faceCount());
+  std::vector<int> materials(runs.size(), -1);
+  if (look.materials != nullptr) {
+    Result<std::vector<int>> chosen = gltf::primitiveMaterials(*look.materials, render.primitives, runs.size());
+    if (!chosen.ok()) return chosen.status();
+    materials = std::move(chosen).value();
+  }
+  std::vector<std::pair<int, int>> written;  // (indices, material) of each primitive with faces
+  std::uint32_t begin = 0;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    if (runs[r].face_end > begin) {
+      written.emplace_back(gltf::appendTriangleIndices(m, gltf::fanTriangles(out_faces, begin, runs[r].face_end)), materials[r]);
+    }
+    begin = runs[r].face_end;
+  }
+
+  // Output vertex o is topology vertex topology[o]: its position and its largest weights.
+  const std::size_t out_count = render.empty() ? v_count : render.topology_of_render.size();
+  auto topology = [&](std::size_t o) { return render.empty() ? o : std::size_t{render.topology_of_render[o]}; };
   std::vector<float> xyz;
-  std::vector<float> weights(kSlots * v_count, 0.0f);
-  std::vector<std::uint16_t> joints(kSlots * v_count, 0);
-  for (std::size_t i = 0; i < v_count; ++i) {
+  std::vector<float> normals;
+  std::vector<float> weights(kSlots * out_count, 0.0f);
+  std::vector<std::uint16_t> joints(kSlots * out_count, 0);
+  std::vector<std::pair<double, std::uint32_t>> row;
+  for (std::size_t o = 0; o < out_count; ++o) {
+    const std::size_t i = topology(o);
     for (int k = 0; k < 3; ++k) xyz.push_back(static_cast<float>(positions[i][k]));
-    std::vector<std::pair<double, std::uint32_t>> row;
+    if (!render.normals.empty()) {
+      const Vec3 n = glm::normalize(render.normals[o]);
+      normals.insert(normals.end(), {static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z)});
+    }
+    row.clear();
     for (std::uint32_t k = rig.influences.offsets[i]; k < rig.influences.offsets[i + 1]; ++k) {
       row.push_back({rig.influences.weights[k], rig.influences.bones[k]});
     }
@@ -55,24 +83,31 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
     float sum = 0.0f;
     for (const auto& [w, b] : row) sum += static_cast<float>(w);
     for (std::size_t k = 0; k < row.size(); ++k) {
-      weights[kSlots * i + k] = static_cast<float>(row[k].first) / sum;
-      joints[kSlots * i + k] = static_cast<std::uint16_t>(row[k].second);
+      weights[kSlots * o + k] = static_cast<float>(row[k].first) / sum;
+      joints[kSlots * o + k] = static_cast<std::uint16_t>(row[k].second);
     }
   }
 
-  tinygltf::Model m = gltf::newModel(generator);
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  primitive.indices = gltf::appendTriangleIndices(m, triangles);
   primitive.attributes["POSITION"] =
       gltf::appendFloatAccessor(m, xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  if (!normals.empty()) {
+    primitive.attributes["NORMAL"] =
+        gltf::appendFloatAccessor(m, normals, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  }
+  if (!render.uvs.empty()) primitive.attributes["TEXCOORD_0"] = gltf::appendTexcoordAccessor(m, render.uvs);
   primitive.attributes["WEIGHTS_0"] = gltf::appendAccessor(m, gltf::appendView(m, weights, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                                  TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, v_count);
+                                                  TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, out_count);
   primitive.attributes["JOINTS_0"] = gltf::appendAccessor(m, gltf::appendView(m, joints, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, v_count);
+                                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, out_count);
   tinygltf::Mesh mesh;
   mesh.name = "mesh";
-  mesh.primitives.push_back(primitive);
+  for (const auto& [indices, material] : written) {
+    mesh.primitives.push_back(primitive);
+    mesh.primitives.back().indices = indices;
+    mesh.primitives.back().material = material;
+  }
   m.meshes.push_back(mesh);
 
   // Node 0: the skinned mesh; nodes 1..B: the bones at their heads; then the end nodes.
@@ -122,6 +157,7 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
   m.skins.push_back(skin);
   m.scenes.push_back(scene);
   m.defaultScene = 0;
+  if (look.materials != nullptr) gltf::addMaterialLibrary(m, *look.materials);
   m.buffers[0].data.resize((m.buffers[0].data.size() + 3) / 4 * 4, 0);
   return writeGlbAtomically(path, m);
 }

@@ -228,15 +228,17 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("rig", "Derive a skeleton and weights from a mesh's iso-parametric curves (thesis ch. 5)");
   cmd->footer(
       "The first MESH is the bind mesh; further OBJ meshes of the same vertices are example poses: where a\n"
-      "limb bends in any of them a joint goes (the larger bend wins where poses disagree). Joints: where limbs\n"
+      "limb bends in any of them a joint goes (the larger bend wins where poses disagree). Or one .gltf/.glb:\n"
+      "its mesh, with poses from --times or --targets; --gltf then keeps its seams, UVs and materials. Joints: where limbs\n"
       "leave the body, at branch points and free ends, where the curve skeleton turns by more than --angle,\n"
       "and the template's (elbows, knees, spine; --template auto picks by the number of feet). Writes libigl\n"
       "files: the skeleton (.tgf), distance weights (.dmat, V x B); --gltf a skinned .glb; --png a picture.\n"
       "Examples: odeskin rig cat-00.obj -o cat.tgf --weights cat.dmat --png cat-rig.png\n"
       "          odeskin rig cheburashka.obj -o cheb.tgf --template humanoid --gltf cheb.glb\n"
       "          odeskin rig cylinder.obj poses-2/cylinder-*.obj -o cyl.tgf --template none\n"
+      "          odeskin rig character.glb -o character.tgf --gltf character-rigged.glb\n"
       "          odeskin rig cat-00.obj -o cat.tgf --curves cuts --repeat 20   (stage times: median, fastest)");
-  cmd->add_option("meshes", o.meshes, "OBJ files: the bind mesh, then optional example poses")->required();
+  cmd->add_option("meshes", o.meshes, "OBJ files: the bind mesh, then optional example poses; or one .gltf/.glb")->required();
   cmd->add_option("-o,--output", o.output, "The skeleton to write (.tgf)")->required();
   cmd->add_option("--weights", o.weights, "Also write the skinning weights (.dmat, vertices x bones)");
   cmd->add_option("--template", o.template_kind, "auto, humanoid, quadruped or none (default auto)")
@@ -252,6 +254,10 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
   cmd->add_option("--compare", o.compare, "A ground-truth skeleton (.tgf): print joint errors and bone counts against it");
   cmd->add_option("--azimuth", o.azimuth_deg, "--png camera angle about the up axis in degrees (default 30)");
   cmd->add_option("--repeat", o.repeat, "Run the rig N times and print the median and fastest time of each stage");
+  cmd->add_option("--mesh", o.mesh, "glTF: the mesh node (default: the first skinned mesh, else the first mesh)");
+  cmd->add_option("--animation", o.animation, "glTF: animation name or index for --times (default: the first)");
+  cmd->add_option("--times", o.times, "glTF: animation times in seconds, one example pose each")->delimiter(',');
+  cmd->add_option("--targets", o.targets, "glTF: morph target indices, one example pose each")->delimiter(',');
   return cmd;
 }
 

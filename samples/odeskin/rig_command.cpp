@@ -12,6 +12,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "engine/io/gltf_reader.hpp"
 #include "engine/io/gltf_rig_writer.hpp"
 #include "engine/io/libigl_io.hpp"
 #include "engine/io/libigl_writer.hpp"
@@ -48,11 +49,24 @@ const char* curveSourceName(CurveSource source) {
   return "auto";
 }
 
+bool isGltf(const std::filesystem::path& path) {
+  const std::string ext = lowerExtension(path);
+  return ext == ".gltf" || ext == ".glb";
+}
+
 std::string usageProblem(const RigCommandOptions& o) {
-  if (o.meshes.empty()) return "rig: give the mesh (an OBJ file), optionally followed by example poses";
+  if (o.meshes.empty()) return "rig: give the mesh (an OBJ file), optionally followed by example poses, or one .gltf/.glb";
+  const bool gltf = std::any_of(o.meshes.begin(), o.meshes.end(), isGltf);
+  if (gltf && o.meshes.size() > 1) return "rig: give one .gltf/.glb file (--times or --targets for poses), or OBJ meshes, not both";
   for (const std::filesystem::path& m : o.meshes) {
-    if (lowerExtension(m) != ".obj") return "rig: " + m.string() + ": meshes must be OBJ files";
+    if (!gltf && lowerExtension(m) != ".obj") {
+      return "rig: " + m.string() + ": unknown mesh format '" + lowerExtension(m) + "' (expected .obj, .gltf or .glb)";
+    }
   }
+  if (!gltf && (!o.mesh.empty() || !o.animation.empty() || !o.times.empty() || !o.targets.empty())) {
+    return "rig: --mesh, --animation, --times and --targets apply to a .gltf/.glb input";
+  }
+  if (!o.animation.empty() && o.times.empty()) return "rig: --animation applies with --times";
   if (o.output.empty()) return "rig: -o SKELETON.tgf is required";
   if (lowerExtension(o.output) != ".tgf") return "rig: -o " + o.output.string() + ": the skeleton is written as a .tgf file";
   if (!o.weights.empty() && lowerExtension(o.weights) != ".dmat") {
@@ -81,6 +95,55 @@ std::string usageProblem(const RigCommandOptions& o) {
   return {};
 }
 
+// The bind mesh and the example poses, with a glTF input's look for --gltf.
+struct RigInput {
+  std::vector<Vec3> rest;
+  FaceList faces;
+  std::vector<std::vector<Vec3>> poses;
+  RenderLayout render;                  // a glTF input's render vertices, else empty
+  std::vector<std::string> warnings;    // the glTF reader's, naming the file
+  std::size_t replaced_skin_joints = 0; // the joints of a skin the input already had
+};
+
+Result<RigInput> readRigInput(const RigCommandOptions& o) {
+  RigInput in;
+  if (isGltf(o.meshes.front())) {
+    GltfPoseRequest request;
+    request.mesh = o.mesh;
+    request.animation = o.animation;
+    request.times = o.times;
+    request.morph_targets = o.targets;
+    request.min_poses = 1;
+    ODESKIN_ASSIGN_OR_RETURN(ExampleSet set, readGltfExamples(o.meshes.front(), request));
+    in.rest = std::move(set.rest_positions);
+    in.faces = std::move(set.faces);
+    in.poses.assign(std::make_move_iterator(set.poses.begin() + 1), std::make_move_iterator(set.poses.end()));
+    in.render = std::move(set.render);
+    in.warnings = std::move(set.warnings);
+    if (set.rig) in.replaced_skin_joints = set.rig->skeleton.boneCount();
+  } else if (o.meshes.size() == 1) {
+    ODESKIN_ASSIGN_OR_RETURN(ObjMesh mesh, readObj(o.meshes.front()));
+    in.rest = std::move(mesh.positions);
+    in.faces = std::move(mesh.faces);
+  } else {
+    // Same topology in every pose, checked by the sequence reader.
+    ODESKIN_ASSIGN_OR_RETURN(ExampleSet set, readObjSequence(o.meshes));
+    in.rest = set.rest_positions;
+    in.faces = std::move(set.faces);
+    in.poses.assign(std::make_move_iterator(set.poses.begin() + 1), std::make_move_iterator(set.poses.end()));
+  }
+  return in;
+}
+
+// The materials a glTF input's primitives use, for --gltf; none when they use none.
+Result<std::optional<gltf::MaterialLibrary>> inputMaterials(const RigCommandOptions& o, const RenderLayout& render) {
+  const bool dressed = std::any_of(render.primitives.begin(), render.primitives.end(),
+                                   [](const RenderPrimitive& p) { return p.material >= 0; });
+  if (!dressed) return std::optional<gltf::MaterialLibrary>();
+  ODESKIN_ASSIGN_OR_RETURN(gltf::MaterialLibrary library, gltf::readMaterialLibrary(o.meshes.front()));
+  return std::optional<gltf::MaterialLibrary>(std::move(library));
+}
+
 double fastest(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); }
 
 double median(std::vector<double> v) {
@@ -93,22 +156,14 @@ double median(std::vector<double> v) {
 int runRigCommand(const RigCommandOptions& o, Console& console) {
   if (const std::string problem = usageProblem(o); !problem.empty()) return reportUsage(console, problem);
 
-  // The bind mesh, then the example poses (same topology, checked by the sequence reader).
-  std::vector<Vec3> rest;
-  FaceList faces;
-  std::vector<std::vector<Vec3>> poses;
-  if (o.meshes.size() == 1) {
-    Result<ObjMesh> mesh = readObj(o.meshes.front());
-    if (!mesh.ok()) return reportFailure(console, Status(mesh.status().code(), "rig: " + mesh.status().message()));
-    rest = std::move(mesh->positions);
-    faces = std::move(mesh->faces);
-  } else {
-    Result<ExampleSet> set = readObjSequence(o.meshes);
-    if (!set.ok()) return reportFailure(console, Status(set.status().code(), "rig: " + set.status().message()));
-    rest = set->rest_positions;
-    faces = set->faces;
-    poses.assign(set->poses.begin() + 1, set->poses.end());
+  Result<RigInput> input = readRigInput(o);
+  if (!input.ok()) return reportFailure(console, Status(input.status().code(), "rig: " + input.status().message()));
+  if (!console.quiet) {
+    for (const std::string& w : input->warnings) console.err << "warning: rig: " << w << "\n";
   }
+  const std::vector<Vec3>& rest = input->rest;
+  const FaceList& faces = input->faces;
+  const std::vector<std::vector<Vec3>>& poses = input->poses;
 
   std::optional<Skeleton> truth;
   if (!o.compare.empty()) {
@@ -130,8 +185,8 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     rig = buildCurveRig(rest, faces, poses, options);
     if (!rig.ok()) {
       // The curve rig's errors are about the meshes' content: name the bind mesh (and poses).
-      const std::string meshes = o.meshes.front().string() +
-                                 (o.meshes.size() > 1 ? " and " + std::to_string(o.meshes.size() - 1) + " poses" : "");
+      const std::string meshes =
+          o.meshes.front().string() + (poses.empty() ? "" : " and " + std::to_string(poses.size()) + " poses");
       return reportFailure(console, Status(rig.status().code(), "rig: " + meshes + ": " + rig.status().message()));
     }
     topology_s.push_back(rig->seconds_topology);
@@ -160,7 +215,14 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     }
   }
   if (!o.gltf.empty()) {
-    if (Status s = writeRigGlb(o.gltf, rest, faces, r.rig); !s.ok()) return reportFailure(console, s);
+    Result<std::optional<gltf::MaterialLibrary>> materials = inputMaterials(o, input->render);
+    if (!materials.ok()) {
+      return reportFailure(console, Status(materials.status().code(), "rig: --gltf: " + materials.status().message()));
+    }
+    RigGlbLook look;
+    look.render = &input->render;
+    look.materials = *materials ? &**materials : nullptr;
+    if (Status s = writeRigGlb(o.gltf, rest, faces, r.rig, look); !s.ok()) return reportFailure(console, s);
   }
   if (!o.png.empty()) {
     RigPictureOptions picture;
@@ -180,6 +242,13 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   std::snprintf(line, sizeof line, "mesh: %zu vertices, %zu faces, %zu example pose%s\n", rest.size(), faces.faceCount(),
                 poses.size(), poses.size() == 1 ? "" : "s");
   out << line;
+  if (!input->render.empty()) {
+    out << "glTF: " << input->render.topology_of_render.size() << " render vertices welded into " << rest.size()
+        << ", " << std::max<std::size_t>(input->render.primitives.size(), 1) << " primitive"
+        << (input->render.primitives.size() > 1 ? "s" : "");
+    if (input->replaced_skin_joints > 0) out << "; its skin of " << input->replaced_skin_joints << " joints is not used";
+    out << "\n";
+  }
   std::snprintf(line, sizeof line, "curves: %zu (%s), %zu body parts, %zu bumps pruned; curve skeleton: %zu nodes\n",
                 cs.curves.size(), curveSourceName(cs.source), cs.part_count,
                 cs.pruned_branches, cs.skeleton.nodeCount());

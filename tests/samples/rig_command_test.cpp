@@ -1,0 +1,288 @@
+// SPDX-License-Identifier: MIT
+// `odeskin rig` on a glTF input (issue 8), called as the program calls it: the cylinder written as a
+// textured glTF split at a seam into two primitives with two materials. The rig must be the one the
+// same mesh gives as plain arrays, and --gltf must give the mesh back with its look and a new skin.
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include "engine/io/gltf_baked_writer.hpp"
+#include "engine/io/gltf_reader.hpp"
+#include "engine/io/libigl_io.hpp"
+#include "engine/io/obj_reader.hpp"
+#include "engine/rig/curve_rig.hpp"
+#include "samples/command_test_support.hpp"
+#include "samples/odeskin/rig_command.hpp"
+
+namespace odeskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kData = ODESKIN_DATA_DIR;
+
+// A 1 x 1 PNG (one orange pixel), for the texture the look must keep byte for byte.
+constexpr std::array<unsigned char, 69> kOnePixelPng{
+    0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+    0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xde, 0x00, 0x00, 0x00,
+    0x0c, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0xf8, 0xdf, 0xc0, 0x00, 0x00, 0x04, 0x01, 0x01, 0x80, 0xc5,
+    0x2a, 0x18, 0x5d, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+
+// Through a volatile float: GCC 12.2's loop vectorizer, at -O2 and above, drops the rounding of
+// `p = Vec3(glm::vec3(p))` over a vector of Vec3 (the doubles come back unchanged).
+std::vector<Vec3> roundedToFloat(std::vector<Vec3> positions) {
+  for (Vec3& p : positions) {
+    for (int k = 0; k < 3; ++k) {
+      const volatile float rounded = static_cast<float>(p[k]);
+      p[k] = rounded;
+    }
+  }
+  return positions;
+}
+
+ObjMesh dataMesh(const std::string& name) {
+  Result<ObjMesh> mesh = readObj(kData + "/" + name);
+  if (!mesh.ok()) throw std::runtime_error(mesh.status().toString());
+  return std::move(mesh).value();
+}
+
+// The cylinder as a character from a DCC: float32 positions (so the file holds them exactly), the
+// first half of its faces in primitive 0 ("skin", textured) and the rest in primitive 1 ("cloth"),
+// each vertex both halves use copied for primitive 1 (a seam), UVs and normals per render vertex.
+struct SeamedCylinder {
+  std::vector<Vec3> positions;  // topology: the OBJ's vertices, rounded to float
+  FaceList faces;               // topology: the OBJ's triangles
+  std::vector<std::vector<Vec3>> poses;  // poses-1, rounded to float
+  RenderLayout render;
+  std::size_t seam_copies = 0;
+};
+
+SeamedCylinder seamedCylinder() {
+  SeamedCylinder c;
+  const ObjMesh mesh = dataMesh("cylinder/cylinder.obj");
+  c.positions = roundedToFloat(mesh.positions);
+  c.faces = mesh.faces;
+  for (const char* pose : {"cylinder/poses-1/cylinder-1.obj", "cylinder/poses-1/cylinder-2.obj"}) {
+    c.poses.push_back(roundedToFloat(dataMesh(pose).positions));
+  }
+  const std::size_t v_count = c.positions.size();
+  const std::size_t half = c.faces.faceCount() / 2;
+  std::vector<char> in_first(v_count, 0);
+  for (std::size_t k = 0; k < c.faces.face_offsets[half]; ++k) in_first[c.faces.indices[k]] = 1;
+  for (std::uint32_t v = 0; v < v_count; ++v) c.render.topology_of_render.push_back(v);
+  std::map<std::uint32_t, std::uint32_t> copy_of;
+  c.render.faces = c.faces;
+  for (std::size_t k = c.faces.face_offsets[half]; k < c.faces.indices.size(); ++k) {
+    const std::uint32_t v = c.faces.indices[k];
+    if (!in_first[v]) continue;
+    auto [it, added] = copy_of.emplace(v, static_cast<std::uint32_t>(c.render.topology_of_render.size()));
+    if (added) c.render.topology_of_render.push_back(v);
+    c.render.faces.indices[k] = it->second;
+  }
+  c.seam_copies = copy_of.size();
+  for (std::size_t r = 0; r < c.render.topology_of_render.size(); ++r) {
+    const Vec3& p = c.positions[c.render.topology_of_render[r]];
+    const bool copy = r >= v_count;
+    c.render.uvs.emplace_back(0.25 * p.x + (copy ? 0.5 : 0.0), 0.5 + 0.5 * p.y);  // the copies sit elsewhere in UV space
+    c.render.normals.push_back(glm::normalize(Vec3(0.0, p.y, p.z) + Vec3(copy ? 0.01 : 0.0, 0.0, 0.0)));
+  }
+  c.render.primitives = {{static_cast<std::uint32_t>(half), 0}, {static_cast<std::uint32_t>(c.faces.faceCount()), 1}};
+  return c;
+}
+
+gltf::MaterialLibrary twoMaterials() {
+  gltf::MaterialLibrary library;
+  library.source = "two materials";
+  library.images.push_back({"skin-colour", "image/png", {kOnePixelPng.begin(), kOnePixelPng.end()}});
+  tinygltf::Texture texture;
+  texture.source = 0;
+  library.textures.push_back(texture);
+  tinygltf::Material skin;
+  skin.name = "skin";
+  skin.pbrMetallicRoughness.baseColorTexture.index = 0;
+  tinygltf::Material cloth;
+  cloth.name = "cloth";
+  cloth.emissiveFactor = {1.0, 0.5, 0.0};
+  library.materials = {skin, cloth};
+  return library;
+}
+
+// The cylinder written as an unskinned .glb: the bind pose, and the two poses as morph targets.
+fs::path writeSeamedGlb(const SeamedCylinder& c, const fs::path& path) {
+  std::vector<std::vector<Vec3>> frames;
+  for (const std::vector<Vec3>* topology : {&c.positions, &c.poses[0], &c.poses[1]}) {
+    std::vector<Vec3>& frame = frames.emplace_back();
+    for (std::uint32_t t : c.render.topology_of_render) frame.push_back((*topology)[t]);
+  }
+  const std::vector<std::vector<Vec3>> normals(frames.size(), c.render.normals);
+  const std::vector<double> seconds{0.0, 1.0, 2.0};
+  const gltf::MaterialLibrary library = twoMaterials();
+  BakedGlbOptions options;
+  options.materials = &library;
+  BakedVertexData data;
+  data.normals = normals;
+  data.uvs = c.render.uvs;
+  data.primitives = c.render.primitives;
+  const Status written = writeBakedGlb(path, c.render.faces, frames, seconds, options, data);
+  if (!written.ok()) throw std::runtime_error(written.toString());
+  return path;
+}
+
+tinygltf::Model loadGlb(const fs::path& path) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  if (!loader.LoadBinaryFromFile(&model, &err, &warn, path.string())) throw std::runtime_error(path.string() + ": " + err);
+  return model;
+}
+
+class RigCommand : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = testing::scratchDir("odeskin_rig_command_test_", "run"); }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+// The glTF's mesh, welded back at its seam, gives the rig the arrays give, to the bit; --gltf keeps
+// the render vertices, UVs, normals, primitives and materials, each render vertex weighted as its
+// topology vertex; --weights holds the topology vertices' weights.
+TEST_F(RigCommand, GltfInputKeepsItsLookAndGetsTheArraysRig) {
+  const SeamedCylinder c = seamedCylinder();
+  ASSERT_GT(c.seam_copies, 0u);
+  const fs::path input = writeSeamedGlb(c, dir_ / "character.glb");
+  RigCommandOptions o;
+  o.meshes = {input};
+  o.targets = {0, 1};
+  o.template_kind = "none";
+  o.output = dir_ / "character.tgf";
+  o.weights = dir_ / "character.dmat";
+  o.gltf = dir_ / "character-rigged.glb";
+  testing::Captured io;
+  ASSERT_EQ(runRigCommand(o, io.console), kExitOk) << io.err.str();
+  EXPECT_NE(io.out.str().find("mesh: 420 vertices, 800 faces, 2 example poses"), std::string::npos) << io.out.str();
+  EXPECT_NE(io.out.str().find("glTF: " + std::to_string(c.render.topology_of_render.size()) +
+                              " render vertices welded into 420, 2 primitives"),
+            std::string::npos)
+      << io.out.str();
+
+  CurveRigOptions options;
+  options.animation.template_kind = SkeletonTemplateKind::kNone;
+  options.compute_weights = true;
+  Result<CurveRig> expected = buildCurveRig(c.positions, c.faces, c.poses, options);
+  ASSERT_TRUE(expected.ok()) << expected.status().toString();
+  const Skeleton& want = expected->rig.skeleton;
+  Result<Skeleton> skeleton = readTgf(o.output);
+  ASSERT_TRUE(skeleton.ok()) << skeleton.status().toString();
+  ASSERT_EQ(skeleton->boneCount(), want.boneCount());
+  EXPECT_EQ(skeleton->parents, want.parents);
+  EXPECT_EQ(skeleton->heads, want.heads);
+  Result<Influences> weights = readWeightsDmat(o.weights, c.positions.size(), want.boneCount());
+  ASSERT_TRUE(weights.ok()) << weights.status().toString();
+  EXPECT_EQ(weights->weights, expected->rig.influences.weights);
+
+  // The rigged file read back: same welded mesh, the new skin, the look of the input.
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  Result<ExampleSet> back = readGltfExamples(o.gltf, request);
+  ASSERT_TRUE(back.ok()) << back.status().toString();
+  EXPECT_EQ(back->rest_positions, c.positions);
+  EXPECT_EQ(back->faces.indices, c.faces.indices);
+  ASSERT_TRUE(back->rig.has_value());
+  EXPECT_EQ(back->rig->skeleton.boneCount(), want.boneCount());
+  const tinygltf::Model model = loadGlb(o.gltf);
+  ASSERT_EQ(model.meshes.size(), 1u);
+  ASSERT_EQ(model.meshes[0].primitives.size(), 2u);
+  EXPECT_EQ(model.meshes[0].primitives[0].material, 0);
+  EXPECT_EQ(model.meshes[0].primitives[1].material, 1);
+  const tinygltf::Accessor& positions = model.accessors.at(static_cast<std::size_t>(model.meshes[0].primitives[0].attributes.at("POSITION")));
+  EXPECT_EQ(positions.count, c.render.topology_of_render.size()) << "one glTF vertex per render vertex of the input";
+  for (const char* attribute : {"NORMAL", "TEXCOORD_0", "JOINTS_0", "WEIGHTS_0"}) {
+    EXPECT_EQ(model.meshes[0].primitives[0].attributes.count(attribute), 1u) << attribute;
+  }
+  EXPECT_EQ(back->render.topology_of_render, c.render.topology_of_render);
+  EXPECT_EQ(back->render.faces.indices, c.render.faces.indices);
+  EXPECT_EQ(back->render.primitives, c.render.primitives);
+  ASSERT_EQ(back->render.uvs.size(), c.render.uvs.size());
+  ASSERT_EQ(back->render.normals.size(), c.render.normals.size());
+  for (std::size_t r = 0; r < back->render.uvs.size(); ++r) {
+    EXPECT_LT(glm::length(back->render.uvs[r] - c.render.uvs[r]), 1e-7) << r;
+    EXPECT_LT(glm::length(back->render.normals[r] - c.render.normals[r]), 1e-6) << r;
+  }
+  ASSERT_EQ(model.materials.size(), 2u);
+  EXPECT_EQ(model.materials[0].name, "skin");
+  EXPECT_EQ(model.materials[1].name, "cloth");
+  ASSERT_EQ(model.images.size(), 1u);
+  const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(model.images[0].bufferView));
+  EXPECT_TRUE(view.byteLength == kOnePixelPng.size() &&
+              std::equal(kOnePixelPng.begin(), kOnePixelPng.end(), model.buffers[0].data.begin() + static_cast<std::ptrdiff_t>(view.byteOffset)));
+}
+
+// The rigged file rigs again to the same skeleton, and says that its own skin is not used.
+TEST_F(RigCommand, RiggedGlbRigsAgainToTheSameSkeleton) {
+  const SeamedCylinder c = seamedCylinder();
+  RigCommandOptions o;
+  o.meshes = {writeSeamedGlb(c, dir_ / "character.glb")};
+  o.template_kind = "none";
+  o.output = dir_ / "first.tgf";
+  o.gltf = dir_ / "first.glb";
+  testing::Captured first;
+  ASSERT_EQ(runRigCommand(o, first.console), kExitOk) << first.err.str();
+  o.meshes = {o.gltf};
+  o.output = dir_ / "second.tgf";
+  o.gltf = dir_ / "second.glb";
+  testing::Captured second;
+  ASSERT_EQ(runRigCommand(o, second.console), kExitOk) << second.err.str();
+  EXPECT_NE(second.out.str().find("its skin of "), std::string::npos) << second.out.str();
+  Result<Skeleton> a = readTgf(dir_ / "first.tgf");
+  Result<Skeleton> b = readTgf(dir_ / "second.tgf");
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(a->heads, b->heads);
+  EXPECT_EQ(a->parents, b->parents);
+}
+
+TEST_F(RigCommand, RejectsWhatAGltfInputCannotDo) {
+  const SeamedCylinder c = seamedCylinder();
+  const fs::path glb = writeSeamedGlb(c, dir_ / "character.glb");
+  const std::string obj = kData + "/cylinder/cylinder.obj";
+  auto options = [&](std::vector<fs::path> meshes) {
+    RigCommandOptions o;
+    o.meshes = std::move(meshes);
+    o.output = dir_ / "x.tgf";
+    return o;
+  };
+  std::vector<testing::CommandCase<RigCommandOptions>> usage;
+  usage.push_back({options({glb, obj}), "give one .gltf/.glb file"});
+  usage.push_back({options({dir_ / "character.fbx"}), "unknown mesh format '.fbx'"});
+  RigCommandOptions times_on_obj = options({obj});
+  times_on_obj.times = {0.5};
+  usage.push_back({times_on_obj, "--mesh, --animation, --times and --targets apply to a .gltf/.glb input"});
+  RigCommandOptions animation_alone = options({glb});
+  animation_alone.animation = "walk";
+  usage.push_back({animation_alone, "--animation applies with --times"});
+  testing::expectRejected(usage, [](const RigCommandOptions& o, testing::Captured& io) { return runRigCommand(o, io.console); },
+                          kExitUsage, "rig");
+
+  std::vector<testing::CommandCase<RigCommandOptions>> failures;
+  RigCommandOptions times = options({glb});
+  times.times = {0.5};
+  failures.push_back({times, "has no skin, so it has no poses at times"});
+  RigCommandOptions target = options({glb});
+  target.targets = {7};
+  failures.push_back({target, "character.glb"});
+  RigCommandOptions node = options({glb});
+  node.mesh = "body";
+  failures.push_back({node, "no mesh node named 'body'"});
+  failures.push_back({options({dir_ / "absent.glb"}), "absent.glb"});
+  testing::expectRejected(failures, [](const RigCommandOptions& o, testing::Captured& io) { return runRigCommand(o, io.console); },
+                          kExitFailure, "rig");
+  EXPECT_FALSE(fs::exists(dir_ / "x.tgf"));
+}
+
+}  // namespace
+}  // namespace odeskin
