@@ -188,20 +188,26 @@ Result<Skinned> readSkinned(const tinygltf::Model& model, int mesh_node, MeshDat
   return s;
 }
 
-// An unskinned mesh on KHR_mesh_quantization's integer grid means something only through its
-// node's transform, where the quantizing tools put the dequantization: the mesh in world space.
-Status dequantizeUnskinned(const tinygltf::Model& model, int mesh_node, MeshData& mesh) {
+// An unskinned mesh is where its node's world transform puts it: read in world space, as viewers
+// show it (a quantized one means something only there, its grid's dequantization being in that
+// transform). A mirroring transform turns the triangles inside out, so their corners are reversed.
+Status placeUnskinned(const tinygltf::Model& model, int mesh_node, MeshData& mesh) {
   ODESKIN_ASSIGN_OR_RETURN(const std::vector<int> parents, nodeParents(model));
   ODESKIN_ASSIGN_OR_RETURN(const std::vector<NodeTransform> rest, restTransforms(model));
   const glm::dmat4 world = globalMatrices(rest, parents)[static_cast<std::size_t>(mesh_node)];
-  if (!(glm::determinant(glm::dmat3(world)) > 0.0)) {
-    return parseError(nodeLabel(model, mesh_node) +
-                      "'s world transform mirrors or collapses its KHR_mesh_quantization mesh (determinant <= 0)");
+  if (world == glm::dmat4(1.0)) return okStatus();
+  const double det = glm::determinant(glm::dmat3(world));
+  if (!std::isfinite(det) || det == 0.0) {
+    return parseError(nodeLabel(model, mesh_node) + ": its world transform collapses the mesh (determinant " +
+                      (std::isfinite(det) ? "0" : "not finite") + ")");
   }
   Dequantization d;
   d.linear = glm::dmat3(world);
   d.offset = Vec3(world[3]);
   dequantizeMesh(d, mesh);
+  if (det < 0.0) {
+    for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) std::swap(mesh.triangles[t + 1], mesh.triangles[t + 2]);
+  }
   return okStatus();
 }
 
@@ -267,8 +273,8 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
   std::optional<Skinned> skinned;
   if (node.skin >= 0) {
     ODESKIN_ASSIGN_OR_RETURN(skinned, readSkinned(model, mesh_node, mesh, budget));
-  } else if (usesMeshQuantization(model)) {
-    ODESKIN_TRY(dequantizeUnskinned(model, mesh_node, mesh));
+  } else {
+    ODESKIN_TRY(placeUnskinned(model, mesh_node, mesh));
   }
   const Welded welded = weldEqualPositions(mesh.positions);
   ODESKIN_ASSIGN_OR_RETURN(std::vector<std::vector<Vec3>> deltas, topologyDeltas(mesh, welded));

@@ -33,8 +33,10 @@ struct GltfPoseRequest {
 // (see gltf_weld.hpp for why exact): rest_positions / faces are over topology vertices (triangles
 // that weld to a segment are left out), render = {render vertex -> topology vertex, all triangles
 // over render vertices, and every render vertex's NORMAL when all primitives have it, as stored:
-// it tells hard edges from UV seams}. The mesh node's own transform is ignored (glTF: a skinned mesh is placed
-// by its joints only; an unskinned one is read in mesh space). Bind space is mesh space with the
+// it tells hard edges from UV seams}. A skinned mesh is read in mesh space: glTF ignores its node's
+// transform (its joints place it). An unskinned mesh is read in world space, as viewers show it:
+// its node's world transform applies to positions, deltas and normals (a mirroring one reverses the
+// triangles' corners, so they keep facing out). Bind space is that space with the
 // default morph weights applied (node.weights, else mesh.weights, else zeros): rest_positions.
 //
 // Poses at times are computed as glTF specifies: morph (animated "weights" of the mesh node, else
@@ -56,7 +58,8 @@ struct GltfPoseRequest {
 // gltf_load.hpp), a skin matrix that scales or shears by more than 1e-4 (naming joint and pose).
 // kIoError: a missing or unreadable file. kParseError: tinygltf refuses the file (its message
 // follows), or the data break the glTF rules odeskin relies on (accessor bounds and formats,
-// joint indices, zero weight sums, welded copies of a vertex with different weights or deltas...).
+// joint indices, zero weight sums, welded copies of a vertex with different weights or deltas, an
+// unskinned mesh node whose world transform collapses it...).
 Result<ExampleSet> readGltfExamples(const std::filesystem::path& path, const GltfPoseRequest& request);
 
 // readGltfExamples on a .gltf or .glb held in memory (GLB by its first four bytes); `source` stands

@@ -1270,6 +1270,54 @@ TEST(GltfReader, QuantizedUnskinnedMeshTakesItsNodesTransform) {
   }
 }
 
+// An unskinned mesh is read where its node's world transform puts it, as viewers show it: Blender's
+// exporter leaves such a transform on every mesh it turns (a character imported from a y-up OBJ
+// gets a quarter turn about x). A mirroring transform reverses the triangles' corners so they keep
+// facing out; one that collapses the mesh is refused.
+TEST(GltfReader, UnskinnedMeshIsReadWhereItsNodePutsIt) {
+  tinygltf::Model model = makeTube().model;
+  model.nodes[0].skin = -1;
+  model.nodes[0].translation.clear();  // the tube's skinned node is translated: here its mesh space is wanted
+  const auto local = read(write(model, "local.gltf", false), {}, {0});
+  ASSERT_TRUE(local.ok()) << local.status().toString();
+  // The mesh node under a parent: world = parent (translate) x node (turn, scale).
+  tinygltf::Node parent;
+  parent.translation = {1.0, 2.0, 3.0};
+  parent.children = {0};
+  model.nodes.push_back(parent);
+  model.scenes[0].nodes = {static_cast<int>(model.nodes.size() - 1)};
+  model.nodes[0].rotation = {std::sqrt(0.5), 0.0, 0.0, std::sqrt(0.5)};  // x, y, z, w: 90 degrees about x
+  model.nodes[0].scale = {2.0, 2.0, 2.0};
+  const auto placed = read(write(model, "placed.gltf", false), {}, {0});
+  ASSERT_TRUE(placed.ok()) << placed.status().toString();
+  auto world = [](const Vec3& p) { return Vec3(1.0, 2.0, 3.0) + 2.0 * Vec3(p.x, -p.z, p.y); };
+  ASSERT_EQ(placed->poses.size(), local->poses.size());
+  for (std::size_t k = 0; k < placed->poses.size(); ++k) {
+    for (std::size_t v = 0; v < placed->poses[k].size(); ++v) {
+      expectNear(placed->poses[k][v], world(local->poses[k][v]), 1e-12, "pose " + std::to_string(k));
+    }
+  }
+  EXPECT_EQ(placed->faces.indices, local->faces.indices);
+  for (std::size_t r = 0; r < placed->render.normals.size(); ++r) {
+    const Vec3& n = local->render.normals[r];
+    expectNear(placed->render.normals[r], Vec3(n.x, -n.z, n.y), 1e-12, "normal");
+  }
+  model.nodes[0].scale = {-2.0, 2.0, 2.0};
+  const auto mirrored = read(write(model, "mirrored.gltf", false), {}, {0});
+  ASSERT_TRUE(mirrored.ok()) << mirrored.status().toString();
+  ASSERT_EQ(mirrored->faces.indices.size(), local->faces.indices.size());
+  for (std::size_t t = 0; t < local->faces.indices.size(); t += 3) {
+    EXPECT_EQ(mirrored->faces.indices[t], local->faces.indices[t]);
+    EXPECT_EQ(mirrored->faces.indices[t + 1], local->faces.indices[t + 2]);
+    EXPECT_EQ(mirrored->faces.indices[t + 2], local->faces.indices[t + 1]);
+  }
+  model.nodes[0].scale = {2.0, 0.0, 2.0};
+  const auto collapsed = read(write(model, "collapsed.gltf", false), {}, {0});
+  ASSERT_FALSE(collapsed.ok());
+  EXPECT_NE(collapsed.status().message().find("collapsed.gltf: node 0 'tube': its world transform collapses the mesh (determinant 0)"), std::string::npos)
+      << collapsed.status().message();
+}
+
 // ---------------------------------------------------------------------------------------------
 // Errors
 
