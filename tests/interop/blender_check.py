@@ -27,6 +27,9 @@
 #            textured material) and exports it as glTF; `odeskin fit` reads it, `odeskin export
 #            --materials` (and `play -o OUT.glb --materials`) write it back, and Blender imports
 #            them: the same vertices, UVs and material, moving as `odeskin play` does.
+#   rig_gltf Blender's textured character as in roundtrip (--poses: the shape keys are example
+#            poses, `--targets`); `odeskin rig CHARACTER.glb --gltf OUT.glb` rigs it, and Blender
+#            imports an armature of the .tgf's bones over the same vertices, UVs and material.
 # Exits 1 on any failure (a missing odeskin, an import error, a vertex off by more than the
 # tolerance); nothing is skipped.
 import argparse
@@ -51,7 +54,7 @@ from blender_support import (CheckFailure, compare, evaluated_positions, failure
 # between keys (odeskin export prints its bounds), and --quantize's rounding adds about 1e-4 more
 # (2.5e-5 to a bake).
 TOLERANCE = {"compact": 1e-4, "quantized": 2e-4, "baked": 1e-5, "baked_quantized": 5e-5, "pc2": 1e-6, "mdd": 1e-6, "rig": 1e-6, "ply": 1e-6, "surface": 1e-6,
-             "roundtrip": 1e-4, "animated": 1e-4}
+             "roundtrip": 1e-4, "animated": 1e-4, "rig_gltf": 1e-6}
 
 
 def parse_args():
@@ -63,7 +66,7 @@ def parse_args():
     parser.add_argument("--mesh", help="rig, animated: the OBJ mesh to rig")
     parser.add_argument("--reference", help="ply: the ground-truth OBJ the asset is compared with")
     parser.add_argument("--t", default="0.5", help="ply: the asset's time T")
-    parser.add_argument("--poses", nargs="+", help="roundtrip: OBJ files of one mesh, the first the base")
+    parser.add_argument("--poses", nargs="+", help="roundtrip, rig_gltf: OBJ files of one mesh, the first the base")
     parser.add_argument("--network", help="surface: a curve network (.json) for odeskin surface")
     parser.add_argument("--out", required=True)
     parser.add_argument("--times", default="0,0.37,0.51,1,1.52,1.99,2",
@@ -315,23 +318,54 @@ def check_roundtrip(options, out):
     # The baked form dresses itself the same way (play -o .glb --materials).
     baked = out / "baked.glb"
     odeskin(options, "play", str(asset), "--fps", "4", "--materials", str(source), "-o", str(baked))
-    _, source_uvs, source_material, source_image = imported_look(source, 100)
+    look = imported_look(source, 100)
     for written in (baked, glb):  # the compact export last: its motion is checked below
-        obj, uvs, material, image = imported_look(written, 100)
-        log(f"{written.name}: {len(obj.data.vertices)} vertices, {len(uvs)} face corners, material '{material}' "
-            f"with a {image[0]}x{image[1]} image")
-        if (material, image) != (source_material, source_image):
-            failures.append(f"{written.name}: material '{material}' {image} is not the source's "
-                            f"'{source_material}' {source_image}")
-        if uvs.shape != source_uvs.shape:
-            raise CheckFailure(f"{written.name}: {len(uvs)} face corners with UVs, the source {len(source_uvs)}")
-        uv_error = float(numpy.abs(uvs - source_uvs).max())
-        log(f"{written.name} UVs: largest difference {uv_error:.2e} from the source's, corner by corner")
-        if uv_error > 1e-6:
-            failures.append(f"{written.name}: UVs differ from the source's by {uv_error:.2e}")
+        obj = check_same_look(written, look)
     seconds = segment_seconds(options, asset)
     for t in (0.0, 0.37, 1.0, 1.52, float(len(options.poses) - 1)):
         compare_with_play(options, asset, obj, t, round(t * seconds * 100), out)
+
+
+def check_same_look(written, source_look):
+    """`written` imported shows the source's material, image and UVs, corner by corner; returns its mesh object."""
+    _, source_uvs, source_material, source_image = source_look
+    obj, uvs, material, image = imported_look(written, 100)
+    log(f"{written.name}: {len(obj.data.vertices)} vertices, {len(uvs)} face corners, material '{material}' "
+        f"with a {image[0]}x{image[1]} image")
+    if (material, image) != (source_material, source_image):
+        failures.append(f"{written.name}: material '{material}' {image} is not the source's "
+                        f"'{source_material}' {source_image}")
+    if uvs.shape != source_uvs.shape:
+        raise CheckFailure(f"{written.name}: {len(uvs)} face corners with UVs, the source {len(source_uvs)}")
+    uv_error = float(numpy.abs(uvs - source_uvs).max())
+    log(f"{written.name} UVs: largest difference {uv_error:.2e} from the source's, corner by corner")
+    if uv_error > 1e-6:
+        failures.append(f"{written.name}: UVs differ from the source's by {uv_error:.2e}")
+    return obj
+
+
+def check_rig_gltf(options, out):
+    source, tgf, rigged = out / "character.glb", out / "rig.tgf", out / "rigged.glb"
+    make_character(options.poses, source)
+    targets = ",".join(str(k) for k in range(len(options.poses) - 1))
+    odeskin(options, "rig", str(source), "--targets", targets, "-o", str(tgf), "--gltf", str(rigged))
+    # Blender places the mesh by its node's transform, which odeskin must apply to an unskinned mesh.
+    with open(source, "rb") as f:
+        glb = f.read()
+    chunk = int.from_bytes(glb[12:16], "little")
+    node = next(n for n in json.loads(glb[20 : 20 + chunk])["nodes"] if "mesh" in n)
+    log(f"{source.name}: the mesh node's transform {({k: v for k, v in node.items() if k in ('matrix', 'translation', 'rotation', 'scale')})}")
+    look = imported_look(source, 100)
+    rest = evaluated_positions(look[0], 0)  # before the next import empties the scene
+    obj = check_same_look(rigged, look)
+    _, bones = tgf_bones(tgf)
+    armatures = [o for o in bpy.context.scene.objects if o.type == "ARMATURE"]
+    if len(armatures) != 1 or len(armatures[0].data.bones) != len(bones):
+        raise CheckFailure(f"{rigged.name}: {len(armatures)} armatures, expected one with the {len(bones)} bones of {tgf.name}")
+    if len(obj.vertex_groups) != len(bones) or not any(m.type == "ARMATURE" for m in obj.modifiers):
+        raise CheckFailure(f"{rigged.name}: {len(obj.vertex_groups)} vertex groups for {len(bones)} bones, or no armature modifier")
+    log(f"{rigged.name}: an armature of {len(bones)} bones, one vertex group each")
+    compare("rig_gltf at rest against the source", evaluated_positions(obj, 0), rest, TOLERANCE["rig_gltf"])
 
 
 def animate_rig(rig_glb, animated_glb):
@@ -413,9 +447,10 @@ def main():
     out = Path(options.out)
     out.mkdir(parents=True, exist_ok=True)
     log(f"Blender {bpy.app.version_string}, check {options.check}, input {options.mesh or options.asset or options.network or options.poses}")
-    needs = {"rig": "mesh", "animated": "mesh", "roundtrip": "poses", "surface": "network"}.get(options.check, "asset")
+    needs = {"rig": "mesh", "animated": "mesh", "roundtrip": "poses", "rig_gltf": "poses",
+             "surface": "network"}.get(options.check, "asset")
     given = [name for name in ("mesh", "poses", "asset", "network") if getattr(options, name) is not None]
-    if given != [needs] or (options.check == "roundtrip" and len(options.poses) < 2):
+    if given != [needs] or (options.check in ("roundtrip", "rig_gltf") and len(options.poses) < 2):
         log(f"FAILED: the {options.check} check takes --{needs}" + (" with two or more poses" if needs == "poses" else ""))
         sys.exit(1)
     if (options.check == "ply") != (options.reference is not None):
@@ -426,7 +461,7 @@ def main():
             checks = {"compact": check_compact, "quantized": check_compact, "baked": check_baked,
                       "baked_quantized": check_baked, "pc2": check_point_cache,
                       "mdd": check_point_cache, "rig": check_rig, "ply": check_ply, "roundtrip": check_roundtrip,
-                      "surface": check_surface, "animated": check_animated}
+                      "rig_gltf": check_rig_gltf, "surface": check_surface, "animated": check_animated}
             checks[options.check](options, Path(scratch))
         if failures:
             raise CheckFailure(f"{len(failures)} comparison(s) over the tolerance; first: {failures[0]}")
