@@ -133,22 +133,8 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   const std::span<const std::vector<Vec3>> normals = data.normals;
   tinygltf::Model m = gltf::newModel(options.generator);
 
-  // One index accessor per primitive with faces, over the vertices they all share.
-  const std::vector<RenderPrimitive> runs = primitiveRuns(data.primitives, faces.faceCount());
-  std::vector<int> materials(runs.size(), -1);
-  if (options.materials != nullptr) {
-    Result<std::vector<int>> chosen = gltf::primitiveMaterials(*options.materials, data.primitives, runs.size());
-    if (!chosen.ok()) return chosen.status();
-    materials = std::move(chosen).value();
-  }
-  std::vector<std::pair<int, int>> written;  // (indices, material) of each primitive with faces
-  std::uint32_t begin = 0;
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    if (runs[r].face_end > begin) {
-      written.emplace_back(gltf::appendTriangleIndices(m, gltf::fanTriangles(faces, begin, runs[r].face_end)), materials[r]);
-    }
-    begin = runs[r].face_end;
-  }
+  ODESKIN_ASSIGN_OR_RETURN(const std::vector<gltf::PrimitiveIndices> written,
+                           gltf::appendPrimitiveIndices(m, faces, data.primitives, options.materials));
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   std::vector<float> xyz;
@@ -177,11 +163,7 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
   }
   tinygltf::Mesh mesh;
   mesh.name = "odeskin";
-  for (const auto& [indices, material] : written) {
-    mesh.primitives.push_back(primitive);
-    mesh.primitives.back().indices = indices;
-    mesh.primitives.back().material = material;
-  }
+  gltf::addSharedPrimitives(mesh, primitive, written);
   mesh.weights.assign(frames.size() - 1, 0.0);
   m.meshes.push_back(mesh);
   gltf::addSingleMeshScene(m, "odeskin");

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "gltf_materials.hpp"
 
+#include "../core/render_primitives.hpp"
+
 #include <algorithm>
 #include <array>
 #include <string_view>
@@ -85,6 +87,33 @@ Result<std::vector<int>> primitiveMaterials(const MaterialLibrary& library, std:
     out.push_back(m);
   }
   return out;
+}
+
+Result<std::vector<PrimitiveIndices>> appendPrimitiveIndices(tinygltf::Model& model, const FaceList& faces,
+                                                             std::span<const RenderPrimitive> primitives,
+                                                             const MaterialLibrary* materials) {
+  const std::vector<RenderPrimitive> runs = primitiveRuns(primitives, faces.faceCount());
+  std::vector<int> chosen(runs.size(), -1);
+  if (materials != nullptr) {
+    ODESKIN_ASSIGN_OR_RETURN(chosen, primitiveMaterials(*materials, primitives, runs.size()));
+  }
+  std::vector<PrimitiveIndices> out;
+  std::uint32_t begin = 0;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    if (runs[r].face_end > begin) {
+      out.push_back({appendTriangleIndices(model, fanTriangles(faces, begin, runs[r].face_end)), chosen[r]});
+    }
+    begin = runs[r].face_end;
+  }
+  return out;
+}
+
+void addSharedPrimitives(tinygltf::Mesh& mesh, const tinygltf::Primitive& shared, std::span<const PrimitiveIndices> primitives) {
+  for (const PrimitiveIndices& p : primitives) {
+    mesh.primitives.push_back(shared);
+    mesh.primitives.back().indices = p.indices;
+    mesh.primitives.back().material = p.material;
+  }
 }
 
 void addMaterialLibrary(tinygltf::Model& model, const MaterialLibrary& library) {

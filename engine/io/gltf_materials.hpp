@@ -46,6 +46,23 @@ Result<MaterialLibrary> readMaterialLibrary(const std::filesystem::path& path);
 Result<std::vector<int>> primitiveMaterials(const MaterialLibrary& library, std::span<const RenderPrimitive> primitives,
                                             std::size_t primitive_count);
 
+// One primitive a writer emits: its index accessor and its material (-1: none).
+struct PrimitiveIndices {
+  int indices = -1;
+  int material = -1;
+};
+
+// The runs of `faces` (primitiveRuns of `primitives`) as index accessors over one shared set of
+// vertices, each with its primitive's material from `materials` (primitiveMaterials), or none when
+// it is null. Runs without faces are left out. Errors: primitiveMaterials'.
+Result<std::vector<PrimitiveIndices>> appendPrimitiveIndices(tinygltf::Model& model, const FaceList& faces,
+                                                             std::span<const RenderPrimitive> primitives,
+                                                             const MaterialLibrary* materials);
+
+// `mesh` gets one primitive per entry of `primitives`: `shared` (the vertex attributes and morph
+// targets they all use) with that entry's indices and material.
+void addSharedPrimitives(tinygltf::Mesh& mesh, const tinygltf::Primitive& shared, std::span<const PrimitiveIndices> primitives);
+
 // Appends the library to `model`: materials, textures and samplers as they were, each image as a
 // bufferView of buffer 0 with its mime type, and the extensions they use.
 void addMaterialLibrary(tinygltf::Model& model, const MaterialLibrary& library);

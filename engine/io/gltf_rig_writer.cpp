@@ -9,7 +9,6 @@
 #include <tiny_gltf.h>
 
 #include "../core/render_layout_check.hpp"
-#include "../core/render_primitives.hpp"
 #include "gltf_baked_writer.hpp"
 #include "gltf_buffer_builder.hpp"
 
@@ -41,23 +40,9 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
   ODESKIN_TRY(gltf::checkFloat32Positions(positions, path.string()));
 
   tinygltf::Model m = gltf::newModel(generator);
-  // One index accessor per primitive with faces, all over the same vertices.
-  const FaceList& out_faces = render.empty() ? faces : render.faces;
-  const std::vector<RenderPrimitive> runs = primitiveRuns(render.primitives, out_faces.faceCount());
-  std::vector<int> materials(runs.size(), -1);
-  if (look.materials != nullptr) {
-    Result<std::vector<int>> chosen = gltf::primitiveMaterials(*look.materials, render.primitives, runs.size());
-    if (!chosen.ok()) return chosen.status();
-    materials = std::move(chosen).value();
-  }
-  std::vector<std::pair<int, int>> written;  // (indices, material) of each primitive with faces
-  std::uint32_t begin = 0;
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    if (runs[r].face_end > begin) {
-      written.emplace_back(gltf::appendTriangleIndices(m, gltf::fanTriangles(out_faces, begin, runs[r].face_end)), materials[r]);
-    }
-    begin = runs[r].face_end;
-  }
+  ODESKIN_ASSIGN_OR_RETURN(const std::vector<gltf::PrimitiveIndices> written,
+                           gltf::appendPrimitiveIndices(m, render.empty() ? faces : render.faces, render.primitives,
+                                                        look.materials));
 
   // Output vertex o is topology vertex topology[o]: its position and its largest weights.
   const std::size_t out_count = render.empty() ? v_count : render.topology_of_render.size();
@@ -103,11 +88,7 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
                                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, out_count);
   tinygltf::Mesh mesh;
   mesh.name = "mesh";
-  for (const auto& [indices, material] : written) {
-    mesh.primitives.push_back(primitive);
-    mesh.primitives.back().indices = indices;
-    mesh.primitives.back().material = material;
-  }
+  gltf::addSharedPrimitives(mesh, primitive, written);
   m.meshes.push_back(mesh);
 
   // Node 0: the skinned mesh; nodes 1..B: the bones at their heads; then the end nodes.

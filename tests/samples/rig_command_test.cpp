@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -250,37 +251,28 @@ TEST_F(RigCommand, RejectsWhatAGltfInputCannotDo) {
   const SeamedCylinder c = seamedCylinder();
   const fs::path glb = writeSeamedGlb(c, dir_ / "character.glb");
   const std::string obj = kData + "/cylinder/cylinder.obj";
-  auto options = [&](std::vector<fs::path> meshes) {
+  // The options for `meshes`, changed by `edit`.
+  auto options = [&](std::vector<fs::path> meshes, const std::function<void(RigCommandOptions&)>& edit = {}) {
     RigCommandOptions o;
     o.meshes = std::move(meshes);
     o.output = dir_ / "x.tgf";
+    if (edit) edit(o);
     return o;
   };
-  std::vector<testing::CommandCase<RigCommandOptions>> usage;
-  usage.push_back({options({glb, obj}), "give one .gltf/.glb file"});
-  usage.push_back({options({dir_ / "character.fbx"}), "unknown mesh format '.fbx'"});
-  RigCommandOptions times_on_obj = options({obj});
-  times_on_obj.times = {0.5};
-  usage.push_back({times_on_obj, "--mesh, --animation, --times and --targets apply to a .gltf/.glb input"});
-  RigCommandOptions animation_alone = options({glb});
-  animation_alone.animation = "walk";
-  usage.push_back({animation_alone, "--animation applies with --times"});
-  testing::expectRejected(usage, [](const RigCommandOptions& o, testing::Captured& io) { return runRigCommand(o, io.console); },
-                          kExitUsage, "rig");
-
-  std::vector<testing::CommandCase<RigCommandOptions>> failures;
-  RigCommandOptions times = options({glb});
-  times.times = {0.5};
-  failures.push_back({times, "has no skin, so it has no poses at times"});
-  RigCommandOptions target = options({glb});
-  target.targets = {7};
-  failures.push_back({target, "character.glb"});
-  RigCommandOptions node = options({glb});
-  node.mesh = "body";
-  failures.push_back({node, "no mesh node named 'body'"});
-  failures.push_back({options({dir_ / "absent.glb"}), "absent.glb"});
-  testing::expectRejected(failures, [](const RigCommandOptions& o, testing::Captured& io) { return runRigCommand(o, io.console); },
-                          kExitFailure, "rig");
+  const auto run = [](const RigCommandOptions& o, testing::Captured& io) { return runRigCommand(o, io.console); };
+  testing::expectRejected<RigCommandOptions>(
+      {{options({glb, obj}), "give one .gltf/.glb file"},
+       {options({dir_ / "character.fbx"}), "unknown mesh format '.fbx'"},
+       {options({obj}, [](RigCommandOptions& o) { o.times = {0.5}; }),
+        "--mesh, --animation, --times and --targets apply to a .gltf/.glb input"},
+       {options({glb}, [](RigCommandOptions& o) { o.animation = "walk"; }), "--animation applies with --times"}},
+      run, kExitUsage, "rig");
+  testing::expectRejected<RigCommandOptions>(
+      {{options({glb}, [](RigCommandOptions& o) { o.times = {0.5}; }), "has no skin, so it has no poses at times"},
+       {options({glb}, [](RigCommandOptions& o) { o.targets = {7}; }), "character.glb: morph target 7 requested; mesh 0 has 2"},
+       {options({glb}, [](RigCommandOptions& o) { o.mesh = "body"; }), "no mesh node named 'body'"},
+       {options({dir_ / "absent.glb"}), "absent.glb"}},
+      run, kExitFailure, "rig");
   EXPECT_FALSE(fs::exists(dir_ / "x.tgf"));
 }
 
