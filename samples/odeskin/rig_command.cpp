@@ -161,6 +161,12 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   if (!console.quiet) {
     for (const std::string& w : input->warnings) console.err << "warning: rig: " << w << "\n";
   }
+  // Read before anything is written: a texture --gltf cannot copy fails the command, not its last output.
+  Result<std::optional<gltf::MaterialLibrary>> materials = std::optional<gltf::MaterialLibrary>();
+  if (!o.gltf.empty()) materials = inputMaterials(o, input->render);
+  if (!materials.ok()) {
+    return reportFailure(console, Status(materials.status().code(), "rig: --gltf: " + materials.status().message()));
+  }
   const std::vector<Vec3>& rest = input->rest;
   const FaceList& faces = input->faces;
   const std::vector<std::vector<Vec3>>& poses = input->poses;
@@ -215,10 +221,6 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     }
   }
   if (!o.gltf.empty()) {
-    Result<std::optional<gltf::MaterialLibrary>> materials = inputMaterials(o, input->render);
-    if (!materials.ok()) {
-      return reportFailure(console, Status(materials.status().code(), "rig: --gltf: " + materials.status().message()));
-    }
     RigGlbLook look;
     look.render = &input->render;
     look.materials = *materials ? &**materials : nullptr;

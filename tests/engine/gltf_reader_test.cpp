@@ -167,30 +167,31 @@ struct Prim {
   std::vector<std::uint32_t> indices;                                        // empty: unindexed
 };
 
+// Fields ordered by size (clang-tidy's padding check).
 struct TubeOptions {
-  int joint_type = kUByteType;
-  int weight_type = kFloatType;  // float, or unsigned byte / short stored normalized
+  double position_scale = 1.0;    // stored = (position - offset) x scale, rounded for integers
+  double uv_scale = 1.0;          // TEXCOORD_0 as integers: stored = uv x uv_scale
   std::array<double, 2> ring1_weights{1.0, 3.0};  // stored weights of joints 0 and 1 on ring 1
-  bool two_sets = false;          // joint 1's weight in JOINTS_1/WEIGHTS_1
-  bool two_primitives = false;    // rings 0-1 indexed, rings 1-2 unindexed
+  Vec3 position_offset{0.0};
   std::string interpolation = "LINEAR";
-  bool sparse_over_base = false;  // the morph target's sparse values lie over a bufferView
+  std::function<Vec3(int ring, int column)> normal;  // NORMAL of each vertex; none when empty
+  std::function<Vec2(int ring, int column)> uv = [](int ring, int column) { return Vec2(column / 4.0, ring / 2.0); };
+  std::function<void(Prim&)> tweak;
+  int joint_type = kUByteType;
+  int weight_type = kFloatType;   // float, or unsigned byte / short stored normalized
   int sparse_index_type = kUShortType;
   int position_type = kFloatType;
+  int normal_type = kFloatType;   // float, or byte stored normalized (x 127)
+  int uv_type = kFloatType;       // TEXCOORD_0: float, or an integer type (x uv_scale)
+  bool two_sets = false;          // joint 1's weight in JOINTS_1/WEIGHTS_1
+  bool two_primitives = false;    // rings 0-1 indexed, rings 1-2 unindexed
+  bool sparse_over_base = false;  // the morph target's sparse values lie over a bufferView
   bool position_normalized = false;
-  double position_scale = 1.0;    // stored = (position - offset) x scale, rounded for integers
-  Vec3 position_offset{0.0};
   // KHR_mesh_quantization's skinned layout (gltfpack, glTF-Transform): morph deltas stored x scale
   // too, and every inverse bind matrix times the dequantization D = translate(offset) scale(1/scale).
   bool fold_into_skin = false;
-  std::function<Vec3(int ring, int column)> normal;  // NORMAL of each vertex; none when empty
-  int normal_type = kFloatType;   // float, or byte stored normalized (x 127)
-  int uv_type = kFloatType;       // TEXCOORD_0: float, or an integer type (x uv_scale)
   bool uv_normalized = false;
-  double uv_scale = 1.0;
-  std::function<Vec2(int ring, int column)> uv = [](int ring, int column) { return Vec2(column / 4.0, ring / 2.0); };
   bool uv_in_first_primitive_only = false;
-  std::function<void(Prim&)> tweak;
 };
 
 double fullWeight(int type) { return type == kUByteType ? 255.0 : type == kUShortType ? 65535.0 : 1.0; }
