@@ -118,8 +118,9 @@ gltf::MaterialLibrary twoMaterials() {
 fs::path writeSeamedGlb(const SeamedCylinder& c, const fs::path& path) {
   std::vector<std::vector<Vec3>> frames;
   for (const std::vector<Vec3>* topology : {&c.positions, &c.poses[0], &c.poses[1]}) {
-    std::vector<Vec3>& frame = frames.emplace_back();
+    std::vector<Vec3> frame;
     for (std::uint32_t t : c.render.topology_of_render) frame.push_back((*topology)[t]);
+    frames.push_back(std::move(frame));
   }
   const std::vector<std::vector<Vec3>> normals(frames.size(), c.render.normals);
   const std::vector<double> seconds{0.0, 1.0, 2.0};
