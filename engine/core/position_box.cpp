@@ -42,6 +42,15 @@ Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const st
   // longest side, not the diagonal, whose square may itself underflow. All at one point is the
   // caller's case.
   if (side > 0.0 && side < kMinPositionBoxSpan) return refused("small", "up");
+  // Centroids sum up to V coordinates: a horse 1 across at 1e308 from the origin overflowed them,
+  // and the curve rig's centre search then followed NaN distances until memory ran out.
+  const double reach = std::max({-lo.x, -lo.y, -lo.z, hi.x, hi.y, hi.z});
+  if (!std::isfinite(reach * static_cast<double>(positions.size()))) {
+    char far[32];
+    std::snprintf(far, sizeof far, "%g", reach);
+    return invalidArgument(prefix + "the mesh lies too far from the origin for double-precision sums (coordinates up to " +
+                           far + "); move it towards the origin");
+  }
   return PositionBox{lo, hi, diagonal};
 }
 

@@ -28,7 +28,9 @@ inline constexpr double kMinPositionBoxSpan = 1e-100;
 // The positions' bounding box. kInvalidArgument "<who>: vertex I is not finite" for the first such
 // vertex, "<who>: the mesh is too large for double-precision distances (its bounding box spans S);
 // scale it down" when the diagonal times the vertex count overflows, or "<who>: the mesh is too
-// small ... scale it up" for a longest side in (0, kMinPositionBoxSpan). No positions, or all at
+// small ... scale it up" for a longest side in (0, kMinPositionBoxSpan), or "<who>: the mesh lies
+// too far from the origin for double-precision sums (coordinates up to R); move it towards the
+// origin" when the largest |coordinate| times the vertex count overflows. No positions, or all at
 // one point: a box of diagonal 0.
 // An empty `who` leaves the "<who>: " out; vertices are numbered from `first_number` (1 where the
 // caller's other messages number vertices as OBJ files do).

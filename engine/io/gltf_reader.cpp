@@ -197,10 +197,11 @@ Status placeUnskinned(const tinygltf::Model& model, int mesh_node, MeshData& mes
   const glm::dmat4 world = globalMatrices(rest, parents)[static_cast<std::size_t>(mesh_node)];
   if (world == glm::dmat4(1.0)) return okStatus();
   const double det = glm::determinant(glm::dmat3(world));
-  if (!std::isfinite(det) || det == 0.0) {
-    return parseError(nodeLabel(model, mesh_node) + ": its world transform collapses the mesh (determinant " +
-                      (std::isfinite(det) ? "0" : "not finite") + ")");
+  if (!std::isfinite(det)) {
+    return parseError(nodeLabel(model, mesh_node) + ": its world transform scales the mesh beyond double precision "
+                      "(determinant not finite)");
   }
+  if (det == 0.0) return parseError(nodeLabel(model, mesh_node) + ": its world transform collapses the mesh (determinant 0)");
   Dequantization d;
   d.linear = glm::dmat3(world);
   d.offset = Vec3(world[3]);

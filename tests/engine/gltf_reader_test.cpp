@@ -1317,6 +1317,12 @@ TEST(GltfReader, UnskinnedMeshIsReadWhereItsNodePutsIt) {
   ASSERT_FALSE(collapsed.ok());
   EXPECT_NE(collapsed.status().message().find("collapsed.gltf: node 0 'tube': its world transform collapses the mesh (determinant 0)"), std::string::npos)
       << collapsed.status().message();
+  model.nodes[0].scale = {1e300, 1e300, 1e300};
+  const auto overflowing = read(write(model, "overflowing.gltf", false), {}, {0});
+  ASSERT_FALSE(overflowing.ok());
+  EXPECT_NE(overflowing.status().message().find("node 0 'tube': its world transform scales the mesh beyond double precision"),
+            std::string::npos)
+      << overflowing.status().message();
 }
 
 // ---------------------------------------------------------------------------------------------

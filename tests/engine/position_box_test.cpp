@@ -51,6 +51,19 @@ TEST(CheckedPositionBox, RefusesMeshesTooLargeForLengths) {
   EXPECT_FALSE(checkedPositionBox(std::vector<Vec3>{Vec3(0.0), Vec3(1e160)}, "rig").ok());
 }
 
+TEST(CheckedPositionBox, RefusesMeshesTooFarFromTheOriginForSums) {
+  // 1 across, but its centroid's sum overflows.
+  const std::vector<Vec3> far{{1e308, 0.0, 0.0}, {1e308, 1.0, 0.0}, {1e308, 0.0, 1.0}};
+  expectRefused(checkedPositionBox(far, "rig"),
+                "rig: the mesh lies too far from the origin for double-precision sums (coordinates up to 1e+308); move it "
+                "towards the origin");
+  // The vertex count decides, on either side of the origin: V x |coordinate| must stay finite.
+  const std::vector<Vec3> ten(10, Vec3(-1e306, 0.0, 0.0));
+  EXPECT_TRUE(checkedPositionBox(ten, "rig").ok());
+  const std::vector<Vec3> thousand(1000, Vec3(-1e306, 0.0, 0.0));
+  EXPECT_FALSE(checkedPositionBox(thousand, "rig").ok());
+}
+
 TEST(CheckedPositionBox, RefusesMeshesTooSmallForLengths) {
   expectRefused(checkedPositionBox(std::vector<Vec3>{Vec3(0.0), Vec3(5e-120, 0.0, 0.0)}, "rig"),
                 "rig: the mesh is too small for double-precision distances (its bounding box spans 5e-120); scale it up");

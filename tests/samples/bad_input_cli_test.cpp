@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -251,8 +252,10 @@ class BadInputCli : public ::testing::Test {
     writeText(d / "nan.obj", replaceFirst(pose2, "v ", "v nan 0 0"));
     writeText(d / "inf.obj", replaceFirst(pose2, "v ", "v 0 inf 0"));
     // Finite, but 1e200 times the cylinder: squared lengths overflow (the rig and the plane cuts
-    // crashed on it); 1e-200 times: they underflow.
-    for (const auto& [name, scale] : {std::pair{"huge.obj", 1e200}, std::pair{"tiny.obj", 1e-200}}) {
+    // crashed on it); 1e-200 times: they underflow. Moved 1e308 along x: its centroids' sums
+    // overflow (the rig ran out of memory following NaN distances).
+    for (const auto& [name, scale, shift] :
+         {std::tuple{"huge.obj", 1e200, 0.0}, std::tuple{"tiny.obj", 1e-200, 0.0}, std::tuple{"far.obj", 1.0, 1e308}}) {
       std::vector<std::string> ls = lines(pose2);
       for (std::string& l : ls) {
         if (l.rfind("v ", 0) != 0) continue;
@@ -260,7 +263,7 @@ class BadInputCli : public ::testing::Test {
         double x = 0.0, y = 0.0, z = 0.0;
         in >> x >> y >> z;
         std::ostringstream out;
-        out << "v " << x * scale << " " << y * scale << " " << z * scale;
+        out << "v " << x * scale + shift << " " << y * scale << " " << z * scale;
         l = out.str();
       }
       writeText(d / name, joined(ls));
@@ -441,6 +444,11 @@ TEST_F(BadInputCli, BadMeshesPosesAndWeightsFailNamingTheFile) {
        {"rig: ", "huge.obj: curve skeleton: the mesh is too large for double-precision distances", "scale it down"}},
       {"rig_tiny", {"rig", in("tiny.obj"), "-o", "{out}"}, "x.tgf", 1,
        {"rig: ", "tiny.obj: curve skeleton: the mesh is too small for double-precision distances", "scale it up"}},
+      {"rig_far", {"rig", in("far.obj"), "-o", "{out}"}, "x.tgf", 1,
+       {"rig: ", "far.obj: curve skeleton: the mesh lies too far from the origin for double-precision sums",
+        "move it towards the origin"}},
+      {"fit_far", {"fit", in("good1.obj"), in("far.obj"), "-o", "{out}"}, "x.odsk", 1,
+       {"far.obj: the mesh lies too far from the origin for double-precision sums"}},
       {"fit_tiny", {"fit", in("good1.obj"), in("tiny.obj"), "-o", "{out}"}, "x.odsk", 1,
        {"tiny.obj: the mesh is too small for double-precision distances"}},
       {"reconstruct_empty", {"reconstruct", in("empty.obj"), "-o", "{out}"}, "x.obj", 1, {"empty.obj: no vertices"}},
