@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace odeskin::gltf {
@@ -62,6 +63,11 @@ Result<std::vector<NodeTransform>> restTransforms(const tinygltf::Model& model) 
       glm::dmat4 m(1.0);
       for (int c = 0; c < 4; ++c) {
         for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[4 * static_cast<std::size_t>(c) + static_cast<std::size_t>(r)];  // column-major
+      }
+      // glTF's node matrix is a TRS (spec 3.5.2): a projective last row would be dropped silently.
+      if (glm::row(m, 3) != glm::dvec4(0.0, 0.0, 0.0, 1.0)) {
+        return parseError("node " + std::to_string(i) + ": matrix's last row must be 0, 0, 0, 1 (a node matrix is an "
+                          "affine transform)");
       }
       t.matrix = m;
     }

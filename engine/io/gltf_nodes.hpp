@@ -29,7 +29,8 @@ struct NodeTransform {
 Result<std::vector<int>> nodeParents(const tinygltf::Model& model);
 
 // The nodes' own (unanimated) transforms. kParseError naming the node: a translation, rotation,
-// scale or matrix array of the wrong length or with non-finite values.
+// scale or matrix array of the wrong length or with non-finite values, a matrix whose last row is
+// not 0, 0, 0, 1.
 Result<std::vector<NodeTransform>> restTransforms(const tinygltf::Model& model);
 
 // Global matrices: parent global x local, for every node. `parents` must be acyclic (nodeParents).

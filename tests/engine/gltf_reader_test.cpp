@@ -1317,6 +1317,16 @@ TEST(GltfReader, UnskinnedMeshIsReadWhereItsNodePutsIt) {
   ASSERT_FALSE(collapsed.ok());
   EXPECT_NE(collapsed.status().message().find("collapsed.gltf: node 0 'tube': its world transform collapses the mesh (determinant 0)"), std::string::npos)
       << collapsed.status().message();
+  // A node matrix must be affine: a projective last row is refused, not dropped.
+  model.nodes[0].scale.clear();
+  model.nodes[0].rotation.clear();
+  model.nodes[0].matrix = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0};
+  const auto projective = read(write(model, "projective.gltf", false), {}, {0});
+  ASSERT_FALSE(projective.ok());
+  EXPECT_NE(projective.status().message().find("projective.gltf: node 0: matrix's last row must be 0, 0, 0, 1"),
+            std::string::npos)
+      << projective.status().message();
+  model.nodes[0].matrix.clear();
   model.nodes[0].scale = {1e300, 1e300, 1e300};
   const auto overflowing = read(write(model, "overflowing.gltf", false), {}, {0});
   ASSERT_FALSE(overflowing.ok());
