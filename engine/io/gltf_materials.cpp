@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "gltf_materials.hpp"
 
-#include "../core/render_primitives.hpp"
-
 #include <algorithm>
 #include <array>
 #include <string_view>
 
+#include "../core/render_primitives.hpp"
 #include "gltf_buffer_builder.hpp"
 #include "gltf_load.hpp"
 

@@ -16,4 +16,10 @@ inline std::string lowerExtension(const std::filesystem::path& path) {
   return ext;
 }
 
+// A glTF 2.0 file by its extension: .gltf (JSON) or .glb (binary).
+inline bool isGltfFile(const std::filesystem::path& path) {
+  const std::string ext = lowerExtension(path);
+  return ext == ".gltf" || ext == ".glb";
+}
+
 }  // namespace odeskin

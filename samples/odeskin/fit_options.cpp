@@ -20,7 +20,7 @@ FitInputKind fitInputKind(const FitCommandOptions& o, std::string* problem) {
   std::size_t gltf = 0;
   for (const std::filesystem::path& in : o.inputs) {
     const std::string ext = lowerExtension(in);
-    if (ext == ".gltf" || ext == ".glb") {
+    if (isGltfFile(in)) {
       ++gltf;
     } else if (ext != ".obj") {
       *problem = "fit: " + in.string() + ": unknown input format '" + ext + "' (expected .obj, .gltf or .glb)";

@@ -59,7 +59,7 @@ Result<RenderInput> loadGltfInput(const std::filesystem::path& path, const Rende
 Result<RenderInputKind> renderInputKind(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
   if (ext == ".obj") return RenderInputKind::kObj;
-  if (ext == ".gltf" || ext == ".glb") return RenderInputKind::kGltf;
+  if (isGltfFile(path)) return RenderInputKind::kGltf;
   if (ext == ".odsk") return RenderInputKind::kAsset;
   return invalidArgument(path.string() + ": unknown input format '" + ext + "' (expected .obj, .gltf, .glb or .odsk)");
 }

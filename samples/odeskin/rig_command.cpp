@@ -49,14 +49,9 @@ const char* curveSourceName(CurveSource source) {
   return "auto";
 }
 
-bool isGltf(const std::filesystem::path& path) {
-  const std::string ext = lowerExtension(path);
-  return ext == ".gltf" || ext == ".glb";
-}
-
 std::string usageProblem(const RigCommandOptions& o) {
   if (o.meshes.empty()) return "rig: give the mesh (an OBJ file), optionally followed by example poses, or one .gltf/.glb";
-  const bool gltf = std::any_of(o.meshes.begin(), o.meshes.end(), isGltf);
+  const bool gltf = std::any_of(o.meshes.begin(), o.meshes.end(), isGltfFile);
   if (gltf && o.meshes.size() > 1) return "rig: give one .gltf/.glb file (--times or --targets for poses), or OBJ meshes, not both";
   for (const std::filesystem::path& m : o.meshes) {
     if (!gltf && lowerExtension(m) != ".obj") {
@@ -107,7 +102,7 @@ struct RigInput {
 
 Result<RigInput> readRigInput(const RigCommandOptions& o) {
   RigInput in;
-  if (isGltf(o.meshes.front())) {
+  if (isGltfFile(o.meshes.front())) {
     GltfPoseRequest request;
     request.mesh = o.mesh;
     request.animation = o.animation;

@@ -18,6 +18,7 @@
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "engine/rig/skeleton_compare.hpp"
 #include "engine/visual/camera.hpp"
+#include "engine/data_mesh.hpp"      // tests/engine
 #include "engine/temp_dir_test.hpp"  // tests/engine
 
 namespace odeskin {
@@ -25,11 +26,7 @@ namespace {
 
 const std::string kData = ODESKIN_DATA_DIR;
 
-ObjMesh dataMesh(const std::string& name) {
-  Result<ObjMesh> mesh = readObj(kData + "/" + name);
-  if (!mesh.ok()) throw std::runtime_error(mesh.status().toString());
-  return std::move(mesh).value();
-}
+using testing::dataMesh;
 
 std::vector<std::vector<Vec3>> dataPoses(const std::vector<std::string>& names) {
   std::vector<std::vector<Vec3>> poses;

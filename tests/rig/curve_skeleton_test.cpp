@@ -13,19 +13,15 @@
 #include "engine/rig/curve_skeleton_parts.hpp"
 #include "engine/rig/mesh_topology.hpp"
 #include "engine/rig/surface_distance.hpp"
+#include "engine/data_mesh.hpp"  // tests/engine
 #include "rig_test_meshes.hpp"
 
 namespace odeskin {
 namespace {
 
 using testing::closedTube;
+using testing::dataMesh;
 using testing::flatGrid;
-
-ObjMesh dataMesh(const std::string& name) {
-  Result<ObjMesh> mesh = readObj(std::string(ODESKIN_DATA_DIR) + "/" + name);
-  if (!mesh.ok()) throw std::runtime_error(mesh.status().toString());
-  return std::move(mesh).value();
-}
 
 std::size_t countKind(const CurveSkeleton& s, SkeletonNodeKind kind) {
   std::size_t n = 0;

@@ -18,6 +18,8 @@
 #include "engine/io/libigl_io.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_rig.hpp"
+#include "engine/data_mesh.hpp"       // tests/engine
+#include "engine/one_pixel_png.hpp"  // tests/engine
 #include "samples/command_test_support.hpp"
 #include "samples/odeskin/rig_command.hpp"
 
@@ -28,12 +30,9 @@ namespace fs = std::filesystem;
 
 const std::string kData = ODESKIN_DATA_DIR;
 
-// A 1 x 1 PNG (one orange pixel), for the texture the look must keep byte for byte.
-constexpr std::array<unsigned char, 69> kOnePixelPng{
-    0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
-    0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xde, 0x00, 0x00, 0x00,
-    0x0c, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0xf8, 0xdf, 0xc0, 0x00, 0x00, 0x04, 0x01, 0x01, 0x80, 0xc5,
-    0x2a, 0x18, 0x5d, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+using testing::dataMesh;
+using testing::kOnePixelPng;
+
 
 // Through a volatile float: GCC 12.2's loop vectorizer, at -O2 and above, drops the rounding of
 // `p = Vec3(glm::vec3(p))` over a vector of Vec3 (the doubles come back unchanged).
@@ -45,12 +44,6 @@ std::vector<Vec3> roundedToFloat(std::vector<Vec3> positions) {
     }
   }
   return positions;
-}
-
-ObjMesh dataMesh(const std::string& name) {
-  Result<ObjMesh> mesh = readObj(kData + "/" + name);
-  if (!mesh.ok()) throw std::runtime_error(mesh.status().toString());
-  return std::move(mesh).value();
 }
 
 // The cylinder as a character from a DCC: float32 positions (so the file holds them exactly), the
