@@ -18,7 +18,8 @@
 #include "engine/io/libigl_io.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_rig.hpp"
-#include "engine/data_mesh.hpp"       // tests/engine
+#include "engine/data_mesh.hpp"  // tests/engine
+#include "engine/float_rounding.hpp"  // tests/engine
 #include "engine/one_pixel_png.hpp"  // tests/engine
 #include "samples/command_test_support.hpp"
 #include "samples/odeskin/rig_command.hpp"
@@ -34,15 +35,8 @@ using testing::dataMesh;
 using testing::kOnePixelPng;
 
 
-// Through a volatile float: GCC 12.2's loop vectorizer, at -O2 and above, drops the rounding of
-// `p = Vec3(glm::vec3(p))` over a vector of Vec3 (the doubles come back unchanged).
 std::vector<Vec3> roundedToFloat(std::vector<Vec3> positions) {
-  for (Vec3& p : positions) {
-    for (int k = 0; k < 3; ++k) {
-      const volatile float rounded = static_cast<float>(p[k]);
-      p[k] = rounded;
-    }
-  }
+  for (Vec3& p : positions) p = testing::roundedToFloat(p);
   return positions;
 }
 
