@@ -31,8 +31,10 @@ constexpr std::uint32_t kClusterVertices = 32;
 constexpr long kPairsWithoutClusters = 16;
 constexpr std::uint32_t kChunkVertices = 256;
 constexpr double kBoundSlack = 1e-9;
-// Curves with at most this many segments are scanned rather than searched through their tree.
+// Curves with at most this many segments are scanned rather than searched through their tree, a
+// ball of kBallSegments consecutive segments at a time.
 constexpr std::size_t kScanSegments = 128;
+constexpr std::size_t kBallSegments = 8;
 
 bool inSequence(const std::vector<Station>& seq, std::uint32_t curve) {
   return std::any_of(seq.begin(), seq.end(), [&](const Station& s) { return s.curve == curve; });
@@ -133,6 +135,33 @@ double roundingPad(const std::vector<Segment>& segments) {
     extent = std::max({extent, far.x, far.y, far.z});
   }
   return 1e-9 * extent;
+}
+
+// A ball holding kBallSegments consecutive segments of a curve (the last ball: those left): every
+// segment's midpoint lies within radius - half of the centre, with a margin far beyond rounding.
+struct SegmentBall {
+  Vec3 centre{0.0};
+  double radius = 0.0;
+};
+
+std::vector<SegmentBall> segmentBalls(const std::vector<Segment>& segments, double pad) {
+  std::vector<SegmentBall> out;
+  out.reserve((segments.size() + kBallSegments - 1) / kBallSegments);
+  for (std::size_t first = 0; first < segments.size(); first += kBallSegments) {
+    const std::size_t end = std::min(segments.size(), first + kBallSegments);
+    Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (std::size_t j = first; j < end; ++j) {
+      lo = glm::min(lo, segments[j].mid);
+      hi = glm::max(hi, segments[j].mid);
+    }
+    SegmentBall ball{0.5 * (lo + hi), 0.0};
+    for (std::size_t j = first; j < end; ++j) {
+      ball.radius = std::max(ball.radius, glm::length(segments[j].mid - ball.centre) + segments[j].half);
+    }
+    ball.radius = ball.radius * (1.0 + 1e-9) + pad;
+    out.push_back(ball);
+  }
+  return out;
 }
 
 // Nearest-segment queries on one curve: a bounding-box tree over its segments, which finds the
@@ -334,13 +363,19 @@ class Binder {
       : layout_(layout), spacing_(spacing), exhaustive_(exhaustive), positions_(layout.curves.size()) {
     segments_.reserve(layout.curves.size());
     trees_.reserve(layout.curves.size());
+    balls_.reserve(layout.curves.size());
     for (std::size_t c = 0; c < layout.curves.size(); ++c) {
       for (const CurvePoint& point : layout.curves[c].points) positions_[c].push_back(curvePointPosition(rest, point));
       segments_.push_back(curveSegments(positions_[c], layout.curves[c]));
       pads_.push_back(roundingPad(segments_[c]));
-      // Short curves are scanned (scanNearest) and need no tree.
-      if (segments_[c].size() > kScanSegments) trees_.emplace_back(segments_[c]);
-      else trees_.emplace_back();
+      // Short curves are scanned (scanNearest) ball by ball and need no tree.
+      if (segments_[c].size() > kScanSegments) {
+        trees_.emplace_back(segments_[c]);
+        balls_.emplace_back();
+      } else {
+        trees_.emplace_back();
+        balls_.push_back(segmentBalls(segments_[c], pads_[c]));
+      }
     }
   }
 
@@ -365,7 +400,8 @@ class Binder {
 
   // A short curve's nearest segment by a scan that starts from `seed` and rejects, without the
   // exact test, every segment whose midpoint is further than sqrt(best) + half + pad: the first of
-  // equally near segments, as the tree finds it.
+  // equally near segments, as the tree finds it. A ball further than sqrt(best) + pad + its radius
+  // holds only segments that test would reject, and is passed over whole.
   SegmentHit scanNearest(std::uint32_t curve, const Vec3& q, std::size_t seed) const {
     const std::vector<Segment>& segments = segments_[curve];
     const double pad = pads_[curve];
@@ -383,7 +419,14 @@ class Binder {
       }
     };
     if (seed < segments.size()) consider(seed);
-    for (std::size_t j = 0; j < segments.size(); ++j) consider(j);
+    const std::vector<SegmentBall>& balls = balls_[curve];
+    for (std::size_t b = 0; b < balls.size(); ++b) {
+      const Vec3 e = q - balls[b].centre;
+      const double bound = reach + balls[b].radius;
+      if (glm::dot(e, e) > bound * bound) continue;
+      const std::size_t end = std::min(segments.size(), (b + 1) * kBallSegments);
+      for (std::size_t j = b * kBallSegments; j < end; ++j) consider(j);
+    }
     return best;
   }
 
@@ -477,6 +520,7 @@ class Binder {
   std::vector<std::vector<Segment>> segments_;
   std::vector<double> pads_;
   std::vector<SegmentTree> trees_;
+  std::vector<std::vector<SegmentBall>> balls_;  // of the curves scanned (none for those with a tree)
 };
 
 }  // namespace
