@@ -31,10 +31,12 @@ constexpr std::uint32_t kClusterVertices = 32;
 constexpr long kPairsWithoutClusters = 16;
 constexpr std::uint32_t kChunkVertices = 256;
 constexpr double kBoundSlack = 1e-9;
-// Curves with at most this many segments are scanned rather than searched through their tree, a
-// ball of kBallSegments consecutive segments at a time.
-constexpr std::size_t kScanSegments = 128;
-constexpr std::size_t kBallSegments = 8;
+// Curves with at most this many segments are scanned behind two levels of balls (each holding
+// kBallFanout consecutive segments, or balls) rather than searched through a tree: on the cat
+// subdivided up to 1.8 million vertices, whose curves reach a few hundred segments, the scan
+// spends less time than the tree did from 128 segments on.
+constexpr std::size_t kScanSegments = 4096;
+constexpr std::size_t kBallFanout = 8;
 
 bool inSequence(const std::vector<Station>& seq, std::uint32_t curve) {
   return std::any_of(seq.begin(), seq.end(), [&](const Station& s) { return s.curve == curve; });
@@ -137,30 +139,47 @@ double roundingPad(const std::vector<Segment>& segments) {
   return 1e-9 * extent;
 }
 
-// A ball holding kBallSegments consecutive segments of a curve (the last ball: those left): every
-// segment's midpoint lies within radius - half of the centre, with a margin far beyond rounding.
-struct SegmentBall {
+// A ball around kBallFanout consecutive items (the last ball: those left), each item a segment (its
+// midpoint and half length) or a smaller ball: every item lies inside, with a margin far beyond
+// rounding, so a point further than d + radius from the centre is further than d from every item.
+struct Ball {
   Vec3 centre{0.0};
   double radius = 0.0;
 };
 
-std::vector<SegmentBall> segmentBalls(const std::vector<Segment>& segments, double pad) {
-  std::vector<SegmentBall> out;
-  out.reserve((segments.size() + kBallSegments - 1) / kBallSegments);
-  for (std::size_t first = 0; first < segments.size(); first += kBallSegments) {
-    const std::size_t end = std::min(segments.size(), first + kBallSegments);
+std::vector<Ball> enclosingBalls(const std::vector<Ball>& items, double pad) {
+  std::vector<Ball> out;
+  out.reserve((items.size() + kBallFanout - 1) / kBallFanout);
+  for (std::size_t first = 0; first < items.size(); first += kBallFanout) {
+    const std::size_t end = std::min(items.size(), first + kBallFanout);
     Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (std::size_t j = first; j < end; ++j) {
-      lo = glm::min(lo, segments[j].mid);
-      hi = glm::max(hi, segments[j].mid);
+      lo = glm::min(lo, items[j].centre);
+      hi = glm::max(hi, items[j].centre);
     }
-    SegmentBall ball{0.5 * (lo + hi), 0.0};
+    Ball ball{0.5 * (lo + hi), 0.0};
     for (std::size_t j = first; j < end; ++j) {
-      ball.radius = std::max(ball.radius, glm::length(segments[j].mid - ball.centre) + segments[j].half);
+      ball.radius = std::max(ball.radius, glm::length(items[j].centre - ball.centre) + items[j].radius);
     }
     ball.radius = ball.radius * (1.0 + 1e-9) + pad;
     out.push_back(ball);
   }
+  return out;
+}
+
+// A curve's balls: `fine` around its segments, `coarse` around the fine ones.
+struct CurveBalls {
+  std::vector<Ball> fine;
+  std::vector<Ball> coarse;
+};
+
+CurveBalls curveBalls(const std::vector<Segment>& segments, double pad) {
+  std::vector<Ball> items;
+  items.reserve(segments.size());
+  for (const Segment& g : segments) items.push_back({g.mid, g.half});
+  CurveBalls out;
+  out.fine = enclosingBalls(items, pad);
+  out.coarse = enclosingBalls(out.fine, pad);
   return out;
 }
 
@@ -358,23 +377,26 @@ std::vector<std::int32_t> bindingParts(std::span<const Vec3> rest, const VertexA
 
 class Binder {
  public:
-  // `exhaustive`: every parameter by a scan of the whole curve.
-  Binder(std::span<const Vec3> rest, const CurveLayout& layout, double spacing, bool exhaustive)
+  // `exhaustive`: every parameter by a scan of the whole curve; `all_trees`: every curve's nearest
+  // segment through its tree.
+  Binder(std::span<const Vec3> rest, const CurveLayout& layout, double spacing, bool exhaustive, bool all_trees)
       : layout_(layout), spacing_(spacing), exhaustive_(exhaustive), positions_(layout.curves.size()) {
     segments_.reserve(layout.curves.size());
     trees_.reserve(layout.curves.size());
     balls_.reserve(layout.curves.size());
+    uses_tree_.reserve(layout.curves.size());
     for (std::size_t c = 0; c < layout.curves.size(); ++c) {
       for (const CurvePoint& point : layout.curves[c].points) positions_[c].push_back(curvePointPosition(rest, point));
       segments_.push_back(curveSegments(positions_[c], layout.curves[c]));
       pads_.push_back(roundingPad(segments_[c]));
-      // Short curves are scanned (scanNearest) ball by ball and need no tree.
-      if (segments_[c].size() > kScanSegments) {
+      // Curves up to kScanSegments are scanned (scanNearest) and need no tree.
+      uses_tree_.push_back(all_trees || segments_[c].size() > kScanSegments ? 1 : 0);
+      if (uses_tree_.back()) {
         trees_.emplace_back(segments_[c]);
         balls_.emplace_back();
       } else {
         trees_.emplace_back();
-        balls_.push_back(segmentBalls(segments_[c], pads_[c]));
+        balls_.push_back(curveBalls(segments_[c], pads_[c]));
       }
     }
   }
@@ -393,7 +415,7 @@ class Binder {
     }
     std::uint32_t no_seed = std::numeric_limits<std::uint32_t>::max();
     std::uint32_t& seed = seeds ? (*seeds)[curve] : no_seed;
-    const SegmentHit hit = segments.size() <= kScanSegments ? scanNearest(curve, q, seed) : trees_[curve].nearest(segments, q, seed);
+    const SegmentHit hit = uses_tree_[curve] ? trees_[curve].nearest(segments, q, seed) : scanNearest(curve, q, seed);
     if (hit.j < segments.size()) seed = static_cast<std::uint32_t>(hit.j);
     return wrapParameter(layout_.curves[curve], hitParameter(segments, hit));
   }
@@ -418,14 +440,21 @@ class Binder {
         reach = std::sqrt(best.dist2) + pad;
       }
     };
+    auto beyond = [&](const Ball& ball) {
+      const Vec3 e = q - ball.centre;
+      const double bound = reach + ball.radius;
+      return glm::dot(e, e) > bound * bound;
+    };
     if (seed < segments.size()) consider(seed);
-    const std::vector<SegmentBall>& balls = balls_[curve];
-    for (std::size_t b = 0; b < balls.size(); ++b) {
-      const Vec3 e = q - balls[b].centre;
-      const double bound = reach + balls[b].radius;
-      if (glm::dot(e, e) > bound * bound) continue;
-      const std::size_t end = std::min(segments.size(), (b + 1) * kBallSegments);
-      for (std::size_t j = b * kBallSegments; j < end; ++j) consider(j);
+    const CurveBalls& balls = balls_[curve];
+    for (std::size_t g = 0; g < balls.coarse.size(); ++g) {
+      if (beyond(balls.coarse[g])) continue;
+      const std::size_t fine_end = std::min(balls.fine.size(), (g + 1) * kBallFanout);
+      for (std::size_t b = g * kBallFanout; b < fine_end; ++b) {
+        if (beyond(balls.fine[b])) continue;
+        const std::size_t end = std::min(segments.size(), (b + 1) * kBallFanout);
+        for (std::size_t j = b * kBallFanout; j < end; ++j) consider(j);
+      }
     }
     return best;
   }
@@ -520,7 +549,8 @@ class Binder {
   std::vector<std::vector<Segment>> segments_;
   std::vector<double> pads_;
   std::vector<SegmentTree> trees_;
-  std::vector<std::vector<SegmentBall>> balls_;  // of the curves scanned (none for those with a tree)
+  std::vector<char> uses_tree_;
+  std::vector<CurveBalls> balls_;  // of the curves scanned (none for those with a tree)
 };
 
 }  // namespace
@@ -532,7 +562,7 @@ std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexA
   std::vector<std::vector<Station>> ext(seg.parts.size());
   for (std::uint32_t p = 0; p < seg.parts.size(); ++p) ext[p] = extendedSequence(p, seg, layout, spacing);
   const std::vector<std::int32_t> part_of = bindingParts(rest, adjacency, seg, ext, exhaustive);
-  const Binder binder(rest, layout, spacing, exhaustive);
+  const Binder binder(rest, layout, spacing, exhaustive, search == BindingSearch::kPrunedTrees);
   std::vector<CurveBinding> bindings(rest.size());
   std::vector<std::vector<char>> pairable(seg.parts.size());
   for (std::uint32_t p = 0; p < seg.parts.size(); ++p) pairable[p] = binder.pairable(ext[p]);

@@ -25,7 +25,9 @@ namespace odeskin {
 // clusters that rule out most pairs at once, a bounding-box tree over each curve's segments), or
 // by scanning every pair and every segment, the reference the tests hold the pruned search to.
 // Both give the same bindings, bit for bit; the scans cost O(V sqrt V) on refined meshes.
-enum class BindingSearch { kPruned, kExhaustive };
+// kPrunedTrees: the pruned search with every curve's segments searched through a tree (the default
+// uses trees only for curves too long to scan), so that the tests hold both searches to the scans.
+enum class BindingSearch { kPruned, kPrunedTrees, kExhaustive };
 
 // `layout`: compacted, every curve oriented, at least one curve. One binding per vertex.
 std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexAdjacency& adjacency,

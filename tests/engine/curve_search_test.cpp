@@ -122,15 +122,21 @@ TEST(CurveSearch, PlaneCutsAndBindingsMatchTheScans) {
     ASSERT_GT(layout.curves.size(), 10u);
 
     const std::vector<CurveBinding> pruned = bindVertices(d.rest, adjacency, seg, layout, spacing);
+    const std::vector<CurveBinding> treed = bindVertices(d.rest, adjacency, seg, layout, spacing, BindingSearch::kPrunedTrees);
     const std::vector<CurveBinding> scanned =
         bindVertices(d.rest, adjacency, seg, layout, spacing, BindingSearch::kExhaustive);
     ASSERT_EQ(pruned.size(), scanned.size());
+    ASSERT_EQ(treed.size(), scanned.size());
     std::size_t blended = 0;
     for (std::size_t i = 0; i < pruned.size(); ++i) {
-      EXPECT_EQ(pruned[i].curve_a, scanned[i].curve_a) << "vertex " << i;
-      EXPECT_EQ(pruned[i].curve_b, scanned[i].curve_b) << "vertex " << i;
-      EXPECT_EQ(pruned[i].w, scanned[i].w) << "vertex " << i;
-      EXPECT_EQ(pruned[i].v, scanned[i].v) << "vertex " << i;
+      for (const auto* search : {&pruned, &treed}) {
+        const CurveBinding& b = (*search)[i];
+        const char* what = search == &pruned ? "balls, vertex " : "trees, vertex ";
+        EXPECT_EQ(b.curve_a, scanned[i].curve_a) << what << i;
+        EXPECT_EQ(b.curve_b, scanned[i].curve_b) << what << i;
+        EXPECT_EQ(b.w, scanned[i].w) << what << i;
+        EXPECT_EQ(b.v, scanned[i].v) << what << i;
+      }
       blended += pruned[i].curve_a != pruned[i].curve_b ? 1 : 0;
     }
     std::printf("%s: %zu curves, %zu of %zu vertices between two curves, all bound as the scans bind them\n",
