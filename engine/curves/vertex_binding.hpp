@@ -22,7 +22,8 @@
 namespace odeskin {
 
 // How each vertex's pair of planes and nearest curve points are found: pruned (vertices in small
-// clusters that rule out most pairs at once, a bounding-box tree over each curve's segments), or
+// clusters that rule out most pairs at once; each curve's segments behind bounding balls, or a
+// bounding-box tree for a very long curve), or
 // by scanning every pair and every segment, the reference the tests hold the pruned search to.
 // Both give the same bindings, bit for bit; the scans cost O(V sqrt V) on refined meshes.
 // kPrunedTrees: the pruned search with every curve's segments searched through a tree (the default
