@@ -377,10 +377,11 @@ std::vector<std::int32_t> bindingParts(std::span<const Vec3> rest, const VertexA
 
 class Binder {
  public:
-  // `exhaustive`: every parameter by a scan of the whole curve; `all_trees`: every curve's nearest
+  // kExhaustive: every parameter by a scan of the whole curve; kPrunedTrees: every curve's nearest
   // segment through its tree.
-  Binder(std::span<const Vec3> rest, const CurveLayout& layout, double spacing, bool exhaustive, bool all_trees)
-      : layout_(layout), spacing_(spacing), exhaustive_(exhaustive), positions_(layout.curves.size()) {
+  Binder(std::span<const Vec3> rest, const CurveLayout& layout, double spacing, BindingSearch search)
+      : layout_(layout), spacing_(spacing), exhaustive_(search == BindingSearch::kExhaustive),
+        positions_(layout.curves.size()) {
     segments_.reserve(layout.curves.size());
     trees_.reserve(layout.curves.size());
     balls_.reserve(layout.curves.size());
@@ -390,7 +391,7 @@ class Binder {
       segments_.push_back(curveSegments(positions_[c], layout.curves[c]));
       pads_.push_back(roundingPad(segments_[c]));
       // Curves up to kScanSegments are scanned (scanNearest) and need no tree.
-      uses_tree_.push_back(all_trees || segments_[c].size() > kScanSegments ? 1 : 0);
+      uses_tree_.push_back(search == BindingSearch::kPrunedTrees || segments_[c].size() > kScanSegments ? 1 : 0);
       if (uses_tree_.back()) {
         trees_.emplace_back(segments_[c]);
         balls_.emplace_back();
@@ -562,7 +563,7 @@ std::vector<CurveBinding> bindVertices(std::span<const Vec3> rest, const VertexA
   std::vector<std::vector<Station>> ext(seg.parts.size());
   for (std::uint32_t p = 0; p < seg.parts.size(); ++p) ext[p] = extendedSequence(p, seg, layout, spacing);
   const std::vector<std::int32_t> part_of = bindingParts(rest, adjacency, seg, ext, exhaustive);
-  const Binder binder(rest, layout, spacing, exhaustive, search == BindingSearch::kPrunedTrees);
+  const Binder binder(rest, layout, spacing, search);
   std::vector<CurveBinding> bindings(rest.size());
   std::vector<std::vector<char>> pairable(seg.parts.size());
   for (std::uint32_t p = 0; p < seg.parts.size(); ++p) pairable[p] = binder.pairable(ext[p]);
