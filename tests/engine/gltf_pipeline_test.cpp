@@ -26,6 +26,14 @@ namespace {
 namespace fs = std::filesystem;
 using namespace testing;  // odeskin::testing: the tube model
 
+// The examples fitted, stored as an .odsk file's bytes and read back: the asset a loader hands to
+// the exports and the runtime.
+Result<DeformAsset> fittedThroughAssetFile(const ExampleSet& examples, const std::string& name) {
+  ODESKIN_ASSIGN_OR_RETURN(const PipelineResult fit, runFitPipeline(examples, PipelineOptions{}));
+  ODESKIN_ASSIGN_OR_RETURN(const std::string bytes, encodeAsset(fit.asset));
+  return decodeAsset(bytes, name);
+}
+
 // End to end: the animated glTF's poses become an asset whose playback hits every key, and the asset
 // keeps the seam-split render layout so play writes the input's vertices.
 TEST(GltfPipeline, FittedAssetReproducesAnimatedPosesInRenderLayout) {
@@ -103,11 +111,7 @@ TEST(GltfPipeline, TexcoordsReachTheExports) {
   const auto examples = read(write(makeTube().model, "textured.glb", true), {0.5, 1.0});
   ASSERT_TRUE(examples.ok()) << examples.status().toString();
   ASSERT_EQ(examples->render.uvs.size(), 15u);
-  Result<PipelineResult> fit = runFitPipeline(*examples, PipelineOptions{});
-  ASSERT_TRUE(fit.ok()) << fit.status().toString();
-  Result<std::string> bytes = encodeAsset(fit->asset);
-  ASSERT_TRUE(bytes.ok());
-  Result<DeformAsset> loaded = decodeAsset(*bytes, "textured.odsk");
+  const Result<DeformAsset> loaded = fittedThroughAssetFile(*examples, "textured.odsk");
   ASSERT_TRUE(loaded.ok()) << loaded.status().toString();
   EXPECT_EQ(loaded->render.uvs, examples->render.uvs);
   for (const bool bake : {false, true}) {
@@ -129,11 +133,7 @@ TEST(GltfPipeline, MaterialsDressTheExports) {
   const std::vector<RenderPrimitive> expected{{static_cast<std::uint32_t>(2 * (kColumns - 1)), 0},
                                               {static_cast<std::uint32_t>(4 * (kColumns - 1)), 1}};
   EXPECT_EQ(examples->render.primitives, expected);
-  Result<PipelineResult> fit = runFitPipeline(*examples, PipelineOptions{});
-  ASSERT_TRUE(fit.ok()) << fit.status().toString();
-  Result<std::string> bytes = encodeAsset(fit->asset);
-  ASSERT_TRUE(bytes.ok());
-  Result<DeformAsset> loaded = decodeAsset(*bytes, "dressed.odsk");
+  const Result<DeformAsset> loaded = fittedThroughAssetFile(*examples, "dressed.odsk");
   ASSERT_TRUE(loaded.ok()) << loaded.status().toString();
   EXPECT_EQ(loaded->render.primitives, expected);
   for (const bool bake : {false, true}) {
