@@ -243,18 +243,30 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
     }
     return n > 0 ? sum / static_cast<double>(n) : 0.0;
   };
-  // Every node's anchors go into one array: sized once for the root and the curves (regions add a few).
+  // The regions in the order their nodes are made (breadth first from the root), so that every
+  // node's anchors can be counted first and go into one array sized once: the array holds the
+  // points of every curve, and a reallocation would copy them all.
+  std::vector<std::uint32_t> order{tree.root};
+  std::vector<std::vector<SkeletonAnchor>> region_anchors(graph.regions.size());
   std::size_t anchor_count = root_anchors.size();
-  for (std::uint32_t c = 0; c < graph.contours.size(); ++c) {
-    if (tree.kept(c)) anchor_count += graph.contours[c].points.size();
+  for (std::size_t head = 0; head < order.size(); ++head) {
+    for (const std::uint32_t c : tree.children[order[head]]) {
+      if (graph.contours[c].closed) anchor_count += graph.contours[c].points.size();
+      const auto q = static_cast<std::uint32_t>(tree.child_region[c]);
+      bool has_node = false;
+      const SkeletonNodeKind kind = regionKind(tree, q, &has_node);
+      if (has_node && !graph.regions[q].vertices.empty()) {
+        region_anchors[q] = kind == SkeletonNodeKind::kTip ? tipAnchors(graph, q, mesh) : regionAnchors(graph, q);
+        anchor_count += region_anchors[q].size();
+      }
+      order.push_back(q);
+    }
   }
   s.anchors.reserve(anchor_count);
   addSkeletonNode(s, SkeletonNodeKind::kRoot, -1, static_cast<std::uint32_t>(parts.region_part[tree.root]), regionRadius(tree.root),
                   root_anchors, rest);
   region_node[tree.root] = 0;
-  std::vector<std::uint32_t> order{tree.root};
-  for (std::size_t head = 0; head < order.size(); ++head) {
-    const std::uint32_t r = order[head];
+  for (const std::uint32_t r : order) {
     const std::int32_t from = region_node[r] >= 0 ? region_node[r] : contour_node[static_cast<std::size_t>(tree.parent_contour[r])];
     for (const std::uint32_t c : tree.children[r]) {
       const LevelContour& contour = graph.contours[c];
@@ -273,10 +285,8 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
       if (has_node && !graph.regions[q].vertices.empty()) {
         region_node[q] = static_cast<std::int32_t>(s.nodeCount());
         const double radius = kind == SkeletonNodeKind::kTip ? 0.5 * contour.radius : regionRadius(q);
-        addSkeletonNode(s, kind, contour_node[c], part, radius,
-                        kind == SkeletonNodeKind::kTip ? tipAnchors(graph, q, mesh) : regionAnchors(graph, q), rest);
+        addSkeletonNode(s, kind, contour_node[c], part, radius, region_anchors[q], rest);
       }
-      order.push_back(q);
     }
   }
   return s;

@@ -87,37 +87,43 @@ void addSkeletonNode(CurveSkeleton& s, SkeletonNodeKind kind, std::int32_t paren
 
 void addCurveNode(CurveSkeleton& s, SkeletonNodeKind kind, std::int32_t parent, std::uint32_t part, double radius,
                   std::span<const CurvePoint> points, bool closed, std::span<const Vec3> rest) {
-  // The anchors go straight into the skeleton, and each point's position is computed once for
-  // both the segment lengths and the mean.
+  // One pass: the anchors go straight into the skeleton with their final weights, each point's
+  // position computed once. A point's weight is half of each segment it ends (0 for a missing
+  // one, at the ends of an open curve). Adding the two halves in either order gives the same
+  // number, so the closing segment of a closed curve, which point 0 needs first, is measured up front.
   const std::size_t n = points.size();
+  if (n == 0) {
+    appendNode(s, kind, parent, part, radius, Vec3(0.0));
+    return;
+  }
   const std::size_t first = s.anchors.size();
-  s.anchors.resize(first + n);
-  const std::span<SkeletonAnchor> anchors(s.anchors.data() + first, n);
-  std::vector<Vec3> at(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    anchors[i].point = points[i];
-    at[i] = curvePointPosition(rest, points[i]);
-  }
-  // Each segment's length goes half to either end: the anchors' mean is the length-weighted centroid.
-  const std::size_t segments = n == 0 ? 0 : closed ? n : n - 1;
-  for (std::size_t k = 0; k < segments; ++k) {
-    const std::size_t j = k + 1 == n ? 0 : k + 1;
-    const double length = glm::length(at[j] - at[k]);
-    anchors[k].weight += 0.5 * length;
-    anchors[j].weight += 0.5 * length;
-  }
-  double total = 0.0;
-  for (const SkeletonAnchor& a : anchors) total += a.weight;
-  if (!(total > 0.0)) {
-    for (SkeletonAnchor& a : anchors) a.weight = 1.0;
-  }
+  const Vec3 first_at = curvePointPosition(rest, points[0]);
+  const double closing = closed && n > 1 ? 0.5 * glm::length(first_at - curvePointPosition(rest, points[n - 1])) : 0.0;
   Vec3 sum(0.0);
-  total = 0.0;
+  double total = 0.0;
+  Vec3 at = first_at;
+  double before = closing;  // half the segment that ends at point i
   for (std::size_t i = 0; i < n; ++i) {
-    sum += anchors[i].weight * at[i];
-    total += anchors[i].weight;
+    const bool last = i + 1 == n;
+    const Vec3 next = last ? first_at : curvePointPosition(rest, points[i + 1]);
+    const double after = last ? closing : 0.5 * glm::length(next - at);
+    const double weight = before + after;
+    s.anchors.push_back({points[i], weight});
+    sum += weight * at;
+    total += weight;
+    before = after;
+    at = next;
   }
-  appendNode(s, kind, parent, part, radius, total > 0.0 ? sum / total : sum);
+  if (!(total > 0.0)) {  // no length: every point counts once
+    sum = Vec3(0.0);
+    total = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      s.anchors[first + i].weight = 1.0;
+      sum += curvePointPosition(rest, points[i]);
+      total += 1.0;
+    }
+  }
+  appendNode(s, kind, parent, part, radius, sum / total);
 }
 
 std::vector<SkeletonAnchor> regionAnchors(const LevelGraph& graph, std::uint32_t region) {

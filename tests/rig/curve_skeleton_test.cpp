@@ -245,6 +245,13 @@ TEST(CurveSkeleton, CurveNodeIsTheLengthWeightedCentroid) {
   EXPECT_EQ(s.positions[2], Vec3(2.0, 0.0, 0.0));
   for (std::size_t i = 10; i < 15; ++i) EXPECT_EQ(s.anchors[i].weight, 1.0);
   EXPECT_EQ(s.anchor_offsets.back(), 15u);
+  // A single point is its own node at weight 1, closed or open.
+  for (const bool closed : {true, false}) {
+    addCurveNode(s, SkeletonNodeKind::kCurve, 2, 2, 0.0, std::span(points).subspan(3, 1), closed, rest);
+    EXPECT_EQ(s.positions.back(), rest[3]);
+    EXPECT_EQ(s.anchors.back().weight, 1.0);
+  }
+  EXPECT_EQ(s.anchor_offsets.back(), 17u);
   // The skeleton's positions on the rest mesh reproduce the nodes from the anchors.
   const std::vector<Vec3> again = curveSkeletonPositions(s, rest);
   for (std::size_t n = 0; n < 2; ++n) EXPECT_NEAR(glm::length(again[n] - s.positions[n]), 0.0, 1e-15) << n;
