@@ -35,10 +35,11 @@ namespace {
 // happened to allocate and free: a smaller reserve in skeleton creation made the horse's mesh
 // edges time 1.5 ms in one build and 2.8 ms in the next. Fixed thresholds keep every repeat's
 // buffers in the heap, so the stage times measure the rig and not the allocator's history.
+// mallopt is not thread-safe: this runs first in the command, before anything starts a thread.
 void keepRepeatBuffersInHeap() {
 #if defined(__GLIBC__)
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest allowed value on 64-bit
-  mallopt(M_TRIM_THRESHOLD, 64 << 20);
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // NOLINT(concurrency-mt-unsafe): no other thread yet; glibc's largest value on 64-bit
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);  // NOLINT(concurrency-mt-unsafe): as above
 #endif
 }
 
@@ -165,6 +166,7 @@ double median(std::vector<double> v) {
 
 int runRigCommand(const RigCommandOptions& o, Console& console) {
   if (const std::string problem = usageProblem(o); !problem.empty()) return reportUsage(console, problem);
+  if (o.repeat > 1) keepRepeatBuffersInHeap();
 
   Result<RigInput> input = readRigInput(o);
   if (!input.ok()) return reportFailure(console, Status(input.status().code(), "rig: " + input.status().message()));
@@ -197,7 +199,6 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   std::vector<double> topology_s, curves_s, skeleton_s, weights_s;
   std::vector<double> edge_distance_s, coarse_s, marching_s, fine_s, loops_s;  // vertex identification's stages
   Result<CurveRig> rig = invalidArgument("rig: not run");
-  if (o.repeat > 1) keepRepeatBuffersInHeap();
   for (int run = 0; run < o.repeat; ++run) {
     rig = buildCurveRig(rest, faces, poses, options);
     if (!rig.ok()) {
