@@ -66,42 +66,10 @@ glm::dmat4 trs(const std::vector<double>& t, const std::vector<double>& r, const
   return m;
 }
 
-}  // namespace
-
-std::vector<double> readAccessor(const tinygltf::Model& m, int index) {
-  const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(index));
-  const std::size_t n = componentCount(a.type);
-  const std::size_t size = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType)));
-  std::vector<double> out(a.count * n, 0.0);
-  if (a.bufferView >= 0) {
-    const tinygltf::BufferView& v = m.bufferViews.at(static_cast<std::size_t>(a.bufferView));
-    const std::size_t stride = v.byteStride ? v.byteStride : n * size;
-    const unsigned char* base = m.buffers.at(static_cast<std::size_t>(v.buffer)).data.data() + v.byteOffset + a.byteOffset;
-    for (std::size_t e = 0; e < a.count; ++e) {
-      for (std::size_t c = 0; c < n; ++c) out[e * n + c] = readComponent(base + e * stride + c * size, a.componentType, a.normalized);
-    }
-  }
-  if (a.sparse.isSparse) {
-    const tinygltf::BufferView& iv = m.bufferViews.at(static_cast<std::size_t>(a.sparse.indices.bufferView));
-    const tinygltf::BufferView& vv = m.bufferViews.at(static_cast<std::size_t>(a.sparse.values.bufferView));
-    const unsigned char* ip = m.buffers[0].data.data() + iv.byteOffset + static_cast<std::size_t>(a.sparse.indices.byteOffset);
-    const unsigned char* vp = m.buffers[0].data.data() + vv.byteOffset + static_cast<std::size_t>(a.sparse.values.byteOffset);
-    const std::size_t isize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.sparse.indices.componentType)));
-    double previous = -1.0;
-    for (int k = 0; k < a.sparse.count; ++k) {
-      const double e = readComponent(ip + static_cast<std::size_t>(k) * isize, a.sparse.indices.componentType, false);
-      EXPECT_GT(e, previous) << "sparse indices must increase";
-      EXPECT_LT(e, static_cast<double>(a.count));
-      previous = e;
-      for (std::size_t c = 0; c < n; ++c) {
-        out[static_cast<std::size_t>(e) * n + c] = readComponent(vp + (static_cast<std::size_t>(k) * n + c) * size, a.componentType, a.normalized);
-      }
-    }
-  }
-  return out;
-}
-
-std::vector<double> sample(const Channel& c, double t, std::size_t n, bool nlerp) {
+// One sampler at time `t` (spec 3.11 and appendix C): `n` components per element. `nlerp`: a LINEAR
+// rotation as importers that keep quaternions as four curves play it (Blender): blended component
+// by component, with no hemisphere check, then normalised.
+std::vector<double> sample(const Channel& c, double t, std::size_t n, bool nlerp = false) {
   const bool cubic = c.interpolation == "CUBICSPLINE";
   const std::size_t per_key = cubic ? 3 * n : n;
   const std::size_t value_offset = cubic ? n : 0;
@@ -149,6 +117,42 @@ std::vector<double> sample(const Channel& c, double t, std::size_t n, bool nlerp
   }
   return out;
 }
+
+}  // namespace
+
+std::vector<double> readAccessor(const tinygltf::Model& m, int index) {
+  const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(index));
+  const std::size_t n = componentCount(a.type);
+  const std::size_t size = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType)));
+  std::vector<double> out(a.count * n, 0.0);
+  if (a.bufferView >= 0) {
+    const tinygltf::BufferView& v = m.bufferViews.at(static_cast<std::size_t>(a.bufferView));
+    const std::size_t stride = v.byteStride ? v.byteStride : n * size;
+    const unsigned char* base = m.buffers.at(static_cast<std::size_t>(v.buffer)).data.data() + v.byteOffset + a.byteOffset;
+    for (std::size_t e = 0; e < a.count; ++e) {
+      for (std::size_t c = 0; c < n; ++c) out[e * n + c] = readComponent(base + e * stride + c * size, a.componentType, a.normalized);
+    }
+  }
+  if (a.sparse.isSparse) {
+    const tinygltf::BufferView& iv = m.bufferViews.at(static_cast<std::size_t>(a.sparse.indices.bufferView));
+    const tinygltf::BufferView& vv = m.bufferViews.at(static_cast<std::size_t>(a.sparse.values.bufferView));
+    const unsigned char* ip = m.buffers[0].data.data() + iv.byteOffset + static_cast<std::size_t>(a.sparse.indices.byteOffset);
+    const unsigned char* vp = m.buffers[0].data.data() + vv.byteOffset + static_cast<std::size_t>(a.sparse.values.byteOffset);
+    const std::size_t isize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.sparse.indices.componentType)));
+    double previous = -1.0;
+    for (int k = 0; k < a.sparse.count; ++k) {
+      const double e = readComponent(ip + static_cast<std::size_t>(k) * isize, a.sparse.indices.componentType, false);
+      EXPECT_GT(e, previous) << "sparse indices must increase";
+      EXPECT_LT(e, static_cast<double>(a.count));
+      previous = e;
+      for (std::size_t c = 0; c < n; ++c) {
+        out[static_cast<std::size_t>(e) * n + c] = readComponent(vp + (static_cast<std::size_t>(k) * n + c) * size, a.componentType, a.normalized);
+      }
+    }
+  }
+  return out;
+}
+
 
 GltfPlayback::GltfPlayback(const std::filesystem::path& path) {
   tinygltf::TinyGLTF loader;

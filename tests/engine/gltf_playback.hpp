@@ -19,17 +19,13 @@ namespace odeskin::testing {
 // Every component of every element of accessor `index`, sparse values substituted (spec 3.6.2.3).
 std::vector<double> readAccessor(const tinygltf::Model& m, int index);
 
+// One animation channel: its target and its sampler's keys and values, decoded.
 struct Channel {
   int node = -1;
   std::string path;
   std::string interpolation;
   std::vector<double> input, output;
 };
-
-// One sampler at time `t` (spec 3.11 and appendix C): `n` components per element. `nlerp`: a LINEAR
-// rotation as importers that keep quaternions as four curves play it (Blender): blended component
-// by component, with no hemisphere check, then normalised.
-std::vector<double> sample(const Channel& c, double t, std::size_t n, bool nlerp = false);
 
 // A decoded export: the mesh of its one skinned node, played at any time in seconds.
 class GltfPlayback {
