@@ -2,6 +2,7 @@
 #include "engine/rig/weight_rows.hpp"
 
 #include <algorithm>
+#include <map>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -66,6 +67,61 @@ TEST(SmoothRows, KeepsEachRowsSumAndSign) {
     }
     EXPECT_NEAR(sum, 1.0, 1e-14) << "vertex " << v;
   }
+}
+
+// One umbrella step as the definition reads, bone by bone in the order the rows are visited (the
+// vertex, then its neighbours in the adjacency's order): what smoothRows must give bit for bit.
+std::vector<WeightRow> umbrellaStep(const std::vector<WeightRow>& rows, const VertexAdjacency& a, double lambda) {
+  std::vector<WeightRow> out(rows.size());
+  for (std::uint32_t i = 0; i < rows.size(); ++i) {
+    const auto ring = a.of(i);
+    if (ring.empty()) {
+      out[i] = rows[i];
+      continue;
+    }
+    std::map<std::uint32_t, double> sum;
+    for (const BoneWeight& e : rows[i]) sum[e.bone] += (1.0 - lambda) * e.weight;
+    const double share = lambda / static_cast<double>(ring.size());
+    for (const std::uint32_t j : ring) {
+      for (const BoneWeight& e : rows[j]) sum[e.bone] += share * e.weight;
+    }
+    for (const auto& [bone, weight] : sum) out[i].push_back({bone, weight});
+  }
+  return out;
+}
+
+TEST(SmoothRows, ManyBonesMatchTheDefinitionBitForBit) {
+  // Bones from 0 to 199 (four words of the bone set, some rows in the first and last only), a
+  // zero weight that must stay an entry, and a lone vertex: three steps against the definition.
+  constexpr std::uint32_t kVertices = 40;
+  VertexAdjacency a;
+  a.offsets.push_back(0);
+  for (std::uint32_t v = 0; v < kVertices; ++v) {
+    if (v != 17) {
+      for (const std::uint32_t d : {kVertices - 2, kVertices - 1, 1u, 2u}) {
+        const std::uint32_t w = (v + d) % kVertices;
+        if (w != 17) a.neighbours.push_back(w);
+      }
+    }
+    a.offsets.push_back(static_cast<std::uint32_t>(a.neighbours.size()));
+  }
+  std::vector<WeightRow> rows(kVertices);
+  for (std::uint32_t v = 0; v < kVertices; ++v) {
+    rows[v] = {{v % 7, 0.3}, {63 + v % 3, 0.1 * (1 + v % 4)}, {199 - v % 5, 1.0 / (1 + v)}};
+  }
+  rows[5] = {{2, 0.0}, {150, 1.0}};
+  std::vector<WeightRow> expected = rows;
+  for (int step = 0; step < 3; ++step) expected = umbrellaStep(expected, a, 0.5);
+  smoothRows(rows, a, 3, 0.5);
+  for (std::uint32_t v = 0; v < kVertices; ++v) {
+    ASSERT_EQ(rows[v].size(), expected[v].size()) << "vertex " << v;
+    for (std::size_t k = 0; k < rows[v].size(); ++k) {
+      EXPECT_EQ(rows[v][k].bone, expected[v][k].bone) << "vertex " << v << ", entry " << k;
+      EXPECT_EQ(rows[v][k].weight, expected[v][k].weight) << "vertex " << v << ", entry " << k;
+    }
+  }
+  const auto zero = std::find_if(rows[5].begin(), rows[5].end(), [](const BoneWeight& e) { return e.bone == 2; });
+  ASSERT_NE(zero, rows[5].end()) << "a bone with weight 0 keeps its entry";
 }
 
 }  // namespace
