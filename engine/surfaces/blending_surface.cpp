@@ -39,7 +39,7 @@ Result<BlendGrid> tessellateBlend(const BlendingSurface& surface, std::uint32_t 
     return outOfRange("blend grid: " + std::to_string(u_count) + " x " + std::to_string(v_count) +
                       " vertices exceed the limit of " + std::to_string(kMaxBlendGridVertices));
   }
-  std::vector<BoundarySample> columns(v_count);
+  std::vector<TrimlineSample> columns(v_count);
   for (std::uint32_t j = 0; j < v_count; ++j) columns[j] = surface.boundary().at(blendGridV(domain, v_count, j));
 
   BlendGrid grid;

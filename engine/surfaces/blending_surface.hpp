@@ -33,7 +33,7 @@ class BlendingSurface {
   Vec3 at(double u, double v) const;            // S(u, v)
   Vec3 derivativeU(double u, double v) const;   // S_u(u, v)
   // S at one u for boundary data already sampled at v (what the grid tessellation uses).
-  static Vec3 combine(const std::array<double, 4>& r, const BoundarySample& b) {
+  static Vec3 combine(const std::array<double, 4>& r, const TrimlineSample& b) {
     return r[0] * b.c0 + r[1] * b.c0bar + r[2] * b.c1 + r[3] * b.c1bar;
   }
 

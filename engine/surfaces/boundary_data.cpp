@@ -160,7 +160,7 @@ Result<BoundaryData> BoundaryData::create(Trimline start, Trimline end, const VD
   return out;
 }
 
-BoundarySample BoundaryData::at(double v) const {
+TrimlineSample BoundaryData::at(double v) const {
   return {start_.curve(v), start_.tangent(v), end_.curve(v), end_.tangent(v)};
 }
 

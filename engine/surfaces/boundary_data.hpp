@@ -34,8 +34,8 @@ struct Trimline {
   CurveFunction tangent;  // Cbar(v) = S_u on this trimline
 };
 
-// C0, C0bar, C1, C1bar at one v.
-struct BoundarySample {
+// Both trimlines at one v: C0, C0bar, C1, C1bar.
+struct TrimlineSample {
   Vec3 c0{0.0}, c0bar{0.0}, c1{0.0}, c1bar{0.0};
 };
 
@@ -66,7 +66,7 @@ class BoundaryData {
   // not finite or not increasing.
   static Result<BoundaryData> create(Trimline start, Trimline end, const VDomain& domain = {});
 
-  BoundarySample at(double v) const;
+  TrimlineSample at(double v) const;
   const Trimline& start() const { return start_; }
   const Trimline& end() const { return end_; }
   const VDomain& domain() const { return domain_; }

@@ -80,7 +80,7 @@ void checkConstraints(const BlendingSurface& s, const BlendGrid& g, BlendReport&
   double size = 0.0, tangent_size = 0.0, position = 0.0, tangent = 0.0;
   for (std::uint32_t j = 0; j < g.v_count; ++j) {
     const double v = blendGridV(s.boundary().domain(), g.v_count, j);
-    const BoundarySample b = s.boundary().at(v);
+    const TrimlineSample b = s.boundary().at(v);
     size = std::max({size, glm::length(b.c0), glm::length(b.c1)});
     tangent_size = std::max({tangent_size, glm::length(b.c0bar), glm::length(b.c1bar)});
     position = std::max({position, glm::length(g.positions[j] - b.c0),

@@ -52,7 +52,7 @@ double constraintError(const BlendingSurface& s) {
   double error = 0.0, size = 0.0;
   for (int j = 0; j <= 32; ++j) {
     const double v = j / 32.0;
-    const BoundarySample b = s.boundary().at(v);
+    const TrimlineSample b = s.boundary().at(v);
     size = std::max({size, glm::length(b.c0), glm::length(b.c1), glm::length(b.c0bar), glm::length(b.c1bar)});
     error = std::max({error, glm::length(s.at(0, v) - b.c0), glm::length(s.at(1, v) - b.c1),
                       glm::length(s.derivativeU(0, v) - b.c0bar), glm::length(s.derivativeU(1, v) - b.c1bar)});

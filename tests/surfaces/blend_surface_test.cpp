@@ -31,7 +31,7 @@ double constraintError(const BlendingSurface& s, double slope_scale) {
   double position = 0.0, tangent = 0.0, size = 0.0, tangent_size = 0.0;
   for (int j = 0; j <= 64; ++j) {
     const double v = d.v_begin + (d.v_end - d.v_begin) * j / 64.0;
-    const BoundarySample b = s.boundary().at(v);
+    const TrimlineSample b = s.boundary().at(v);
     size = std::max({size, glm::length(b.c0), glm::length(b.c1)});
     tangent_size = std::max({tangent_size, glm::length(b.c0bar), glm::length(b.c1bar)});
     position = std::max({position, distance(s.at(0.0, v), b.c0), distance(s.at(1.0, v), b.c1)});
