@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -303,6 +304,29 @@ TEST_F(ObjSequenceTempDir, TexcoordsAreWrittenAsVtAndReadBack) {
   const Status wrong = writeObj(dir_ / "wrong.obj", a_.positions, a_.faces, {}, uvs);
   EXPECT_NE(wrong.message().find("419 texture coordinates for 420 vertices"), std::string::npos) << wrong.message();
   EXPECT_FALSE(fs::exists(dir_ / "wrong.obj"));
+}
+
+// Output that a reader would take for a mesh it is not: a NaN position or texture coordinate, or
+// a face past the vertices, is refused by name, and nothing is left at the path.
+TEST_F(ObjSequenceTempDir, WriterRefusesNonFiniteValuesAndFacesPastTheVertices) {
+  auto expectRefused = [&](const Status& s, const std::string& message, const fs::path& path) {
+    EXPECT_EQ(s.code(), StatusCode::kInvalidArgument) << s.toString();
+    EXPECT_NE(s.message().find(message), std::string::npos) << s.message();
+    EXPECT_FALSE(fs::exists(path)) << path;
+  };
+  std::vector<Vec3> positions = a_.positions;
+  positions[7].y = std::numeric_limits<double>::quiet_NaN();
+  expectRefused(writeObj(dir_ / "nan.obj", positions, a_.faces), "nan.obj: vertex 7 is not finite", dir_ / "nan.obj");
+
+  std::vector<Vec2> uvs(a_.positions.size(), Vec2(0.5));
+  uvs[3].x = std::numeric_limits<double>::infinity();
+  expectRefused(writeObj(dir_ / "uv.obj", a_.positions, a_.faces, {}, uvs), "uv.obj: texture coordinate 3 is not finite",
+                dir_ / "uv.obj");
+
+  FaceList faces = a_.faces;
+  faces.indices[faces.face_offsets[5] + 1] = 420;
+  expectRefused(writeObj(dir_ / "face.obj", a_.positions, faces), "face.obj: face 5 references vertex 420 of 420",
+                dir_ / "face.obj");
 }
 
 TEST_F(ObjSequenceTempDir, ChangedFaceIndexNamesFileFaceAndBothVersions) {
