@@ -232,17 +232,6 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
   CurveSkeleton s;
   std::vector<std::int32_t> region_node(graph.regions.size(), -1);
   std::vector<std::int32_t> contour_node(graph.contours.size(), -1);
-  auto regionRadius = [&](std::uint32_t r) {
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (const std::uint32_t c : graph.regions[r].contours) {
-      if (tree.kept(c)) {
-        sum += graph.contours[c].radius;
-        ++n;
-      }
-    }
-    return n > 0 ? sum / static_cast<double>(n) : 0.0;
-  };
   // The regions in the order their nodes are made (breadth first from the root), so that every
   // node's anchors can be counted first and go into one array sized once: the array holds the
   // points of every curve, and a reallocation would copy them all.
@@ -263,8 +252,8 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
     }
   }
   s.anchors.reserve(anchor_count);
-  addSkeletonNode(s, SkeletonNodeKind::kRoot, -1, static_cast<std::uint32_t>(parts.region_part[tree.root]), regionRadius(tree.root),
-                  root_anchors, rest);
+  addSkeletonNode(s, SkeletonNodeKind::kRoot, -1, static_cast<std::uint32_t>(parts.region_part[tree.root]),
+                  tree.ringRadius(graph, tree.root, 0.0), root_anchors, rest);
   region_node[tree.root] = 0;
   for (const std::uint32_t r : order) {
     const std::int32_t from = region_node[r] >= 0 ? region_node[r] : contour_node[static_cast<std::size_t>(tree.parent_contour[r])];
@@ -284,7 +273,7 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
       const SkeletonNodeKind kind = regionKind(tree, q, &has_node);
       if (has_node && !graph.regions[q].vertices.empty()) {
         region_node[q] = static_cast<std::int32_t>(s.nodeCount());
-        const double radius = kind == SkeletonNodeKind::kTip ? 0.5 * contour.radius : regionRadius(q);
+        const double radius = kind == SkeletonNodeKind::kTip ? 0.5 * contour.radius : tree.ringRadius(graph, q, 0.0);
         addSkeletonNode(s, kind, contour_node[c], part, radius, region_anchors[q], rest);
       }
     }

@@ -72,18 +72,7 @@ CurveSkeleton skeletonFromPartCurves(std::span<const Vec3> rest, const LevelGrap
 
   CurveSkeleton s;
   std::vector<std::int32_t> region_node(graph.regions.size(), -1);
-  auto regionRadius = [&](std::uint32_t r, double fallback) {
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (const std::uint32_t c : graph.regions[r].contours) {
-      if (tree.kept(c)) {
-        sum += graph.contours[c].radius;
-        ++n;
-      }
-    }
-    return n > 0 ? sum / static_cast<double>(n) : fallback;
-  };
-  addSkeletonNode(s, SkeletonNodeKind::kRoot, -1, 0, regionRadius(tree.root, 0.0), root_anchors, rest);
+  addSkeletonNode(s, SkeletonNodeKind::kRoot, -1, 0, tree.ringRadius(graph, tree.root, 0.0), root_anchors, rest);
   region_node[tree.root] = 0;
   for (std::uint32_t p = 0; p < p_count; ++p) {
     const TreePart& part = parts.parts[p];
@@ -112,7 +101,7 @@ CurveSkeleton skeletonFromPartCurves(std::span<const Vec3> rest, const LevelGrap
     const SkeletonNodeKind kind = regionKind(tree, end, &has_node);
     if (!has_node || graph.regions[end].vertices.empty()) continue;
     region_node[end] = static_cast<std::int32_t>(s.nodeCount());
-    const double radius = kind == SkeletonNodeKind::kTip ? 0.5 * last_radius : regionRadius(end, last_radius);
+    const double radius = kind == SkeletonNodeKind::kTip ? 0.5 * last_radius : tree.ringRadius(graph, end, last_radius);
     addSkeletonNode(s, kind, previous, p, radius,
                     kind == SkeletonNodeKind::kTip ? tipAnchors(graph, end, mesh) : regionAnchors(graph, end), rest);
   }

@@ -12,6 +12,18 @@ std::uint32_t LevelTree::parentRegion(const LevelGraph& graph, std::uint32_t con
   return child_region[contour] == static_cast<std::int32_t>(c.upper) ? c.lower : c.upper;
 }
 
+double LevelTree::ringRadius(const LevelGraph& graph, std::uint32_t region, double fallback) const {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const std::uint32_t c : graph.regions[region].contours) {
+    if (kept(c)) {
+      sum += graph.contours[c].radius;
+      ++n;
+    }
+  }
+  return n > 0 ? sum / static_cast<double>(n) : fallback;
+}
+
 LevelTree levelTree(const LevelGraph& graph, std::uint32_t root_region, const PruneRule& prune) {
   const std::size_t r_count = graph.regions.size();
   LevelTree tree;

@@ -27,6 +27,9 @@ struct LevelTree {
   bool kept(std::uint32_t contour) const { return child_region[contour] >= 0; }
   // The region towards the root of a kept contour.
   std::uint32_t parentRegion(const LevelGraph& graph, std::uint32_t contour) const;
+  // The mean radius of a region's kept rings (its skeleton node's thickness); `fallback` where it
+  // keeps none.
+  double ringRadius(const LevelGraph& graph, std::uint32_t region, double fallback) const;
 };
 
 struct PruneRule {

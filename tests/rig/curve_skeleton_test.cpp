@@ -11,6 +11,7 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_skeleton_levels.hpp"
 #include "engine/rig/curve_skeleton_parts.hpp"
+#include "engine/rig/curve_skeleton_tree.hpp"
 #include "engine/rig/mesh_topology.hpp"
 #include "engine/rig/surface_distance.hpp"
 #include "engine/data_mesh.hpp"  // tests/engine
@@ -281,6 +282,30 @@ TEST(CurveSkeleton, RingsOfATubeAreClosedAndJoinTheirRegions) {
     ends += r.contours.size() == 1 ? 1 : 0;
   }
   EXPECT_EQ(ends, 2u);
+}
+
+TEST(CurveSkeleton, RingRadiusIsTheMeanOfTheKeptRings) {
+  const testing::TestMesh tube = closedTube(41, 16, 4.0, 0.5);
+  const MeshTopology mesh = meshTopology(tube.positions, tube.faces);
+  const std::uint32_t start[1] = {static_cast<std::uint32_t>(tube.positions.size() - 2)};
+  const std::vector<double> f = surfaceDistance(mesh, tube.positions, start);
+  const LevelGraph graph = levelGraph(tube.positions, mesh, f, 0.3);
+  const LevelTree tree = levelTree(graph, graph.vertex_region[start[0]], PruneRule{});
+  for (std::uint32_t r = 0; r < graph.regions.size(); ++r) {
+    double sum = 0.0;
+    double n = 0.0;
+    for (const std::uint32_t c : graph.regions[r].contours) {
+      sum += graph.contours[c].radius;
+      n += 1.0;
+    }
+    ASSERT_GT(n, 0.0) << r;  // a chain: every contour is kept
+    EXPECT_DOUBLE_EQ(tree.ringRadius(graph, r, -1.0), sum / n) << r;
+  }
+  // Levels further apart than the tube is long: one region, no ring, the fallback.
+  const LevelGraph whole = levelGraph(tube.positions, mesh, f, 100.0);
+  ASSERT_EQ(whole.regions.size(), 1u);
+  const LevelTree single = levelTree(whole, 0, PruneRule{});
+  EXPECT_EQ(single.ringRadius(whole, 0, 0.25), 0.25);
 }
 
 TEST(CurveSkeleton, TubeSkeletonRunsAlongItsAxis) {
