@@ -3,7 +3,7 @@
 # and runs each target for a bounded time (docs/reliability.md, "Fuzzing").
 #   scripts/fuzz.sh [--seconds-per-target S] [--jobs J] [--targets "obj gltf ..."] [--unoptimised]
 # S: seconds of fuzzing per target (default 20; CI uses 15, a long run e.g. 3600). J: parallel
-# fuzzing processes per target (libFuzzer -fork; default 1). Targets: obj tgf dmat tmat pose odsk gltf network rig.
+# fuzzing processes per target (libFuzzer -fork; default 1). Targets: obj tgf dmat tmat pose odsk gltf network rig fit.
 # --unoptimised: build at -O0 into build-fuzz-O0/ (CI: the instrumented engine compiles in less than
 # half the CPU time of -O1, at a lower fuzzing rate, which short runs can afford).
 # Exits non-zero when a target crashes, leaks, runs out of memory (2 GiB) or spends over 10 s on one
@@ -16,7 +16,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds=20
 opt=1
 jobs=1
-targets="obj tgf dmat tmat pose odsk gltf network rig"
+targets="obj tgf dmat tmat pose odsk gltf network rig fit"
 while (($#)); do
   case "$1" in
     --seconds-per-target) seconds="$2"; shift 2 ;;
@@ -56,7 +56,7 @@ echo "fuzz.sh: built in $(($(date +%s) - start)) s"
 # edge cases, and what the engine's own writers produce (odeskin_fuzz_seeds) -------------------------
 seeds="$build/seeds"
 rm -rf "$seeds"
-mkdir -p "$seeds"/{obj,tgf,dmat,tmat,pose,odsk,gltf,network,rig}
+mkdir -p "$seeds"/{obj,tgf,dmat,tmat,pose,odsk,gltf,network,rig,fit}
 "$build/tests/fuzz/odeskin_fuzz_seeds" "$seeds"
 copy_if_there() {  # copy_if_there DEST FILE...: data files are optional (a checkout without ../shared)
   local dest="$1"; shift
@@ -96,10 +96,12 @@ awk 'BEGIN { pi = atan2(0, -1); s = 8; r = 10
   for (i = 0; i < r; ++i) for (j = 0; j < s; ++j) printf "v %g %g %g\n", cos(2 * pi * j / s), sin(2 * pi * j / s), 0.5 * i
   for (i = 0; i + 1 < r; ++i) for (j = 0; j < s; ++j) { a = i * s + j + 1; b = i * s + (j + 1) % s + 1; printf "f %d %d %d %d\n", a, b, b + s, a + s } }' \
   > "$seeds/rig/quad-tube.obj"
+# The fit's seeds: the rig's (the last byte of each picks the fit's options: see fit_fuzzer.cpp).
+cp "$seeds/rig"/* "$seeds/fit/"
 
 max_len() {  # inputs past this length are cut: big enough for the seeds that matter, small enough to run fast
   case "$1" in
-    obj|dmat|rig) echo 40000 ;;
+    obj|dmat|rig|fit) echo 40000 ;;
     gltf) echo 65536 ;;
     odsk) echo 32768 ;;
     *) echo 8192 ;;
@@ -113,7 +115,7 @@ logs="$build/fuzz-logs"
 mkdir -p "$logs"
 for t in $targets; do
   bin="$build/tests/fuzz/fuzz_$t"
-  [[ -x "$bin" ]] || { echo "fuzz.sh: no target '$t' (obj tgf dmat tmat pose odsk gltf network rig)" >&2; exit 2; }
+  [[ -x "$bin" ]] || { echo "fuzz.sh: no target '$t' (obj tgf dmat tmat pose odsk gltf network rig fit)" >&2; exit 2; }
   corpus="$build/corpus/$t"
   findings="$build/findings/$t"
   mkdir -p "$corpus" "$findings"

@@ -71,5 +71,6 @@ export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 export ODESKIN_REQUIRE_GPU="${ODESKIN_REQUIRE_GPU:-1}"
 ctest --test-dir "$asan" --output-on-failure -j "$jobs"
 
-# libFuzzer on every file reader, 10 s per target after replaying tests/fuzz/regressions (docs/reliability.md, "Fuzzing").
+# libFuzzer on every file reader, the curve rig and the fit, 10 s per target after replaying
+# tests/fuzz/regressions (docs/reliability.md, "Fuzzing").
 "$root/scripts/fuzz.sh" --seconds-per-target 10 --unoptimised
