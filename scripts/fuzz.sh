@@ -96,8 +96,15 @@ awk 'BEGIN { pi = atan2(0, -1); s = 8; r = 10
   for (i = 0; i < r; ++i) for (j = 0; j < s; ++j) printf "v %g %g %g\n", cos(2 * pi * j / s), sin(2 * pi * j / s), 0.5 * i
   for (i = 0; i + 1 < r; ++i) for (j = 0; j < s; ++j) { a = i * s + j + 1; b = i * s + (j + 1) % s + 1; printf "f %d %d %d %d\n", a, b, b + s, a + s } }' \
   > "$seeds/rig/quad-tube.obj"
-# The fit's seeds: the rig's (the last byte of each picks the fit's options: see fit_fuzzer.cpp).
+# The fit's seeds: the rig's (the last byte of each picks the fit's options: see fit_fuzzer.cpp),
+# and a closed tube of 194 vertices in triangles, below the target's 300 (the cylinder is above).
 cp "$seeds/rig"/* "$seeds/fit/"
+awk 'BEGIN { pi = atan2(0, -1); s = 12; r = 16
+  for (i = 0; i < r; ++i) for (j = 0; j < s; ++j) printf "v %g %g %g\n", 0.4 * cos(2 * pi * j / s), 0.4 * sin(2 * pi * j / s), 0.25 * i
+  printf "v 0 0 -0.2\nv 0 0 %g\n", 0.25 * (r - 1) + 0.2
+  for (i = 0; i + 1 < r; ++i) for (j = 0; j < s; ++j) { a = i * s + j + 1; b = i * s + (j + 1) % s + 1; printf "f %d %d %d\nf %d %d %d\n", a, b, b + s, a, b + s, a + s }
+  for (j = 0; j < s; ++j) { printf "f %d %d %d\n", r * s + 1, (j + 1) % s + 1, j + 1; printf "f %d %d %d\n", r * s + 2, (r - 1) * s + j + 1, (r - 1) * s + (j + 1) % s + 1 } }' \
+  > "$seeds/fit/tri-tube.obj"
 
 max_len() {  # inputs past this length are cut: big enough for the seeds that matter, small enough to run fast
   case "$1" in
