@@ -105,6 +105,8 @@ awk 'BEGIN { pi = atan2(0, -1); s = 12; r = 16
   for (i = 0; i + 1 < r; ++i) for (j = 0; j < s; ++j) { a = i * s + j + 1; b = i * s + (j + 1) % s + 1; printf "f %d %d %d\nf %d %d %d\n", a, b, b + s, a, b + s, a + s }
   for (j = 0; j < s; ++j) { printf "f %d %d %d\n", r * s + 1, (j + 1) % s + 1, j + 1; printf "f %d %d %d\n", r * s + 2, (r - 1) * s + j + 1, (r - 1) * s + (j + 1) % s + 1 } }' \
   > "$seeds/fit/tri-tube.obj"
+# The quad tube again with a last byte (0x10) that asks for a third pose.
+{ cat "$seeds/rig/quad-tube.obj"; printf '\020'; } > "$seeds/fit/quad-tube-three-poses.obj"
 
 max_len() {  # inputs past this length are cut: big enough for the seeds that matter, small enough to run fast
   case "$1" in
