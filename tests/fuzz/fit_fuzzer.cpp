@@ -43,8 +43,6 @@ constexpr double kBendRadians = 0.5;
 // Rounding between the fit's own playback and the tolerance test (relative).
 constexpr double kToleranceSlack = 1e-9;
 
-bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
 std::vector<Vec3> bent(const std::vector<Vec3>& rest, double radians) {
   Vec3 lo = rest.front(), hi = rest.front();
   for (const Vec3& p : rest) {
@@ -76,7 +74,8 @@ PipelineOptions optionsFrom(std::uint8_t bits) {
 
 void checkAsset(const PipelineResult& fit, const PipelineOptions& options, std::size_t vertices, std::size_t poses) {
   const DeformAsset& asset = fit.asset;
-  fuzz::require(validateDeformAsset(asset).ok(), "fit: the asset does not validate: " + validateDeformAsset(asset).toString());
+  const Status valid = validateDeformAsset(asset);
+  fuzz::require(valid.ok(), "fit: the asset does not validate: " + valid.toString());
   fuzz::require(asset.vertexCount() == vertices, "fit: the asset lost vertices");
   fuzz::require(fit.report.key_error.size() == poses, "fit: not one key error per pose");
   for (const double e : fit.report.key_error) {
@@ -89,7 +88,7 @@ void checkAsset(const PipelineResult& fit, const PipelineOptions& options, std::
   for (std::uint32_t segment = 0; segment + 1 < poses; ++segment) {
     const Status played = player->play(asset, segment, 0.5, frame);
     fuzz::require(played.ok(), "fit: a frame between the keys fails: " + played.toString());
-    fuzz::require(std::all_of(frame.begin(), frame.end(), finite), "fit: a frame between the keys is not finite");
+    fuzz::require(std::all_of(frame.begin(), frame.end(), fuzz::finite), "fit: a frame between the keys is not finite");
   }
   const Result<std::string> bytes = encodeAsset(asset);
   fuzz::require(bytes.ok(), "fit: the asset does not encode: " + bytes.status().toString());

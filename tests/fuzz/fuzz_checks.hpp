@@ -4,6 +4,7 @@
 // reader's documented invariants. A broken promise aborts, which libFuzzer reports as a finding.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -12,6 +13,7 @@
 
 #include "engine/core/result.hpp"
 #include "engine/core/status.hpp"
+#include "engine/core/types.hpp"
 
 namespace odeskin::fuzz {
 
@@ -38,6 +40,9 @@ bool accepted(const Result<T>& result, const std::string& source) {
   requireNamedError(result.status(), source);
   return false;
 }
+
+// Every coordinate finite.
+inline bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 // libFuzzer's bytes as the text a reader parses.
 inline std::string text(const std::uint8_t* data, std::size_t size) {

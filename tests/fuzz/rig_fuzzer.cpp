@@ -4,7 +4,6 @@
 // distance weights), from plane cuts and from quad edge loops, then the animation skeleton. The
 // rig's contract is looser than a reader's: the curve skeleton asks only for valid faces, so a
 // non-manifold, degenerate or disconnected mesh must give a rig or a Status, never a crash.
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -19,8 +18,6 @@ using namespace odeskin;
 
 // The plane cuts cost more than linear time per mesh; larger meshes add no new shapes of input.
 constexpr std::size_t kMaxVertices = 4000;
-
-bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 void checkCurvePoint(const CurvePoint& p, std::size_t vertices, const std::string& where) {
   fuzz::require(p.a < vertices && p.b < vertices, where + ": a curve point off the mesh");
@@ -38,7 +35,7 @@ void checkRig(const CurveRig& r, std::size_t vertices, bool weights) {
     fuzz::require(n == 0 || (s.parents[n] >= 0 && static_cast<std::size_t>(s.parents[n]) < n),
                   "curve skeleton: a parent does not precede its child");
     fuzz::require(s.anchor_offsets[n] <= s.anchor_offsets[n + 1], "curve skeleton: anchor offsets go down");
-    fuzz::require(finite(s.positions[n]), "curve skeleton: a node is not finite");
+    fuzz::require(fuzz::finite(s.positions[n]), "curve skeleton: a node is not finite");
   }
   fuzz::require(s.anchor_offsets.front() == 0 && s.anchor_offsets.back() == s.anchors.size(),
                 "curve skeleton: anchor offsets do not span the anchors");

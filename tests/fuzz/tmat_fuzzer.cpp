@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::require(t->size() == bones, "accepted a file with another bone count");
   for (const RigidTransform& x : *t) {
     fuzz::require(std::abs(glm::length(x.rotation) - 1.0) < 1e-12, "a rotation is not a unit quaternion");
-    fuzz::require(std::isfinite(x.translation.x) && std::isfinite(x.translation.y) && std::isfinite(x.translation.z),
+    fuzz::require(fuzz::finite(x.translation),
                   "a translation is not finite");
   }
   return 0;
