@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 
+#include "../core/finite_vector.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -49,7 +51,7 @@ Status checkKeyPoses(const std::vector<std::vector<Vec3>>& keys, std::size_t ver
     }
     for (std::size_t i = 0; i < v_count; ++i) {
       const Vec3& p = keys[k][i];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      if (!isFinite(p)) {
         return invalidArgument(prefix + "key " + std::to_string(k) + " vertex " + std::to_string(i) + " is not finite");
       }
     }

@@ -6,12 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "../core/finite_vector.hpp"
+
 namespace odeskin {
 namespace {
 
 constexpr std::size_t kMaxUnknowns = 4'000'000;
 
-bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 }  // namespace
 
@@ -120,7 +121,7 @@ Status FdCurveSystem::solve(std::span<const Vec3> target, std::span<const Vec3> 
                            ", " + std::to_string(rate.size()) + ", " + std::to_string(out.size()) + ")");
   }
   for (std::size_t j = 0; j < j_count; ++j) {
-    if (!finite(target[j]) || (!rate.empty() && !finite(rate[j]))) {
+    if (!isFinite(target[j]) || (!rate.empty() && !isFinite(rate[j]))) {
       return invalidArgument("fd curve: target or rate at grid point " + std::to_string(j) + " is not finite");
     }
   }

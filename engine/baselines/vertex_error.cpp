@@ -1,17 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "vertex_error.hpp"
 
-#include <cmath>
 #include <string>
 
+#include "../core/finite_vector.hpp"
 #include "../offline/residual_fit.hpp"
 
 namespace odeskin {
-namespace {
-
-bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
-}  // namespace
 
 Result<VertexError> vertexError(std::span<const Vec3> deformed, std::span<const Vec3> truth) {
   if (deformed.size() != truth.size()) {
@@ -20,8 +15,8 @@ Result<VertexError> vertexError(std::span<const Vec3> deformed, std::span<const 
   }
   if (truth.empty()) return invalidArgument("vertex error: the meshes have no vertices");
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    if (!finite(truth[i])) return invalidArgument("vertex error: ground-truth vertex " + std::to_string(i) + " is not finite");
-    if (!finite(deformed[i])) return invalidArgument("vertex error: deformed vertex " + std::to_string(i) + " is not finite");
+    if (!isFinite(truth[i])) return invalidArgument("vertex error: ground-truth vertex " + std::to_string(i) + " is not finite");
+    if (!isFinite(deformed[i])) return invalidArgument("vertex error: deformed vertex " + std::to_string(i) + " is not finite");
   }
   VertexError out;
   out.box_side = longestBoxSide(truth);

@@ -9,6 +9,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "finite_vector.hpp"
+
 namespace odeskin {
 
 Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const std::string& who,
@@ -18,7 +20,7 @@ Result<PositionBox> checkedPositionBox(std::span<const Vec3> positions, const st
   Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Vec3& p = positions[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+    if (!isFinite(p)) {
       return invalidArgument(prefix + "vertex " + std::to_string(first_number + i) + " is not finite");
     }
     lo = glm::min(lo, p);

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "render_layout_check.hpp"
 
-#include <cmath>
-
+#include "finite_vector.hpp"
 #include "render_primitives.hpp"
 #include "smoothing_groups.hpp"
 
@@ -55,7 +54,7 @@ Status checkRenderLayout(const RenderLayout& render, std::size_t topology_vertic
                              std::to_string(output_vertices) + " output vertices");
     }
     for (std::size_t r = 0; r < render.uvs.size(); ++r) {
-      if (!std::isfinite(render.uvs[r].x) || !std::isfinite(render.uvs[r].y)) {
+      if (!isFinite(render.uvs[r])) {
         return invalidArgument(context + ": render UV " + std::to_string(r) + " is not finite");
       }
     }

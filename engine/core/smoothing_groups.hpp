@@ -7,11 +7,11 @@
 // then give each group the normal of its own faces.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "finite_vector.hpp"
 #include "types.hpp"
 
 namespace odeskin {
@@ -30,7 +30,7 @@ struct SmoothingGroups {
 
 // Whether a bind normal can stand for a direction: finite and not zero (any length).
 inline bool isUsableNormal(const Vec3& n) {
-  return std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z) && n != Vec3(0.0);
+  return isFinite(n) && n != Vec3(0.0);
 }
 
 // `topology`: render vertex -> topology vertex (each < vertex_count); `normals`: one per render

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-
+#include "../core/finite_vector.hpp"
 #include "../core/number_text.hpp"
 #include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
@@ -30,8 +30,6 @@ constexpr double kDefaultSpacingEdges = 3.0;
 // kAuto takes edge loops when at least this fraction of the faces are quads.
 constexpr double kQuadDominant = 0.8;
 
-bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
 Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const Skeleton& skeleton,
                   const Influences& influences, const CurveOptions& options) {
   const std::size_t count = rest.size();
@@ -44,7 +42,7 @@ Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const Skele
                            std::to_string(skeleton.tails.size()) + " tails");
   }
   for (std::size_t b = 0; b < bones; ++b) {
-    if (!finite(skeleton.heads[b]) || !finite(skeleton.tails[b])) {
+    if (!isFinite(skeleton.heads[b]) || !isFinite(skeleton.tails[b])) {
       return invalidArgument("iso-curves: bone " + std::to_string(b) + " has a non-finite joint");
     }
   }

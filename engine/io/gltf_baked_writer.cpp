@@ -11,6 +11,7 @@
 
 #include <tiny_gltf.h>
 
+#include "../core/finite_vector.hpp"
 #include "../core/render_primitives.hpp"
 #include "gltf_buffer_builder.hpp"
 #include "gltf_quantized.hpp"
@@ -31,7 +32,7 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
       return invalidArgument("baked glTF: frame " + std::to_string(f) + " has another normal count");
     }
     for (const Vec3& n : normals[f]) {
-      if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) {
+      if (!isFinite(n)) {
         return invalidArgument("baked glTF: frame " + std::to_string(f) + " has a non-finite normal");
       }
     }
@@ -42,14 +43,14 @@ Status checkInput(const FaceList& faces, const std::vector<std::vector<Vec3>>& f
                            " vertices");
   }
   for (std::size_t i = 0; i < uvs.size(); ++i) {
-    if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y)) {
+    if (!isFinite(uvs[i])) {
       return invalidArgument("baked glTF: texture coordinate " + std::to_string(i) + " is not finite");
     }
   }
   for (std::size_t f = 0; f < frames.size(); ++f) {
     if (frames[f].size() != v_count) return invalidArgument("baked glTF: frame " + std::to_string(f) + " has another vertex count");
     for (const Vec3& p : frames[f]) {
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      if (!isFinite(p)) {
         return invalidArgument("baked glTF: frame " + std::to_string(f) + " has a non-finite position");
       }
     }

@@ -5,11 +5,11 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cmath>
 #include <optional>
 #include <random>
 #include <system_error>
 
+#include "../core/finite_vector.hpp"
 #include "../core/number_text.hpp"
 #include "../core/pending_files.hpp"
 #include "../core/result.hpp"
@@ -142,7 +142,7 @@ Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positio
   if (!comment.empty()) text += "# " + comment + "\n";
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Vec3& p = positions[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+    if (!isFinite(p)) {
       return invalidArgument(path.string() + ": vertex " + std::to_string(i) + " is not finite");
     }
     // %.9g round-trips float32 exactly and keeps double output readable; to_chars, not snprintf,
@@ -155,7 +155,7 @@ Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positio
     text += '\n';
   }
   for (std::size_t i = 0; i < uvs.size(); ++i) {
-    if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y)) {
+    if (!isFinite(uvs[i])) {
       return invalidArgument(path.string() + ": texture coordinate " + std::to_string(i) + " is not finite");
     }
     text += "vt ";

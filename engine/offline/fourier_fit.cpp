@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 #include <glm/geometric.hpp>
 
+#include "../core/finite_vector.hpp"
 #include "../core/number_text.hpp"
 
 namespace odeskin {
@@ -19,10 +20,6 @@ namespace {
 
 // MATH.md 4.2: full column rank requires min|R_ii| > 1e-10 max|R_ii|.
 constexpr double kRankTolerance = 1e-10;
-
-bool isFinite(const glm::dvec3& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
 
 // Least squares by column-pivoted Householder QR. Pivoting makes |R_ii| non-increasing, so the
 // MATH.md 4.2 test min|R_ii| > 1e-10 max|R_ii| reads off the diagonal and is rank revealing; with

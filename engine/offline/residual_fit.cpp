@@ -12,6 +12,7 @@
 #include <Eigen/SVD>
 #include <tbb/blocked_range.h>
 
+#include "../core/finite_vector.hpp"
 #include "../core/number_text.hpp"
 #include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
@@ -199,9 +200,7 @@ class CurveFitPlan {
 
   // What fitting `values` mode by mode with fitFourier would give.
   Result<FourierFit> fit(std::span<const Vec3> values) const {
-    const bool finite = std::all_of(values.begin(), values.end(), [](const Vec3& x) {
-      return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
-    });
+    const bool finite = std::all_of(values.begin(), values.end(), [](const Vec3& x) { return isFinite(x); });
     if (!finite || values.size() != v_.size()) {
       // Not what the plan was made for: mode by mode, for the error fitFourier names.
       for (int n = modes_; n >= 1; --n) {

@@ -12,6 +12,7 @@
 
 #include <Eigen/Dense>
 
+#include "../core/finite_vector.hpp"
 #include "../core/number_text.hpp"
 #include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
@@ -20,7 +21,6 @@
 namespace odeskin {
 namespace {
 
-bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 Eigen::Vector3d toEigen(const Vec3& p) { return {p.x, p.y, p.z}; }
 
@@ -41,7 +41,7 @@ Result<RigidTransform> weightedKabsch(std::span<const Vec3> from, std::span<cons
       return invalidArgument("kabsch: weight " + std::to_string(i) + " is " + messageNumber(w));
     }
     if (w == 0.0) continue;
-    if (!finite(from[i]) || !finite(to[i])) {
+    if (!isFinite(from[i]) || !isFinite(to[i])) {
       return invalidArgument("kabsch: point pair " + std::to_string(i) + " is not finite");
     }
     weight_sum += w;

@@ -3,12 +3,9 @@
 
 #include <cmath>
 
+#include "../core/finite_vector.hpp"
+
 namespace odeskin {
-namespace {
-
-bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
-}  // namespace
 
 Status validateRig(const Rig& rig, std::size_t vertex_count, std::size_t pose_count) {
   const Skeleton& s = rig.skeleton;
@@ -21,7 +18,7 @@ Status validateRig(const Rig& rig, std::size_t vertex_count, std::size_t pose_co
   }
   for (std::size_t b = 0; b < bones; ++b) {
     const std::string bone = "rig: bone " + std::to_string(b) + (s.names.empty() ? "" : " (" + s.names[b] + ")");
-    if (!finite(s.heads[b]) || !finite(s.tails[b])) return invalidArgument(bone + " has a non-finite joint");
+    if (!isFinite(s.heads[b]) || !isFinite(s.tails[b])) return invalidArgument(bone + " has a non-finite joint");
     if (s.parents[b] < -1 || s.parents[b] >= static_cast<std::int32_t>(bones)) {
       return invalidArgument(bone + " has parent " + std::to_string(s.parents[b]) + " outside -1.." +
                              std::to_string(bones - 1));
@@ -48,7 +45,7 @@ Status validateRig(const Rig& rig, std::size_t vertex_count, std::size_t pose_co
       for (std::size_t b = 0; b < bones; ++b) {
         const RigidTransform& m = rig.key_poses[k][b];
         const double norm = glm::length(m.rotation);
-        if (!finite(m.translation) || !std::isfinite(norm) || std::abs(norm - 1.0) > 1e-6) {
+        if (!isFinite(m.translation) || !std::isfinite(norm) || std::abs(norm - 1.0) > 1e-6) {
           return invalidArgument("rig: pose " + std::to_string(k) + " bone " + std::to_string(b) +
                                  " has a non-finite transform or a rotation that is not unit");
         }

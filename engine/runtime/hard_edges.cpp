@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "hard_edges.hpp"
 
-#include <cmath>
 #include <limits>
 #include <string>
 
+#include "../core/finite_vector.hpp"
 #include "../core/smoothing_groups.hpp"
 
 namespace odeskin {
@@ -17,7 +17,7 @@ Status checkNormals(std::span<const Vec3> normals, std::size_t count, bool rende
   }
   for (std::size_t r = 0; r < normals.size(); ++r) {
     const Vec3& n = normals[r];
-    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) {
+    if (!isFinite(n)) {
       return invalidArgument("runtime asset: render normals: normal " + std::to_string(r) + " is not finite");
     }
     if (n == Vec3(0.0)) {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "blending_surface.hpp"
 
-#include <cmath>
 #include <cstdio>
+
+#include "../core/finite_vector.hpp"
 
 namespace odeskin {
 
@@ -52,7 +53,7 @@ Result<BlendGrid> tessellateBlend(const BlendingSurface& surface, std::uint32_t 
     const std::array<double, 4> r = surface.cardinals()(u).r;
     for (std::uint32_t j = 0; j < v_count; ++j) {
       const Vec3 p = BlendingSurface::combine(r, columns[j]);
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      if (!isFinite(p)) {
         char where[64];
         std::snprintf(where, sizeof where, "(u, v) = (%g, %g)", u, blendGridV(domain, v_count, j));
         return invalidArgument(std::string("blend grid: the surface is not finite at ") + where +

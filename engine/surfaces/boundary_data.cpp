@@ -10,6 +10,8 @@
 
 #include <Eigen/Sparse>
 
+#include "../core/finite_vector.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -84,7 +86,7 @@ class UniformSpline {
 Status checkPolyline(const std::vector<Vec3>& points, const char* name) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Vec3& p = points[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+    if (!isFinite(p)) {
       return invalidArgument(std::string("trimline polyline: ") + name + " sample " + std::to_string(i) +
                              " is not finite");
     }

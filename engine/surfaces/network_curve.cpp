@@ -7,6 +7,8 @@
 
 #include <Eigen/Sparse>
 
+#include "../core/finite_vector.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -34,7 +36,7 @@ Result<NetworkCurve> NetworkCurve::interpolate(std::span<const Vec3> points, boo
   }
   if (!(std::isfinite(span) && span > 0.0)) return invalidArgument("network curve: the parameter span must be > 0");
   for (std::size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) || !std::isfinite(points[i].z)) {
+    if (!isFinite(points[i])) {
       return invalidArgument("network curve: point " + std::to_string(i) + " is not finite");
     }
   }

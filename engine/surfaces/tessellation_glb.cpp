@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "tessellation_glb.hpp"
 
-#include <cmath>
-
 #include <tiny_gltf.h>
 
+#include "../core/finite_vector.hpp"
 #include "../io/gltf_baked_writer.hpp"
 #include "../io/gltf_buffer_builder.hpp"
 
@@ -18,7 +17,6 @@ int addVec3(tinygltf::Model& m, std::span<const Vec3> values, bool bounds) {
   return gltf::appendFloatAccessor(m, xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, bounds);
 }
 
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
 
@@ -29,7 +27,7 @@ Status writeSurfaceGlb(const std::filesystem::path& path, const SurfaceMesh& mes
                            std::to_string(mesh.positions.size()) + " vertices");
   }
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    if (!finite(mesh.positions[i]) || !finite(normals[i])) {
+    if (!isFinite(mesh.positions[i]) || !isFinite(normals[i])) {
       return invalidArgument("surface glTF: vertex " + std::to_string(i) + " is not finite");
     }
   }

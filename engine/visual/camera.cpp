@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../core/finite_vector.hpp"
 #include "../core/number_text.hpp"
 #include "../core/position_box.hpp"
 
@@ -34,9 +35,8 @@ Bounds boundsOf(std::span<const Vec3> points) {
 }
 
 Status validateViewSpec(const ViewSpec& v) {
-  const bool finite = std::isfinite(v.up.x) && std::isfinite(v.up.y) && std::isfinite(v.up.z) &&
-                      std::isfinite(v.azimuth_deg) && std::isfinite(v.elevation_deg) && std::isfinite(v.fov_y_deg) &&
-                      std::isfinite(v.margin);
+  const bool finite = isFinite(v.up) && std::isfinite(v.azimuth_deg) && std::isfinite(v.elevation_deg) &&
+                      std::isfinite(v.fov_y_deg) && std::isfinite(v.margin);
   if (!finite) return invalidArgument("view: a camera setting is not a finite number");
   if (std::abs(glm::length(v.up) - 1.0) > 1e-6) return invalidArgument("view: the up axis must have unit length");
   if (std::abs(v.elevation_deg) >= 89.0) {
