@@ -16,8 +16,10 @@
 #include "rigid_clusters.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numeric>
 #include <optional>
 #include <span>
@@ -236,12 +238,64 @@ std::optional<std::vector<RigidTransform>> seedCluster(const MotionData& m, cons
   return std::nullopt;
 }
 
-// Lloyd rounds at a fixed count, until no label changes; leaves the errors up to date.
-void lloyd(const MotionData& m, std::size_t probe, int iterations, Clustering& c) {
+// Finds where Lloyd rounds cycle. Keeping a cluster connected can leave the rounds in a cycle (a
+// few hundred of the cat's vertices flipping between two clusters until the cap; the cycles seen
+// in the cat and horse fits were 2 rounds long). A round's labels and transforms are all the next
+// round depends on, so once a round repeats an earlier one, the state the cap would stop at is one
+// of the cycle's, and it is taken from there instead of being recomputed.
+class RoundCycles {
+ public:
+  // Whether round `round`'s state `c` repeats one of the kHorizon rounds before it; if it does,
+  // `c` becomes the state round `last` would leave.
+  bool skipToLast(std::size_t round, std::size_t last, Clustering& c) {
+    for (std::size_t period = 2; period <= std::min(kHorizon, round); ++period) {
+      if (!at(round - period).sameAs(c)) continue;
+      const std::size_t at_last = round - period + (last - round) % period;
+      if (at_last != round - period) {
+        c.labels = at(at_last).labels;
+        c.transforms = at(at_last).transforms;
+      }
+      return true;
+    }
+    State& state = at(round);  // copied into the storage of round - kHorizon
+    state.labels = c.labels;
+    state.transforms = c.transforms;
+    return false;
+  }
+
+ private:
+  static constexpr std::size_t kHorizon = 4;
+
+  struct State {
+    std::vector<std::uint32_t> labels;
+    Transforms transforms;
+
+    // Equal to the bit, so that the rounds from both states are the same rounds.
+    bool sameAs(const Clustering& c) const {
+      if (labels != c.labels) return false;
+      for (std::size_t k = 0; k < transforms.size(); ++k) {
+        const std::size_t bytes = transforms[k].size() * sizeof(RigidTransform);
+        if (std::memcmp(transforms[k].data(), c.transforms[k].data(), bytes) != 0) return false;
+      }
+      return true;
+    }
+  };
+
+  State& at(std::size_t round) { return recent_[round % kHorizon]; }
+
+  std::array<State, kHorizon> recent_;
+};
+
+// Lloyd rounds at a fixed count, until no label changes or options.iterations rounds (or the
+// state they would end with, RoundCycles); leaves the errors up to date.
+void lloyd(const MotionData& m, std::size_t probe, const ClusterOptions& options, Clustering& c) {
+  const int iterations = options.iterations;
   const std::size_t clusters = c.clusterCount();
   // cppcheck-suppress variableScope ; declared outside the loop so its storage is reused each iteration
   std::vector<std::uint32_t> previous;
+  RoundCycles cycles;
   for (int it = 0; it < iterations; ++it) {
+    ++c.lloyd_rounds;
     const ClusterFit errors(m, c.transforms, probe);
     previous = c.labels;
     assignBest(m, errors, c.labels);
@@ -271,6 +325,8 @@ void lloyd(const MotionData& m, std::size_t probe, int iterations, Clustering& c
         }
       }
     }
+    const auto round = static_cast<std::size_t>(it);
+    if (options.skip_cycles && cycles.skipToLast(round, static_cast<std::size_t>(iterations) - 1, c)) break;
   }
   computeErrors(m, c.transforms, c);
 }
@@ -361,7 +417,7 @@ Result<Clustering> clusterRigidMotion(const MotionData& m, const ClusterOptions&
       }
     }
     if (added == 0) break;
-    lloyd(m, probe, options.iterations, c);
+    lloyd(m, probe, options, c);
     if (options.clusters == 0 && growthStops(options, clusters, best_rms, c)) break;
     best_rms = std::min(best_rms, c.rms_error);
   }

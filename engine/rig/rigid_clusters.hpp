@@ -31,6 +31,7 @@ struct Clustering {
   std::vector<std::vector<RigidTransform>> transforms;  // K x C: bind -> pose k, per cluster
   std::vector<double> vertex_error;                     // V: sum_k |T_{k,label} x_i - p_ki|^2
   double rms_error = 0.0;                               // sqrt(mean over k, i of |.|^2) / box
+  std::size_t lloyd_rounds = 0;                         // Lloyd rounds run while the count grew
 
   std::size_t clusterCount() const { return transforms.empty() ? 0 : transforms[0].size(); }
 };
@@ -40,6 +41,9 @@ struct ClusterOptions {
   int min_clusters = 8;    //    from min_clusters (unless the fit is already good enough)
   int max_clusters = 32;   //    up to max_clusters
   int iterations = 20;     // assignment / refit rounds once the count is reached
+  // A cycle of rounds ends with the state the cap would stop at, read off the cycle; the same
+  // clustering to the bit in fewer rounds. False only to check that.
+  bool skip_cycles = true;
 };
 
 // Every cluster is connected on the mesh (per mesh component) and has at least 3 non-collinear
