@@ -552,6 +552,14 @@ Result<DeformAsset> fitDeformAsset(const FitInput& in, const FitOptions& opt, Fi
     const double box = longestBoxSide(in.poses[k]);
     ODESKIN_ASSIGN_OR_RETURN(const double worst, playKey(asset, player, in.poses[k], k, table, scratch));
     rep.key_error[k] = box > 0.0 ? worst / box : worst;
+    // The remainders put every key within half the tolerance; a key played back farther off has
+    // lost its digits to magnitudes double precision cannot hold beside the mesh's size.
+    if (!std::isfinite(rep.key_error[k]) || (!opt.pure_fourier && rep.key_error[k] > opt.key_tolerance)) {
+      return outOfRange("fit: the asset misses example pose " + std::to_string(k) + " by " + scientific(rep.key_error[k]) +
+                        " of its box, above the key tolerance " + scientific(opt.key_tolerance) +
+                        ": a position, joint or bone transform is too far out for double precision beside the "
+                        "mesh's size");
+    }
   }
   rep.seconds_solve = seconds_since(stage);
   return asset;

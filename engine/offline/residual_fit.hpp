@@ -63,8 +63,10 @@ struct FitReport {
 // Errors: kInvalidArgument (sizes, indices, a curve point off the mesh or without its v, fewer
 // than 2 poses, a pose or the bind mesh with a position that is not finite, or too large or
 // small for double-precision lengths: checkedPositionBox), kIllPosed (a curve with too few points
-// for N when !adaptive_modes, a resonant material mode), and the errors of fitFourier /
-// ModeTimeBasis::create, each prefixed with the curve or material concerned.
+// for N when !adaptive_modes, a resonant material mode), kOutOfRange (a key played back off by
+// more than the key tolerance, or by a non-finite amount: magnitudes beyond double precision
+// beside the mesh's size), and the errors of fitFourier / ModeTimeBasis::create, each prefixed
+// with the curve or material concerned.
 Result<DeformAsset> fitDeformAsset(const FitInput& input, const FitOptions& options, FitReport* report = nullptr);
 
 // Recomputes every segment's carried rates from its predecessor with the asset's current materials

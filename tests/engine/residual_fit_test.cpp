@@ -107,6 +107,27 @@ TEST(ResidualFit, PureFourierReportsItsKeyError) {
   EXPECT_LT(finer.max_series_error, report.max_series_error);
 }
 
+TEST(ResidualFit, AKeyBeyondDoublePrecisionIsAnErrorNotAnAsset) {
+  // A bone moved 1e20 away in the second key: its residual (the pose minus LBS) is ~1e20, whose
+  // last digits are ~1e4, far coarser than the arm. No asset can hit that key.
+  Result<ProceduralArm> arm = makeProceduralArm(ArmOptions{});
+  ASSERT_TRUE(arm.ok());
+  FitInput in = arm->fit_input;
+  in.key_poses[1][1].translation.x += 1e20;
+  for (const bool pure : {false, true}) {
+    FitOptions opt;
+    opt.pure_fourier = pure;
+    const Result<DeformAsset> asset = fitDeformAsset(in, opt);
+    if (pure) {
+      ASSERT_TRUE(asset.ok()) << asset.status().toString();  // its key error is only reported
+      continue;
+    }
+    ASSERT_FALSE(asset.ok());
+    EXPECT_EQ(asset.status().code(), StatusCode::kOutOfRange);
+    EXPECT_NE(asset.status().message().find("misses example pose 1 by "), std::string::npos) << asset.status().message();
+  }
+}
+
 TEST(ResidualFit, StaticMaterialIsLinearInTime) {
   // rho = eta = 0 gives gamma_n(tau) = tau: the bind-space residual grows linearly (PIPELINE.md 7).
   ArmOptions o;
