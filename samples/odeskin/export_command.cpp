@@ -22,6 +22,9 @@ std::string usageProblem(const ExportCommandOptions& o) {
   const std::string ext = lowerExtension(o.output);
   if (ext == ".gltf") return "export: " + o.output.string() + ": write .glb (one self-contained binary file)";
   if (ext != ".glb") return "export: " + o.output.string() + ": unknown output format '" + ext + "' (expected .glb)";
+  if (const std::filesystem::path inputs[] = {o.asset, o.materials}; overwritesInput(o.output, inputs)) {
+    return "export: " + o.output.string() + " is an input; it would be overwritten";
+  }
   if (!(o.tolerance >= 1e-8 && o.tolerance <= 0.01)) {
     return "export: --tolerance must be in [1e-8, 0.01] (a fraction of the bounding box), got " + numberText(o.tolerance);
   }

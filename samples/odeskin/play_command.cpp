@@ -31,6 +31,13 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxFrames = 1000000;  // a typo like --fps 30000 --seconds 600 stops here
 constexpr std::size_t kMaxPatternWidth = 32;
 
+// --png DIR's picture of frame f. Not through FramePattern: a % in DIR is part of its name.
+std::filesystem::path pngFrameName(const std::filesystem::path& png_dir, std::size_t frame) {
+  std::string number = std::to_string(frame);
+  if (number.size() < 4) number.insert(0, 4 - number.size(), '0');
+  return png_dir / ("frame_" + number + ".png");
+}
+
 // The option checks that need no asset; empty when the options are usable.
 std::string usageProblem(const PlayOptions& o) {
   if (o.t.has_value() == o.fps.has_value()) return "play: give either --t T (one frame) or --fps F (a sequence)";
@@ -63,6 +70,22 @@ std::string usageProblem(const PlayOptions& o) {
   if (o.fps && ext == ".obj") {
     Result<FramePattern> pattern = FramePattern::parse(o.output);
     if (!pattern.ok()) return "play: " + pattern.status().message();
+  }
+  return {};
+}
+
+// The first output that would replace the asset or the --materials file (under another name, or
+// through a link, as well); "" when none would.
+std::string overwrittenInput(const PlayOptions& o, const std::vector<std::filesystem::path>& files, std::size_t frames) {
+  const std::filesystem::path inputs[] = {o.asset, o.materials};
+  for (const std::filesystem::path& file : files) {
+    if (overwritesInput(file, inputs)) return file.string();
+  }
+  if (o.png_dir.empty()) return {};
+  const std::filesystem::path strip = o.png_dir / "strip.png";
+  if (overwritesInput(strip, inputs)) return strip.string();
+  for (std::size_t f = 0; f < frames; ++f) {
+    if (overwritesInput(pngFrameName(o.png_dir, f), inputs)) return pngFrameName(o.png_dir, f).string();
   }
   return {};
 }
@@ -108,10 +131,6 @@ Status playPictures(const PlayOptions& o, const DeformAsset& asset, AssetPlaybac
   view.elevation_deg = o.png_elevation_deg;
   ODESKIN_ASSIGN_OR_RETURN(const visual::Camera camera,
                            visual::framePoints(framing, double(layout.panel_width) / layout.panel_height, view));
-  std::error_code ec;
-  std::filesystem::create_directories(o.png_dir, ec);
-  if (ec) return ioError(o.png_dir.string() + ": cannot create directory: " + ec.message());
-
   const double scene_size = visual::boundsOf(framing).diagonal();
   std::vector<std::size_t> strip_frames;
   for (std::size_t k = 0; k < std::min(kStripFrames, times.size()); ++k) {
@@ -121,14 +140,13 @@ Status playPictures(const PlayOptions& o, const DeformAsset& asset, AssetPlaybac
   std::vector<std::string> captions;
   ProgressBar bar(console.err, "pictures", times.size(), !console.quiet && console.interactive && times.size() > 1);
   std::vector<Vec3> positions;
-  const FramePattern names = *FramePattern::parse((o.png_dir / "frame_%04d.png").string());
   for (std::size_t f = 0; f < times.size(); ++f) {
     ODESKIN_TRY(playback.positionsAt(times[f], positions));
     ODESKIN_ASSIGN_OR_RETURN(PanelGeometry panel, preparePanel(o.asset.string(), positions, asset.faces,
                                                                o.png_curves ? &asset.curves : nullptr));
     const vk::PanelContent content = panel.content();
     ODESKIN_ASSIGN_OR_RETURN(visual::Image picture, session.draw(layout, camera, scene_size, {&content, 1}));
-    pictures.emplace_back(names.format(f));
+    pictures.push_back(pngFrameName(o.png_dir, f));
     ODESKIN_TRY(visual::writePng(pictures.back(), picture));
     if (std::find(strip_frames.begin(), strip_frames.end(), f) != strip_frames.end()) {
       strip.push_back(std::move(picture));
@@ -241,6 +259,9 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       times.push_back(std::clamp(clock[f] / asset.segment_seconds, 0.0, t_end));
     }
   }
+  if (const std::string clash = overwrittenInput(o, files, times.size()); !clash.empty()) {
+    return reportUsage(console, "play: " + clash + " is an input; it would be overwritten");
+  }
   // .glb: every frame goes into one file (morph target per frame, STEP weights animation).
   const bool glb = lowerExtension(o.output) == ".glb";
   // .pc2, .mdd: every frame's positions in one point cache (point_cache.hpp), for the mesh --t 0 writes.
@@ -270,10 +291,14 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   }
   std::vector<std::vector<Vec3>> baked, baked_normals;
 
-  // --png: the device is opened before anything is written, so a missing one fails early (and
-  // before the playback, which would otherwise note a CPU fallback just before this error).
+  // --png: its folder is made and the device opened before anything is written, so a file in the
+  // folder's way or a missing device fails early (and before the playback, which would otherwise
+  // note a CPU fallback just before this error).
   std::optional<RenderSession> session;
   if (!o.png_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(o.png_dir, ec);
+    if (ec) return reportFailure(console, ioError("play: --png " + o.png_dir.string() + ": cannot create directory: " + ec.message()));
     Result<RenderSession> opened = RenderSession::open(o.playback.device, o.playback.validation, vk::PictureStyle{});
     if (!opened.ok()) return reportFailure(console, Status(opened.status().code(), "play: " + opened.status().message()));
     session.emplace(std::move(opened).value());

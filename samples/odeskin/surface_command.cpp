@@ -64,10 +64,17 @@ bool parseShape(const std::string& text, Ode6Shape& shape) {
   return true;
 }
 
+// --obj: OUT.obj beside OUT.glb.
+std::filesystem::path objPath(const SurfaceCommandOptions& o) { return std::filesystem::path(o.output).replace_extension(".obj"); }
+
 std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution& r, Ode6Shape& shape) {
   if (o.output.empty()) return "surface: -o OUT.glb is required";
   if (lowerExtension(o.output) != ".glb") {
     return "surface: " + o.output.string() + ": write .glb (one self-contained glTF binary; add --obj for an OBJ too)";
+  }
+  const std::filesystem::path inputs[] = {o.network};
+  for (const std::filesystem::path& out : {o.output, o.obj ? objPath(o) : std::filesystem::path()}) {
+    if (overwritesInput(out, inputs)) return "surface: " + out.string() + " is an input; it would be overwritten";
   }
   if (!parseResolution(o.resolution, r)) {
     return "surface: --res '" + o.resolution + "': expected U,V samples per patch, integers in [2, 100000]";
@@ -202,7 +209,7 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   if (Status s = createParentFolder(o.output); !s.ok()) return reportError(console, "surface: " + s.message(), kExitFailure);
   std::filesystem::path obj;
   if (o.obj) {
-    obj = std::filesystem::path(o.output).replace_extension(".obj");
+    obj = objPath(o);
     if (Status s = writeObj(obj, mesh->positions, mesh->faces, "odeskin surface " + o.network.filename().string()); !s.ok()) {
       return reportError(console, "surface: " + s.message(), kExitFailure);
     }

@@ -553,10 +553,16 @@ TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
   fs::copy_file(in("good1.obj"), c / "pose1.obj", fs::copy_options::overwrite_existing);
   fs::copy_file(in("good2.obj"), c / "pose2.obj", fs::copy_options::overwrite_existing);
   fs::copy_file(kCylinder / "cylinder.tgf", c / "truth.tgf", fs::copy_options::overwrite_existing);
-  fs::remove(c / "alias.obj");
+  fs::copy_file(in("cyl.odsk"), c / "asset.odsk", fs::copy_options::overwrite_existing);
+  fs::copy_file(in("cyl.odsk"), c / "frame1.obj", fs::copy_options::overwrite_existing);
+  fs::copy_file(in("patch.json"), c / "patch.obj", fs::copy_options::overwrite_existing);
+  for (const char* link : {"alias.obj", "asset_alias.obj", "asset_alias.glb"}) fs::remove(c / link);
   fs::create_symlink("pose1.obj", c / "alias.obj");
+  fs::create_symlink("asset.odsk", c / "asset_alias.obj");
+  fs::create_symlink("asset.odsk", c / "asset_alias.glb");
   const std::string pose1 = (c / "pose1.obj").string();
   const std::string pose2 = (c / "pose2.obj").string();
+  const std::string asset = (c / "asset.odsk").string();
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
       {{"fit", pose1, pose2, "-o", pose1}, "pose1.obj is an input; it would be overwritten"},
       {{"fit", pose1, (c / "." / "pose2.obj").string(), "-o", pose2}, "pose2.obj is an input"},
@@ -564,10 +570,19 @@ TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
       {{"rig", pose1, "-o", (c / "truth.tgf").string(), "--compare", (c / "truth.tgf").string()}, "truth.tgf is an input"},
       {{"reconstruct", pose1, "-o", (c / "alias.obj").string()}, "alias.obj is an input"},
       {{"evaluate", pose1, pose2, in("good3.obj"), "--keys", "0,2", "--json", pose2}, "pose2.obj is an input"},
+      {{"play", asset, "--t", "1", "-o", (c / "asset_alias.obj").string()}, "asset_alias.obj is an input"},
+      {{"play", (c / "frame1.obj").string(), "--fps", "2", "-o", (c / "frame%d.obj").string()}, "frame1.obj is an input"},
+      {{"play", asset, "--fps", "2", "-o", (c / "out.glb").string(), "--materials", (c / "out.glb").string()},
+       "out.glb is an input"},
+      {{"export", asset, "-o", (c / "asset_alias.glb").string()}, "asset_alias.glb is an input"},
+      {{"surface", (c / "patch.obj").string(), "-o", (c / "patch.glb").string(), "--obj"}, "patch.obj is an input"},
   };
   const std::string pose1_before = readText(c / "pose1.obj");
   const std::string pose2_before = readText(c / "pose2.obj");
   const std::string truth_before = readText(c / "truth.tgf");
+  const std::string asset_before = readText(c / "asset.odsk");
+  const std::string frame1_before = readText(c / "frame1.obj");
+  const std::string patch_before = readText(c / "patch.obj");
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Outcome r = runOdeskin(cases[i].first, dir() / "io" / ("replace" + std::to_string(i)));
     expectOneErrorLine(r, 2, {cases[i].second}, commandLine(cases[i].first));
@@ -575,7 +590,11 @@ TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
   EXPECT_EQ(readText(c / "pose1.obj"), pose1_before);
   EXPECT_EQ(readText(c / "pose2.obj"), pose2_before);
   EXPECT_EQ(readText(c / "truth.tgf"), truth_before);
+  EXPECT_EQ(readText(c / "asset.odsk"), asset_before);
+  EXPECT_EQ(readText(c / "frame1.obj"), frame1_before);
+  EXPECT_EQ(readText(c / "patch.obj"), patch_before);
   EXPECT_TRUE(fs::is_symlink(c / "alias.obj"));
+  EXPECT_FALSE(fs::exists(c / "patch.glb"));
 }
 
 // A file output that names a folder is refused before any work: `fit ... -o out/` fitted, failed to

@@ -415,5 +415,29 @@ TEST_F(RenderCommand, PlayPngWritesEveryFrameAndAStrip) {
   EXPECT_NE(bad.err.str().find("--size 'wide'"), std::string::npos) << bad.err.str();
 }
 
+TEST_F(RenderCommand, PlayPngFolderIsANameNotAPatternAndIsMadeFirst) {
+  const fs::path dir = scratch("play_folder");
+  PlayOptions play;
+  play.asset = armPath();
+  play.t = 1.0;
+  play.png_dir = dir / "100%d";  // a % in the folder was read as a frame number: a crash
+  play.png_size = "64x48";
+  Captured io;
+  PlayReport report;
+  ASSERT_EQ(runPlayCommand(play, io.console, &report), kExitOk) << io.err.str();
+  ASSERT_EQ(report.pictures.size(), 2u);
+  EXPECT_EQ(report.pictures[0], dir / "100%d" / "frame_0000.png");
+  EXPECT_TRUE(fs::exists(report.pictures[0]));
+  // A file where the folder goes fails before the mesh is written, not after.
+  std::ofstream(dir / "taken") << "a file\n";
+  play.png_dir = dir / "taken";
+  play.output = (dir / "arm.obj").string();
+  Captured bad;
+  EXPECT_EQ(runPlayCommand(play, bad.console), kExitFailure);
+  EXPECT_NE(bad.err.str().find("--png " + (dir / "taken").string() + ": cannot create directory"), std::string::npos)
+      << bad.err.str();
+  EXPECT_FALSE(fs::exists(dir / "arm.obj"));
+}
+
 }  // namespace
 }  // namespace odeskin
