@@ -27,6 +27,26 @@ inline bool overwritesInput(const std::filesystem::path& output, std::span<const
   return false;
 }
 
+// The file a write to `output` lands in: writes go through symbolic links, a dangling one too.
+inline std::filesystem::path writtenFile(std::filesystem::path output) {
+  std::error_code ec;
+  for (int hop = 0; hop < 40 && std::filesystem::is_symlink(output, ec); ++hop) {
+    const std::filesystem::path target = std::filesystem::read_symlink(output, ec);
+    if (ec) break;
+    output = target.is_absolute() ? target : output.parent_path() / target;
+  }
+  const std::filesystem::path resolved = std::filesystem::weakly_canonical(output, ec);
+  return ec ? output.lexically_normal() : resolved;
+}
+
+// Whether two outputs of one command would be written to one file, the second over the first
+// (`rig -o a.tgf --weights a.dmat` with a.dmat a link to a.tgf left the weights in a.tgf).
+inline bool sameOutputFile(const std::filesystem::path& a, const std::filesystem::path& b) {
+  if (a.empty() || b.empty()) return false;
+  std::error_code ec;
+  return writtenFile(a) == writtenFile(b) || (std::filesystem::equivalent(a, b, ec) && !ec);
+}
+
 // "" when `output` can be a file; else why not, for "OPTION PATH: ..." messages.
 inline std::string folderNotFile(const std::filesystem::path& output) {
   if (output.empty()) return {};

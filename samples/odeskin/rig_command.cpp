@@ -15,11 +15,13 @@
 #include <malloc.h>
 #endif
 
+#include "engine/core/number_text.hpp"
 #include "engine/io/gltf_reader.hpp"
 #include "engine/io/gltf_rig_writer.hpp"
 #include "engine/io/libigl_io.hpp"
 #include "engine/io/libigl_writer.hpp"
 #include "engine/io/obj_reader.hpp"
+#include "engine/mesh/poly_mesh.hpp"
 #include "engine/rig/curve_rig.hpp"
 #include "engine/rig/skeleton_compare.hpp"
 #include "file_extension.hpp"
@@ -90,8 +92,19 @@ std::string usageProblem(const RigCommandOptions& o) {
   }
   std::vector<std::filesystem::path> inputs = o.meshes;
   inputs.push_back(o.compare);
-  for (const std::filesystem::path& out : {o.output, o.weights, o.gltf, o.png}) {
+  const std::filesystem::path outputs[] = {o.output, o.weights, o.gltf, o.png};
+  for (std::size_t i = 0; i < std::size(outputs); ++i) {
+    const std::filesystem::path& out = outputs[i];
     if (overwritesInput(out, inputs)) return "rig: " + out.string() + " is an input; it would be overwritten";
+    if (const std::string why = folderNotFile(out); !why.empty()) return "rig: " + out.string() + " " + why;
+    for (std::size_t j = 0; j < i; ++j) {
+      if (sameOutputFile(outputs[j], out)) {
+        return "rig: " + outputs[j].string() + " and " + out.string() + " name the same file; give each output its own";
+      }
+    }
+  }
+  if (!o.png.empty() && !std::isfinite(o.azimuth_deg)) {
+    return "rig: --azimuth must be a finite number of degrees, got " + numberText(o.azimuth_deg);
   }
   if (!parseTemplateKind(o.template_kind)) {
     return "rig: --template " + o.template_kind + ": use auto, humanoid, quadruped or none";
@@ -134,6 +147,8 @@ Result<RigInput> readRigInput(const RigCommandOptions& o) {
     if (set.rig) in.replaced_skin_joints = set.rig->skeleton.boneCount();
   } else if (o.meshes.size() == 1) {
     ODESKIN_ASSIGN_OR_RETURN(ObjMesh mesh, readObj(o.meshes.front()));
+    // The manifold check a sequence's reader makes: the curves and levels assume manifold faces.
+    ODESKIN_TRY(buildPolyMesh(mesh.positions, mesh.faces, o.meshes.front().string()).status());
     in.rest = std::move(mesh.positions);
     in.faces = std::move(mesh.faces);
   } else {
@@ -226,6 +241,18 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     std::filesystem::create_directories(parent, ec);
     if (ec) return reportFailure(console, ioError("rig: " + parent.string() + ": cannot create directory: " + ec.message()));
   }
+  // The picture first: it needs a Vulkan device, the likeliest thing to be missing, and a
+  // failure then replaces none of the other outputs.
+  if (!o.png.empty()) {
+    RigPictureOptions picture;
+    picture.up = *parseUpAxis(o.up);
+    picture.device = o.device;
+    picture.azimuth_deg = o.azimuth_deg;
+    picture.title = o.meshes.front().filename().string();
+    picture.truth = truth ? &*truth : nullptr;
+    Status s = drawRigPicture(o.png, rest, faces, r.curve_skeleton.curves, r.curve_skeleton.skeleton, r.animation, picture);
+    if (!s.ok()) return reportFailure(console, Status(s.code(), "rig: --png: " + s.message()));
+  }
   if (Status s = writeTgf(o.output, r.rig.skeleton); !s.ok()) return reportFailure(console, s);
   if (!o.weights.empty()) {
     if (Status s = writeWeightsDmat(o.weights, r.rig.influences, r.rig.skeleton.boneCount()); !s.ok()) {
@@ -237,16 +264,6 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     look.render = &input->render;
     look.materials = *materials ? &**materials : nullptr;
     if (Status s = writeRigGlb(o.gltf, rest, faces, r.rig, look); !s.ok()) return reportFailure(console, s);
-  }
-  if (!o.png.empty()) {
-    RigPictureOptions picture;
-    picture.up = *parseUpAxis(o.up);
-    picture.device = o.device;
-    picture.azimuth_deg = o.azimuth_deg;
-    picture.title = o.meshes.front().filename().string();
-    picture.truth = truth ? &*truth : nullptr;
-    Status s = drawRigPicture(o.png, rest, faces, r.curve_skeleton.curves, r.curve_skeleton.skeleton, r.animation, picture);
-    if (!s.ok()) return reportFailure(console, Status(s.code(), "rig: --png: " + s.message()));
   }
   if (console.quiet) return kExitOk;
 

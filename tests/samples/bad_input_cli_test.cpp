@@ -438,6 +438,8 @@ TEST_F(BadInputCli, BadMeshesPosesAndWeightsFailNamingTheFile) {
       {"evaluate_nan", {"evaluate", in("good1.obj"), in("nan.obj"), in("good2.obj"), "--keys", "0,2", "--json", "{out}"},
        "x.json", 1, {"nan.obj:", "finite"}},
       {"rig_empty", {"rig", in("empty.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "empty.obj: no vertices"}},
+      {"rig_nonmanifold", {"rig", in("nonmanifold1.obj"), "-o", "{out}"}, "x.tgf", 1,
+       {"rig: ", "nonmanifold1.obj: face 801 makes the mesh non-manifold"}},
       {"rig_nan", {"rig", in("nan.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "nan.obj:", "finite"}},
       {"rig_collapsed", {"rig", in("collapsed.obj"), "-o", "{out}"}, "x.tgf", 1, {"rig: ", "collapsed.obj: curve skeleton: ", "length 0"}},
       {"rig_huge", {"rig", in("huge.obj"), "-o", "{out}"}, "x.tgf", 1,
@@ -537,6 +539,8 @@ TEST_F(BadInputCli, UsageErrorsExitTwoWithOneLine) {
        {"--size '100000x100000'"}},
       {"blend_grid", {"blend", "--example", "3.17", "--res", "100000,100000", "-o", "{out}"}, "x.obj", 2,
        {"--res 100000,100000"}},
+      {"rig_azimuth", {"rig", in("good1.obj"), "--png", "x.png", "--azimuth", "nan", "-o", "{out}"}, "x.tgf", 2,
+       {"rig: --azimuth must be a finite number of degrees, got nan"}},
       {"rig_repeat_huge", {"rig", in("good1.obj"), "--repeat", "100000000", "-o", "{out}"}, "x.tgf", 2,
        {"rig: --repeat must lie in [1, 100000], got 100000000"}},
       {"reconstruct_samples", {"reconstruct", in("good1.obj"), "--rows", "1000", "--cols", "1000", "--points", "1000",
@@ -595,6 +599,35 @@ TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
   EXPECT_EQ(readText(c / "patch.obj"), patch_before);
   EXPECT_TRUE(fs::is_symlink(c / "alias.obj"));
   EXPECT_FALSE(fs::exists(c / "patch.glb"));
+}
+
+// Two outputs of one command that land in one file are refused (the weights once replaced the
+// skeleton through a link), and an output that fails late replaces none written before it.
+TEST_F(BadInputCli, RigOutputsAreCheckedBeforeAnyIsWritten) {
+  const fs::path c = dir() / "rig_outputs";
+  fs::create_directories(c / "folder.dmat");
+  fs::remove(c / "link.dmat");
+  fs::create_symlink("skeleton.tgf", c / "link.dmat");
+  writeText(c / "skeleton.tgf", "old\n");
+  const std::string skeleton = (c / "skeleton.tgf").string();
+  const std::vector<std::pair<std::vector<std::string>, std::pair<int, std::string>>> cases{
+      {{"rig", in("good1.obj"), "-o", skeleton, "--weights", (c / "link.dmat").string()},
+       {2, "skeleton.tgf and " + (c / "link.dmat").string() + " name the same file"}},
+      {{"rig", in("good1.obj"), "-o", skeleton, "--weights", (c / "folder.dmat").string()}, {2, "folder.dmat is a folder"}},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Outcome r = runOdeskin(cases[i].first, dir() / "io" / ("rig_outputs" + std::to_string(i)));
+    expectOneErrorLine(r, cases[i].second.first, {cases[i].second.second}, commandLine(cases[i].first));
+    EXPECT_EQ(readText(c / "skeleton.tgf"), "old\n") << commandLine(cases[i].first);
+  }
+  // The message lists the devices there are, on more lines.
+  const Outcome no_device = runOdeskin({"--device", "no-such-device", "rig", in("good1.obj"), "-o", skeleton, "--weights",
+                                        (c / "w.dmat").string(), "--png", (c / "p.png").string()},
+                                       dir() / "io" / "rig_outputs_device");
+  EXPECT_EQ(no_device.status, 1) << no_device.err;
+  EXPECT_NE(no_device.err.find("rig: --png: drawing needs a Vulkan device"), std::string::npos) << no_device.err;
+  EXPECT_EQ(readText(c / "skeleton.tgf"), "old\n");
+  EXPECT_FALSE(fs::exists(c / "w.dmat"));
 }
 
 // A file output that names a folder is refused before any work: `fit ... -o out/` fitted, failed to
