@@ -15,6 +15,7 @@
 #include "engine/offline/fourier_fit.hpp"
 #include "output_paths.hpp"
 #include "render_command.hpp"
+#include "render_session.hpp"
 
 namespace odeskin {
 namespace {
@@ -174,6 +175,10 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   options.pipeline.auto_bones = o.bones;
   options.skeleton_fit = o.skeleton_fit == "lbs" ? SkeletonFit::kLbsOptimal : SkeletonFit::kPerBoneRigid;
   if (!o.png_dir.empty()) {
+    // The heat maps are drawn last; a missing device must fail before the JSON and OBJs are written.
+    if (Result<RenderSession> session = RenderSession::open(device, false, vk::PictureStyle{}); !session.ok()) {
+      return reportFailure(console, Status(session.status().code(), "evaluate: --png: " + session.status().message()));
+    }
     std::error_code made;
     std::filesystem::create_directories(o.png_dir / "obj", made);
     if (made) return reportFailure(console, ioError((o.png_dir / "obj").string() + ": cannot create directory: " + made.message()));

@@ -133,5 +133,16 @@ TEST(EvaluateCommand, BadTimesAreUsageErrors) {
   EXPECT_FALSE(fs::exists(json)) << "a rejected command must not write its JSON";
 }
 
+TEST(EvaluateCommand, PicturesWithoutADeviceFailBeforeAnythingIsWritten) {
+  const fs::path dir = scratch("no_device");
+  EvaluateCommandOptions o = cylinderOptions(dir / "scores.json");
+  o.png_dir = dir / "pictures";
+  Captured io;
+  EXPECT_EQ(runEvaluateCommand(o, io.console, "no-such-device"), kExitFailure);
+  EXPECT_NE(io.err.str().find("evaluate: --png: drawing needs a Vulkan device"), std::string::npos) << io.err.str();
+  EXPECT_FALSE(fs::exists(o.json));
+  EXPECT_FALSE(fs::exists(o.png_dir));
+}
+
 }  // namespace
 }  // namespace odeskin
