@@ -93,6 +93,7 @@ Result<Rig> resolveRig(const ExampleSet& ex, const PipelineOptions& opt, std::st
 Status assignMaterials(const PipelineOptions& opt, const Skeleton& skeleton, const CurveSet& curves, FitOptions& fit) {
   fit.materials = {opt.material};
   std::vector<std::int64_t> part_material(skeleton.boneCount(), 0);
+  std::vector<const std::string*> part_key(skeleton.boneCount(), nullptr);  // the key that set it
   for (const auto& [key, material] : opt.part_materials) {
     std::int64_t bone = -1;
     for (std::size_t b = 0; b < skeleton.names.size(); ++b) {
@@ -102,9 +103,15 @@ Status assignMaterials(const PipelineOptions& opt, const Skeleton& skeleton, con
       bone = std::stoll(key);
     }
     if (bone < 0 || bone >= static_cast<std::int64_t>(skeleton.boneCount())) {
-      return invalidArgument("materials: part '" + key + "' is neither a bone name nor a bone index below " +
-                             std::to_string(skeleton.boneCount()));
+      return invalidArgument(opt.part_materials_source + ": part '" + key +
+                             "' is neither a bone name nor a bone index below " + std::to_string(skeleton.boneCount()));
     }
+    // Two spellings of one bone ("0" and its name, "0" and "00") would leave one material unused.
+    if (const std::string* other = part_key[static_cast<std::size_t>(bone)]) {
+      return invalidArgument(opt.part_materials_source + ": parts '" + *other + "' and '" + key + "' both name bone " +
+                             std::to_string(bone) + "; give each bone one material");
+    }
+    part_key[static_cast<std::size_t>(bone)] = &key;
     part_material[static_cast<std::size_t>(bone)] = static_cast<std::int64_t>(fit.materials.size());
     fit.materials.push_back(material);
   }

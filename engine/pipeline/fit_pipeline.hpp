@@ -22,6 +22,7 @@ struct PipelineOptions {
   SkinningMode skinning = SkinningMode::kLinear;
   Material material = staticMaterial();           // every part unless overridden
   std::map<std::string, Material> part_materials; // part (bone name or index as text) -> material
+  std::string part_materials_source = "materials";  // where part_materials came from, for messages
   double key_tolerance = 1e-4;                    // x longest bounding-box side
   bool pure_fourier = false;
   bool force_auto_rig = false;                    // ignore a rig in the input

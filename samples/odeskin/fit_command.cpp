@@ -111,6 +111,7 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
     if (!choice.ok()) return reportFailure(console, choice.status());
     pipeline.material = choice->default_material;
     pipeline.part_materials = choice->parts;
+    pipeline.part_materials_source = o.materials_json.string();
   }
   const std::string material_source =
       o.materials_json.empty() ? "--material '" + fitMaterialText(o) + "'" : o.materials_json.string();
@@ -135,6 +136,10 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
 
   Result<ExampleSet> examples = readExamples(o);
   if (!examples.ok()) return reportFailure(console, examples.status());
+  if (o.bones > 0 && examples->rig && !pipeline.force_auto_rig) {
+    return reportUsage(console, "fit: --bones applies to the automatic rig, and " + o.inputs.front().string() +
+                                    " brings its own skin; add --rig auto to derive the bones from the poses instead");
+  }
   if (!console.quiet) {
     for (const std::string& w : examples->warnings) console.err << "warning: fit: " << w << "\n";
   }
@@ -147,6 +152,9 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
     // Most fit errors name their file; one about the poses together (an automatic rig that finds
     // no motion, say) is given the poses' names so the line still says which input is at fault.
     const std::string& message = result.status().message();
+    if (!o.materials_json.empty() && message.rfind(o.materials_json.string() + ": ", 0) == 0) {
+      return reportError(console, "fit: " + message, kExitFailure);  // a --materials part no bone has
+    }
     const bool named = std::any_of(examples->pose_labels.begin(), examples->pose_labels.end(), [&](const std::string& label) {
       return message.find(label) != std::string::npos;
     });

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/core/number_text.hpp"
 #include "engine/offline/fourier_fit.hpp"
 #include "file_extension.hpp"
 #include "material_options.hpp"
@@ -31,6 +32,9 @@ FitInputKind fitInputKind(const FitCommandOptions& o, std::string* problem) {
     if (o.inputs.size() != 1) *problem = "fit: give one .gltf/.glb file, or OBJ poses, not both or several";
     else if (libigl_rig) *problem = "fit: --rig SKELETON.tgf applies to OBJ poses; a glTF file brings its own skin";
     else if (!o.bind.empty()) *problem = "fit: --bind applies to OBJ poses; a glTF file's bind mesh is its own";
+    else if (!o.weights.empty() || !o.transforms.empty()) {
+      *problem = "fit: --weights and --transforms apply to OBJ poses with --rig SKELETON.tgf; a glTF file brings its own skin";
+    }
     else if (o.times.empty() && o.targets.empty()) *problem = "fit: a glTF input needs --times a,b,... or --targets i,j,...";
     return FitInputKind::kGltf;
   }
@@ -55,7 +59,9 @@ std::string fitUsageProblem(const FitCommandOptions& o) {
   if (o.terms < 1 || o.terms > kMaxFourierModes) {
     return "fit: --terms " + std::to_string(o.terms) + " is outside 1.." + std::to_string(kMaxFourierModes);
   }
-  if (!(o.key_tolerance >= 0.0) || !std::isfinite(o.key_tolerance)) return "fit: --key-tolerance must be >= 0";
+  if (!(o.key_tolerance > 0.0) || !std::isfinite(o.key_tolerance)) {
+    return "fit: --key-tolerance must be a positive fraction of the box, got " + numberText(o.key_tolerance);
+  }
   if (!(o.segment_seconds > 0.0) || !std::isfinite(o.segment_seconds)) return "fit: --segment-seconds must be positive";
   if (o.bones < 0) return "fit: --bones must be >= 0 (0: chosen from the mesh)";
   if (o.bones > 0 && !o.rig.empty() && o.rig != "auto") return "fit: --bones applies to the automatic rig (--rig auto)";

@@ -165,10 +165,17 @@ TEST(FitPipeline, PerPartMaterialsAndBadPartNames) {
   options.part_materials["3"] = skinMaterial();
   const PipelineResult result = fitOrFail(*ex, options);
   EXPECT_EQ(result.asset.materials.size(), 3u);
+  options.part_materials_source = "parts.json";
   options.part_materials["no-such-bone"] = skinMaterial();
   Result<PipelineResult> bad = runFitPipeline(*ex, options);
   ASSERT_FALSE(bad.ok());
-  EXPECT_NE(bad.status().message().find("no-such-bone"), std::string::npos);
+  EXPECT_EQ(bad.status().message(), "parts.json: part 'no-such-bone' is neither a bone name nor a bone index below 4");
+  // Two spellings of one bone: one material would go unused, by the map's order, not the file's.
+  options.part_materials.erase("no-such-bone");
+  options.part_materials["01"] = staticMaterial();
+  Result<PipelineResult> twice = runFitPipeline(*ex, options);
+  ASSERT_FALSE(twice.ok());
+  EXPECT_EQ(twice.status().message(), "parts.json: parts '01' and 'bone1' both name bone 1; give each bone one material");
 }
 
 }  // namespace

@@ -813,6 +813,10 @@ TEST_F(BadInputCli, GltfTimesOutsideTheAnimationAreFittedWithAWarning) {
   const Outcome quiet = runOdeskin({"fit", glb, "--times", "0.5,100", "-q", "-o", (out / "q.odsk").string()}, out);
   EXPECT_EQ(quiet.status, 0) << quiet.err;
   EXPECT_EQ(quiet.err, "");
+  // The file's skin is the rig, so --bones would be ignored; with --rig auto it applies.
+  const Outcome bones = runOdeskin({"fit", glb, "--times", "0,1", "--bones", "3", "-o", (out / "b.odsk").string()}, out);
+  expectOneErrorLine(bones, 2, {"fit: --bones applies to the automatic rig, and " + glb + " brings its own skin"}, "--bones");
+  EXPECT_FALSE(fs::exists(out / "b.odsk"));
 }
 
 // Output that never reached stdout (here a pipe nobody reads; a full disk alike) fails the command.

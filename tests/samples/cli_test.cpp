@@ -676,6 +676,7 @@ TEST(FitOptions, UsageProblems) {
       {[](FitCommandOptions& o) { o.terms = 0; }, "--terms 0 is outside 1..64"},
       {[](FitCommandOptions& o) { o.terms = 65; }, "--terms 65 is outside 1..64"},
       {[](FitCommandOptions& o) { o.key_tolerance = -1e-3; }, "--key-tolerance"},
+      {[](FitCommandOptions& o) { o.key_tolerance = 0.0; }, "--key-tolerance must be a positive fraction of the box, got 0"},
       {[](FitCommandOptions& o) { o.segment_seconds = 0.0; }, "--segment-seconds must be positive"},
       {[](FitCommandOptions& o) { o.bones = -2; }, "--bones must be >= 0"},
       {[](FitCommandOptions& o) { o.material = "rubber"; }, "--material: material 'rubber'"},
@@ -714,6 +715,18 @@ TEST(FitOptions, UsageProblems) {
          o.rig = "skeleton.tgf";
        },
        "a glTF file brings its own skin"},
+      {[](FitCommandOptions& o) {
+         o.inputs = {"walk.glb"};
+         o.times = {1.0};
+         o.weights = "w.dmat";
+       },
+       "--weights and --transforms apply to OBJ poses with --rig SKELETON.tgf"},
+      {[](FitCommandOptions& o) {
+         o.inputs = {"walk.glb"};
+         o.times = {1.0};
+         o.transforms = {"1.Tmat"};
+       },
+       "--weights and --transforms apply to OBJ poses"},
   };
   for (const Case& c : cases) {
     FitCommandOptions o = objFit();
