@@ -14,6 +14,7 @@
 #include "engine/visual/compose.hpp"
 #include "engine/visual/png_writer.hpp"
 #include "engine/visual/vertex_error.hpp"
+#include "output_paths.hpp"
 #include "play_command.hpp"
 #include "progress.hpp"
 #include "render_inputs.hpp"
@@ -90,6 +91,20 @@ std::vector<std::filesystem::path> frameNames(const std::string& output, std::si
     names.push_back(path.parent_path() / (path.stem().string() + number + path.extension().string()));
   }
   return names;
+}
+
+// The first picture that would replace an input (or, for --strip, one of the frames); "" when none.
+std::string outputClash(const RenderOptions& o) {
+  std::vector<std::filesystem::path> inputs = o.inputs;
+  if (o.heat) inputs.push_back(*o.heat);
+  const std::vector<std::filesystem::path> files =
+      o.turntable > 0 ? frameNames(o.output, o.turntable) : std::vector<std::filesystem::path>{o.output};
+  for (const std::filesystem::path& file : files) {
+    if (overwritesInput(file, inputs)) return file.string() + " is an input; it would be overwritten";
+    if (sameOutputFile(file, o.strip)) return "--strip " + o.strip + " is also the name of a turntable frame";
+  }
+  if (overwritesInput(o.strip, inputs)) return o.strip + " is an input; it would be overwritten";
+  return {};
 }
 
 Status writePicture(const std::filesystem::path& path, const visual::Image& image) {
@@ -257,6 +272,7 @@ void printSummary(const RenderOptions& o, const Panels& panels, const RenderRepo
 
 int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* report) {
   if (const std::string problem = usageProblem(o); !problem.empty()) return reportUsage(console, problem);
+  if (const std::string clash = outputClash(o); !clash.empty()) return reportUsage(console, "render: " + clash);
 
   int load_code = kExitFailure;
   Result<Panels> loaded = loadPanels(o, load_code);

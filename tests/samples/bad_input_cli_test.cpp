@@ -560,7 +560,8 @@ TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
   fs::copy_file(in("cyl.odsk"), c / "asset.odsk", fs::copy_options::overwrite_existing);
   fs::copy_file(in("cyl.odsk"), c / "frame1.obj", fs::copy_options::overwrite_existing);
   fs::copy_file(in("patch.json"), c / "patch.obj", fs::copy_options::overwrite_existing);
-  for (const char* link : {"alias.obj", "asset_alias.obj", "asset_alias.glb"}) fs::remove(c / link);
+  for (const char* link : {"alias.obj", "alias.png", "asset_alias.obj", "asset_alias.glb"}) fs::remove(c / link);
+  fs::create_symlink("pose1.obj", c / "alias.png");
   fs::create_symlink("pose1.obj", c / "alias.obj");
   fs::create_symlink("asset.odsk", c / "asset_alias.obj");
   fs::create_symlink("asset.odsk", c / "asset_alias.glb");
@@ -579,6 +580,7 @@ TEST_F(BadInputCli, OutputsThatWouldReplaceAnInputAreRefused) {
       {{"play", asset, "--fps", "2", "-o", (c / "out.glb").string(), "--materials", (c / "out.glb").string()},
        "out.glb is an input"},
       {{"export", asset, "-o", (c / "asset_alias.glb").string()}, "asset_alias.glb is an input"},
+      {{"render", pose1, "-o", (c / "alias.png").string()}, "alias.png is an input"},
       {{"surface", (c / "patch.obj").string(), "-o", (c / "patch.glb").string(), "--obj"}, "patch.obj is an input"},
   };
   const std::string pose1_before = readText(c / "pose1.obj");

@@ -285,6 +285,14 @@ TEST_F(RenderCommand, BadOptionsAreUsageErrors) {
   RenderOptions strip = options({obj}, dir / "x.png");
   strip.strip = (dir / "s.png").string();
   cases.push_back({strip, "--strip needs --turntable"});
+  RenderOptions strip_frame = options({obj}, dir / "turn.png");
+  strip_frame.turntable = 4;
+  strip_frame.strip = (dir / "turn_001.png").string();
+  cases.push_back({strip_frame, "turn_001.png is also the name of a turntable frame"});
+  RenderOptions strip_pattern = options({obj}, dir / "turn_%02d.png");
+  strip_pattern.turntable = 4;
+  strip_pattern.strip = (dir / "turn_03.png").string();
+  cases.push_back({strip_pattern, "turn_03.png is also the name of a turntable frame"});
   RenderOptions curves = options({obj}, dir / "x.png");
   curves.curves = true;
   cases.push_back({curves, "--curves needs a .odsk input"});
