@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <set>
 
+#include "engine/core/finite_vector.hpp"
 #include "engine/core/machine_memory.hpp"
 #include "engine/core/number_text.hpp"
 #include "engine/io/obj_io.hpp"
@@ -202,6 +203,13 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   }
   report.backend = backend;
   if (!mesh.ok()) return input_error(mesh.status());
+  // The network parsed and solved, but its numbers (a derivative of 1e-300, a point of 1e308) left
+  // the surface beyond double precision: that is the network's fault, not the output file's.
+  const auto bad = std::find_if(mesh->positions.begin(), mesh->positions.end(), [](const Vec3& p) { return !isFinite(p); });
+  if (bad != mesh->positions.end()) {
+    return input_error(outOfRange("the surface is not finite at vertex " + std::to_string(bad - mesh->positions.begin()) +
+                                  ": a curve point or derivative is too large or too small for the solve"));
+  }
   report.vertices = mesh->positions.size();
   report.triangles = 2 * mesh->faces.faceCount();
   report.rim_edges = unsharedEdges(mesh->faces).size();

@@ -169,6 +169,8 @@ TEST(SurfaceCommand, BadNetworksNameTheFileAndFieldAndLeaveNothing) {
   const fs::path zero_rho = writeText(dir / "zero_rho.json", replaced(sheet, "\"rho\": 1", "\"rho\": 0"));
   // One control point at 1e50: the surface reaches beyond what glTF's float32 positions hold.
   const fs::path far = writeText(dir / "far.json", replaced(sheet, "[3, 0, 0]]}", "[3, 0, 1e50]]}"));
+  // At 1e308 the solve itself overflows: the network is named, not the output file.
+  const fs::path inf = writeText(dir / "inf.json", replaced(sheet, "[3, 0, 0]]}", "[3, 0, 1e308]]}"));
   auto options = [&](const fs::path& network) {
     SurfaceCommandOptions o;
     o.network = network;
@@ -187,6 +189,7 @@ TEST(SurfaceCommand, BadNetworksNameTheFileAndFieldAndLeaveNothing) {
       {options(zero_rho), zero_rho.string() + ": patch (row 0, column 0): ode6: rho = 0"},
       {options(far), far.string() + ": surface glTF: vertex"},
       {options(far), "is outside glTF's float32 range"},
+      {options(inf), inf.string() + ": the surface is not finite at vertex "},
       {options(kNetworks / "fig4_1b.json"), "erratum F9"},
       {options(dir / "absent.json"), (dir / "absent.json").string() + ": cannot open"},
   };
