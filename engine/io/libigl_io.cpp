@@ -160,9 +160,14 @@ Result<DenseMatrix> parseDmat(const std::string& text, const std::string& source
   return m;
 }
 
+// How far a row of weights may stray from a partition of unity: its sum from 1, and each weight
+// below 0. Solvers such as libigl's bounded biharmonic weights leave entries like -1e-9 where a
+// bone has no say; within the tolerance they are read as zeros.
+constexpr double kWeightTolerance = 1e-6;
+
 Result<Influences> readWeightsDmat(const std::filesystem::path& path, std::size_t vertex_count,
                                    std::size_t bone_count) {
-  ODESKIN_ASSIGN_OR_RETURN(const DenseMatrix w, readDmat(path));
+  ODESKIN_ASSIGN_OR_RETURN(DenseMatrix w, readDmat(path));
   if (w.rows != vertex_count || w.cols != bone_count) {
     return invalidArgument(path.string() + ": weights are " + std::to_string(w.rows) + " x " + std::to_string(w.cols) +
                            ", expected " + std::to_string(vertex_count) + " vertices x " + std::to_string(bone_count) +
@@ -171,13 +176,15 @@ Result<Influences> readWeightsDmat(const std::filesystem::path& path, std::size_
   for (std::size_t v = 0; v < w.rows; ++v) {
     double sum = 0.0;
     for (std::size_t b = 0; b < w.cols; ++b) {
-      if (w.at(v, b) < 0.0) {
+      double& weight = w.values[v * w.cols + b];
+      if (weight < -kWeightTolerance) {
         return invalidArgument(path.string() + ": vertex " + std::to_string(v) + " has weight " +
-                               messageNumber(w.at(v, b)) + " < 0 for bone " + std::to_string(b));
+                               messageNumber(weight) + " < 0 for bone " + std::to_string(b));
       }
-      sum += w.at(v, b);
+      sum += weight;
+      weight = std::max(weight, 0.0);
     }
-    if (std::abs(sum - 1.0) > 1e-6) {
+    if (std::abs(sum - 1.0) > kWeightTolerance) {
       return invalidArgument(path.string() + ": weights of vertex " + std::to_string(v) + " sum to " +
                              messageNumber(sum) + ", not 1");
     }
