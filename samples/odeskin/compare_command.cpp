@@ -28,6 +28,9 @@ std::string usageProblem(const CompareOptions& o) {
   }
   if (o.heat_max && o.ply.empty()) return "compare: --heat-max needs -o OUT.ply";
   if (o.t && !std::isfinite(*o.t)) return "compare: --t must be a number";
+  if (o.t && lowerExtension(o.mesh) == ".obj") {
+    return "compare: --t applies to a .odsk or .glb/.gltf MESH; " + o.mesh.string() + " is one pose";
+  }
   if (!o.ply.empty() && lowerExtension(o.ply) != ".ply") {
     return "compare: " + o.ply.string() + ": write .ply (a mesh coloured by its error)";
   }
@@ -37,7 +40,7 @@ std::string usageProblem(const CompareOptions& o) {
     if (overwritesInput(out, inputs)) return "compare: " + out.string() + " is an input; it would be overwritten";
     if (const std::string why = folderNotFile(out); !why.empty()) return "compare: " + out.string() + " " + why;
   }
-  if (!o.ply.empty() && !o.json.empty() && o.ply.lexically_normal() == o.json.lexically_normal()) {
+  if (sameOutputFile(o.ply, o.json)) {
     return "compare: -o and --json name the same file";
   }
   return {};

@@ -236,7 +236,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   std::vector<double> times;
   if (o.t) {
     if (*o.t < 0.0 || *o.t > t_end) {
-      return reportUsage(console, "play: --t " + numberText(*o.t) + " is outside [0, " + numberText(t_end) +
+      return reportUsage(console, "play: --t " + messageNumber(*o.t) + " is outside [0, " + numberText(t_end) +
                                       "]: " + o.asset.string() + " has " + std::to_string(asset.key_poses.size()) +
                                       " key poses");
     }
@@ -261,6 +261,10 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   }
   if (const std::string clash = overwrittenInput(o, files, times.size()); !clash.empty()) {
     return reportUsage(console, "play: " + clash + " is an input; it would be overwritten");
+  }
+  // Before the first frame is written: a folder in frame 3's place left frames 0-2 behind.
+  for (const std::filesystem::path& file : files) {
+    if (const std::string why = folderNotFile(file); !why.empty()) return reportUsage(console, "play: " + file.string() + " " + why);
   }
   // .glb: every frame goes into one file (morph target per frame, STEP weights animation).
   const bool glb = lowerExtension(o.output) == ".glb";

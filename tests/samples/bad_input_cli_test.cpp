@@ -637,6 +637,7 @@ TEST_F(BadInputCli, RigOutputsAreCheckedBeforeAnyIsWritten) {
 TEST_F(BadInputCli, FileOutputsThatNameAFolderAreRefusedBeforeAnyWork) {
   const fs::path c = dir() / "folders";
   fs::create_directories(c / "existing");
+  fs::create_directories(c / "seq" / "f_0003.obj");
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
       {{"fit", in("good1.obj"), in("good2.obj"), "-o", (c / "new1").string() + "/"}, "new1/ names a folder"},
       {{"fit", in("good1.obj"), in("good2.obj"), "-o", (c / "existing").string()}, "existing is a folder"},
@@ -644,12 +645,14 @@ TEST_F(BadInputCli, FileOutputsThatNameAFolderAreRefusedBeforeAnyWork) {
        "new2/ names a folder"},
       {{"bench", "--no-fit", "--sizes", "1000", "--terms", "3", "--backends", "cpu_ref", "--json", (c / "new3").string() + "/"},
        "new3/ names a folder"},
+      {{"play", in("cyl.odsk"), "--fps", "4", "-o", (c / "seq" / "f_%04d.obj").string()}, "f_0003.obj is a folder"},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Outcome r = runOdeskin(cases[i].first, dir() / "io" / ("folders" + std::to_string(i)));
     expectOneErrorLine(r, 2, {cases[i].second}, commandLine(cases[i].first));
   }
   for (const char* name : {"new1", "new2", "new3"}) EXPECT_FALSE(fs::exists(c / name)) << name;
+  EXPECT_FALSE(fs::exists(c / "seq" / "f_0000.obj")) << "frames before the folder were written";
 }
 
 // A device behind an input's name is refused before any read; /dev/zero was read until memory ran

@@ -273,6 +273,7 @@ TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   std::vector<CommandCase<PlayOptions>> cases;
   cases.push_back({atTime(1.5, dir / "x.obj"), "--t 1.5 is outside [0, 1]"});
   cases.push_back({atTime(-0.1, dir / "x.obj"), "outside [0, 1]"});
+  cases.push_back({atTime(1.0000001, dir / "x.obj"), "--t 1.0000001 is outside [0, 1]"});  // once "--t 1"
   cases.push_back({atTime(std::nan(""), dir / "x.obj"), "--t must be a number"});
   cases.push_back({atTime(0.5, dir / "x.gltf"), "write .glb"});
   cases.push_back({atTime(0.5, dir / "x.ply"), "unknown output format"});
@@ -394,6 +395,10 @@ TEST_F(Cli, CompareScoresAnAssetAgainstAPose) {
   c.ply = dir / "folder.ply";
   fs::create_directories(c.ply);
   cases.push_back({c, "folder.ply is a folder"});
+  c = base;
+  c.mesh = dir / "end.obj";
+  c.t = 0.5;  // an OBJ is one pose: the time was ignored
+  cases.push_back({c, "--t applies to a .odsk or .glb/.gltf MESH; "});
   testing::expectRejected(cases, [](const CompareOptions& options, Captured& out) { return runCompareCommand(options, out.console); },
                           kExitUsage, "compare");
   EXPECT_TRUE(fs::is_empty(usage)) << "a rejected command wrote something";
