@@ -268,6 +268,7 @@ Status readShapes(const json& root, NetworkDescription& d) {
   if (root.contains("patch_shapes")) {
     const json& list = root["patch_shapes"];
     if (!list.is_array()) return fail("patch_shapes", "expected an array of {row, column, rho, eta, lambda}");
+    std::map<std::uint64_t, std::size_t> given;  // patch -> the entry that shaped it
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string path = jsonElement("patch_shapes", i);
       ODESKIN_ASSIGN_OR_RETURN(const Ode6Shape s, shape(list[i], path, true));
@@ -278,6 +279,12 @@ Status readShapes(const json& root, NetworkDescription& d) {
       if (row >= rows || column >= d.columns) {
         return fail(path, "patch (" + std::to_string(row) + ", " + std::to_string(column) + ") is outside the " +
                               std::to_string(rows) + " x " + std::to_string(d.columns) + " network");
+      }
+      // A second entry for one patch would win silently, by its place in the list.
+      const auto [earlier, first] = given.emplace(std::uint64_t{row} * d.columns + column, i);
+      if (!first) {
+        return fail(path, "patch (" + std::to_string(row) + ", " + std::to_string(column) + ") is already shaped by " +
+                              jsonElement("patch_shapes", earlier->second));
       }
       d.shapes[std::size_t{row} * d.columns + column] = s;
     }

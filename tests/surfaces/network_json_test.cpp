@@ -105,6 +105,10 @@ TEST(NetworkJson, ErrorsNameTheField) {
       {{replaced(kSmall, "\"version\": 1, ", ""), "version: missing"}},
       {{replaced(kSmall, "\"shape\"", "\"patch_shapes\": [{\"row\": 1, \"column\": 0, \"rho\": 1, \"eta\": 1, \"lambda\": 1}], \"shape\""),
         "patch_shapes[0]: patch (1, 0) is outside the 1 x 2 network"}},
+      {{replaced(kSmall, "\"shape\"",
+                 "\"patch_shapes\": [{\"row\": 0, \"column\": 1, \"rho\": 1, \"eta\": 1, \"lambda\": 1}, "
+                 "{\"row\": 0, \"column\": 1, \"rho\": 1, \"eta\": 2, \"lambda\": 1}], \"shape\""),
+        "patch_shapes[1]: patch (0, 1) is already shaped by patch_shapes[0]"}},
       {{replaced(kSmall, "\"shape\"", "\"row_shapes\": [], \"shape\""), "row_shapes: expected one shape per row (1), got 0"}},
       {{replaced(kSmall, "1}\n}", "1},\n}"), "invalid JSON"}},
       {{"[1, 2]", "(top level): expected an object"}},
