@@ -63,9 +63,13 @@ Result<Rig> resolveRig(const ExampleSet& ex, const PipelineOptions& opt, std::st
       const std::string& message = rig.status().message();
       return message.starts_with("auto rig: ") ? rig.status() : Status(rig.status().code(), "auto rig: " + message);
     }
-    *summary = "auto: " + std::to_string(report.bones) + " bones from " + std::to_string(k_count) +
-               " poses (LBS error mean " + scientific(report.mean_error) + ", max " + scientific(report.max_error) +
-               " of the box)";
+    *summary = "auto: " + std::to_string(report.bones) + " bones";
+    // Clusters too small or too flat for a bone are dropped: say so when fewer came than were asked for.
+    if (opt.auto_bones > report.bones) {
+      *summary += " (" + std::to_string(opt.auto_bones) + " asked for; the poses' motion separates no more)";
+    }
+    *summary += " from " + std::to_string(k_count) + " poses (LBS error mean " + scientific(report.mean_error) + ", max " +
+                scientific(report.max_error) + " of the box)";
     return rig;
   }
   Rig rig = *ex.rig;

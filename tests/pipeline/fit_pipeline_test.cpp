@@ -145,6 +145,21 @@ TEST(FitPipeline, FacePosesOpenSurfaceAutoRig) {
   expectKeysReproduced(*ex, result, 1e-4);
 }
 
+TEST(FitPipeline, FewerAutomaticBonesThanAskedForAreReported) {
+  std::vector<std::filesystem::path> paths;
+  for (int k = 1; k <= 3; ++k) {
+    paths.push_back(testing::dataDir() / "cylinder" / "poses-2" / ("cylinder-" + std::to_string(k) + ".obj"));
+  }
+  Result<ExampleSet> ex = readObjSequence(paths);
+  ASSERT_TRUE(ex.ok()) << ex.status().toString();
+  PipelineOptions options;
+  options.auto_bones = 20;  // the cylinder's motion separates about half as many
+  const PipelineResult result = fitOrFail(*ex, options);
+  EXPECT_LT(result.asset.bone_names.size(), 20u);
+  EXPECT_NE(result.rig_summary.find(" (20 asked for; the poses' motion separates no more) from 3 poses"), std::string::npos)
+      << result.rig_summary;
+}
+
 TEST(FitPipeline, PureFourierReportsItsKeyErrorInstead) {
   const auto paths = horseFrames({1, 9});
   Result<ExampleSet> ex = readObjSequence(paths);
