@@ -2,11 +2,35 @@
 #include "baked_export.hpp"
 
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include "../core/number_text.hpp"
 #include "../io/gltf_baked_writer.hpp"
 
 namespace odeskin {
+namespace {
+
+// The frame times: f / fps up to the end, then the end itself. The count is checked in double before
+// any time is stored: a huge segment length (or an end beyond double's range) would otherwise fill
+// memory frame by frame, or loop forever, before the size check could refuse it.
+Result<std::vector<double>> frameSeconds(double end_seconds, double fps, std::size_t vertices) {
+  const double last = end_seconds * (1.0 - 1e-12);
+  // The grid's count to within rounding; the exact count is checked again once it is known.
+  ODESKIN_TRY(checkBakedSize(std::floor(last * fps) + 1.0, vertices));
+  std::vector<double> seconds;
+  for (std::size_t f = 0;; ++f) {
+    const double s = static_cast<double>(f) / fps;
+    if (s > last) break;
+    seconds.push_back(s);
+  }
+  // The end is a frame too, unless the grid already stops within float32 reach of it.
+  if (static_cast<float>(end_seconds) > static_cast<float>(seconds.back())) seconds.push_back(end_seconds);
+  ODESKIN_TRY(checkBakedSize(seconds.size(), vertices));
+  return seconds;
+}
+
+}  // namespace
 
 Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlayer& player, const std::filesystem::path& path,
                                      double fps, const std::string& generator,
@@ -14,19 +38,15 @@ Result<BakedExport> writeBakedExport(const DeformAsset& asset, const DeformPlaye
                                      const gltf::MaterialLibrary* materials, bool quantize) {
   const double t_end = static_cast<double>(player.segmentCount());
   const double end_seconds = t_end * asset.segment_seconds;
-  std::vector<double> seconds;
-  for (std::size_t f = 0;; ++f) {
-    const double s = static_cast<double>(f) / fps;
-    if (s > end_seconds * (1.0 - 1e-12)) break;
-    seconds.push_back(s);
-  }
-  // The end is a frame too, unless the grid already stops within float32 reach of it.
-  if (static_cast<float>(end_seconds) > static_cast<float>(seconds.back())) seconds.push_back(end_seconds);
-
   const std::size_t out_vertices = outputVertexCount(asset);
-  if (Status s = checkBakedSize(seconds.size(), out_vertices); !s.ok()) {
-    return Status(s.code(), "export: " + s.message() + "; lower --fps");
+  Result<std::vector<double>> timed = frameSeconds(end_seconds, fps, out_vertices);
+  if (!timed.ok()) {
+    // Segments x segment length overflows double when the length is near its maximum.
+    const std::string length = std::isfinite(end_seconds) ? numberText(end_seconds) + " s" : "beyond double's range";
+    return Status(timed.status().code(), "export: " + timed.status().message() + " (" + length + " at " +
+                                             numberText(fps) + " fps); lower --fps");
   }
+  const std::vector<double>& seconds = *timed;
   std::vector<Vec3> positions(asset.vertexCount());
   std::vector<std::vector<Vec3>> frames, normals;
   frames.reserve(seconds.size());

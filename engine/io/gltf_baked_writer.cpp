@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "../core/finite_vector.hpp"
+#include "../core/number_text.hpp"
 #include "../core/render_primitives.hpp"
 #include "gltf_buffer_builder.hpp"
 #include "gltf_quantized.hpp"
@@ -206,6 +208,13 @@ Status checkBakedSize(std::size_t frames, std::size_t vertices) {
   if (bytes < 2147483648.0) return okStatus();
   return invalidArgument("baking " + std::to_string(frames) + " frames of " + std::to_string(vertices) +
                          " vertices needs 2 GiB or more");
+}
+
+Status checkBakedSize(double frames, std::size_t vertices) {
+  // Below 2^53 the count is exact in double and prints as the integer the other overload prints.
+  if (frames < 9007199254740992.0) return checkBakedSize(static_cast<std::size_t>(std::max(frames, 0.0)), vertices);
+  const std::string count = std::isfinite(frames) ? numberText(frames) : "more than " + numberText(std::numeric_limits<double>::max());
+  return invalidArgument("baking " + count + " frames of " + std::to_string(vertices) + " vertices needs 2 GiB or more");
 }
 
 Status writeGlbAtomically(const std::filesystem::path& path, const tinygltf::Model& model) {

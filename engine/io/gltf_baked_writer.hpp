@@ -61,6 +61,10 @@ Status writeBakedGlb(const std::filesystem::path& path, const FaceList& faces,
 // buffer, and the frames are held in memory (in double) before the file is written. Callers check
 // before playing any frame and add how to lower the count.
 Status checkBakedSize(std::size_t frames, std::size_t vertices);
+// The same for a frame count computed in double (which may exceed std::size_t, or be infinite), so
+// a caller can check before it stores a single frame time; "baking more than 1.79769e+308 frames" when
+// the count is infinite.
+Status checkBakedSize(double frames, std::size_t vertices);
 
 // Writes `model` as one binary glTF through "<path>.partial" and a rename, so a failure never leaves
 // a half-written file at `path` (the partial file is removed). kIoError naming the path.

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -628,6 +629,25 @@ TEST_F(GltfExportTest, BakeOnRequest) {
   EXPECT_TRUE(report->bake_reason.empty());
   EXPECT_EQ(report->frames, 7u);  // 0 .. 1.5 s at 4 fps
   EXPECT_EQ(report->morph_targets, 6u);
+}
+
+// A huge segment length is refused at once, from the frame count: the times were stored frame by
+// frame before the size check, which took memory without limit (and never ended past 1e308 s).
+TEST_F(GltfExportTest, HugeBakeIsRefusedBeforeAnyFrame) {
+  DeformAsset asset = armAsset({skinMaterial()}, false);
+  GltfExportOptions options;
+  options.bake = true;
+  for (const double segment_seconds : {1e6, 1e300, std::numeric_limits<double>::max()}) {
+    asset.segment_seconds = segment_seconds;
+    Result<GltfExportReport> report = exportGltf(asset, dir_ / "huge.glb", options);
+    ASSERT_FALSE(report.ok()) << segment_seconds;
+    EXPECT_EQ(report.status().code(), StatusCode::kInvalidArgument);
+    EXPECT_NE(report.status().message().find("export: baking "), std::string::npos) << report.status().message();
+    EXPECT_NE(report.status().message().find("needs 2 GiB or more"), std::string::npos) << report.status().message();
+  }
+  EXPECT_NE(exportGltf(asset, dir_ / "huge.glb", options).status().message().find("baking more than 1.79769e+308 frames"),
+            std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ / "huge.glb"));
 }
 
 TEST_F(GltfExportTest, UnwritableOutputLeavesNoFile) {
