@@ -3,11 +3,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <ostream>
 #include <set>
 #include <string>
 #include <system_error>
 
+#include "engine/core/number_text.hpp"
 #include "engine/core/smoothing_groups.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/kernels/fourier_deform_job.hpp"
@@ -27,6 +29,26 @@ std::string bytesText(std::uintmax_t bytes) {
     std::snprintf(text, sizeof text, "%ju B (%.1f MiB)", bytes, static_cast<double>(bytes) / (1024.0 * 1024.0));
   }
   return text;
+}
+
+// Sizes and counts of the bake, which a huge segment length takes past std::size_t (or past
+// double's range, to infinity): integers while double holds them exactly, numbers beyond.
+constexpr double kExactInDouble = 9007199254740992.0;  // 2^53
+
+std::string bytesText(double bytes) {
+  if (bytes < kExactInDouble) return bytesText(static_cast<std::uintmax_t>(bytes));
+  return numberText(bytes) + " B";
+}
+
+std::string countText(double count) {
+  if (count < kExactInDouble) return std::to_string(static_cast<std::uint64_t>(count));
+  return numberText(count);
+}
+
+// Segments x segment length overflows double when both are huge.
+std::string secondsText(double seconds) {
+  if (std::isfinite(seconds)) return numberText(seconds);
+  return "more than " + numberText(std::numeric_limits<double>::max());
 }
 
 std::string ratioText(double ratio) {
@@ -63,10 +85,10 @@ AssetStats assetStats(const DeformAsset& asset, std::uintmax_t file_bytes) {
   Result<PackedDeformData> packed = packDeformAsset(asset);
   s.gpu_bytes = packed.ok() ? packed->byteSize() : 0;
   s.pose_bytes = s.key_poses * s.vertices * 3 * kFloatBytes;
-  s.baked_frames = static_cast<std::size_t>(std::llround(s.seconds * kBakedFps)) + 1;
-  s.baked_bytes = s.baked_frames * s.vertices * 3 * kFloatBytes;
+  s.baked_frames = std::round(s.seconds * kBakedFps) + 1.0;
+  s.baked_bytes = s.baked_frames * static_cast<double>(s.vertices * 3 * kFloatBytes);
   s.ratio_to_poses = s.pose_bytes > 0 ? static_cast<double>(file_bytes) / static_cast<double>(s.pose_bytes) : 0.0;
-  s.ratio_to_baked = s.baked_bytes > 0 ? static_cast<double>(file_bytes) / static_cast<double>(s.baked_bytes) : 0.0;
+  s.ratio_to_baked = s.baked_bytes > 0.0 ? static_cast<double>(file_bytes) / s.baked_bytes : 0.0;
   return s;
 }
 
@@ -85,7 +107,7 @@ void printAssetStats(std::ostream& out, const std::filesystem::path& path, const
   out << "parts:          " << s.parts << (s.curves > 0 && s.parts == 0 ? " (curves not stored)" : "") << "\n";
   out << "terms N:        " << s.terms << " (" << coefficientsPerCurve(s.terms) << " coefficients per curve)\n";
   out << "key poses:      " << s.key_poses << " (" << s.segments << " segment" << (s.segments == 1 ? "" : "s") << ", "
-      << s.seconds << " s)\n";
+      << secondsText(s.seconds) << " s)\n";
   out << "bones:          " << s.bones << "\n";
   out << "materials:      " << s.materials << "\n";
   out << "coefficients:   " << s.coefficient_floats << " floats (segments x curves x (2N+2) x 3)\n";
@@ -94,7 +116,11 @@ void printAssetStats(std::ostream& out, const std::filesystem::path& path, const
   out << "GPU bytes:      " << bytesText(s.gpu_bytes) << "\n";
   out << "every pose:     " << bytesText(s.pose_bytes) << " (K x V x 3 float32); asset / that = "
       << ratioText(s.ratio_to_poses) << "\n";
-  out << "baked 30 fps:   " << bytesText(s.baked_bytes) << " (" << s.baked_frames
+  if (!std::isfinite(s.baked_frames)) {
+    out << "baked 30 fps:   more frames than a double can count (the playback length overflows)\n";
+    return;
+  }
+  out << "baked 30 fps:   " << bytesText(s.baked_bytes) << " (" << countText(s.baked_frames)
       << " frames x V x 3 float32); asset / that = " << ratioText(s.ratio_to_baked) << "\n";
 }
 

@@ -34,8 +34,9 @@ struct AssetStats {
   std::uintmax_t file_bytes = 0;      // the .odsk file
   std::size_t gpu_bytes = 0;          // packDeformAsset(asset).byteSize()
   std::size_t pose_bytes = 0;         // K x V x 3 float32: every example pose
-  std::size_t baked_frames = 0;       // round(seconds x 30) + 1
-  std::size_t baked_bytes = 0;        // baked_frames x V x 3 float32
+  // In double: a huge segment length makes them larger than std::size_t holds, or infinite.
+  double baked_frames = 0.0;          // round(seconds x 30) + 1
+  double baked_bytes = 0.0;           // baked_frames x V x 3 float32
   double ratio_to_poses = 0.0;        // file_bytes / pose_bytes
   double ratio_to_baked = 0.0;        // file_bytes / baked_bytes
 };

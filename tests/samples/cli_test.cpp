@@ -443,8 +443,8 @@ TEST_F(Cli, InfoNumbers) {
   EXPECT_EQ(s.remainders, asset_->segments[0].remainders.size());
   EXPECT_EQ(s.file_bytes, bytes);
   EXPECT_EQ(s.pose_bytes, 2 * v * 3 * 4);
-  EXPECT_EQ(s.baked_frames, 31u);  // 1 s at 30 fps, both ends
-  EXPECT_EQ(s.baked_bytes, 31 * v * 3 * 4);
+  EXPECT_EQ(s.baked_frames, 31.0);  // 1 s at 30 fps, both ends
+  EXPECT_EQ(s.baked_bytes, static_cast<double>(31 * v * 3 * 4));
   EXPECT_DOUBLE_EQ(s.ratio_to_poses, static_cast<double>(bytes) / static_cast<double>(2 * v * 12));
   EXPECT_DOUBLE_EQ(s.ratio_to_baked, static_cast<double>(bytes) / static_cast<double>(31 * v * 12));
   EXPECT_GT(s.gpu_bytes, 0u);
@@ -456,7 +456,7 @@ TEST_F(Cli, InfoNumbers) {
   longer.segments.push_back(longer.segments[0]);
   const AssetStats l = assetStats(longer, bytes);
   EXPECT_EQ(l.segments, 2u);
-  EXPECT_EQ(l.baked_frames, 151u);
+  EXPECT_EQ(l.baked_frames, 151.0);
   EXPECT_EQ(l.coefficient_floats, 2u * 21u * 20u * 3u);
   EXPECT_EQ(l.pose_bytes, 3 * v * 12);
 
@@ -468,6 +468,22 @@ TEST_F(Cli, InfoNumbers) {
   EXPECT_NE(text.find("coefficients:   1260 floats"), std::string::npos) << text;
   EXPECT_NE(text.find("31 frames x V x 3 float32"), std::string::npos) << text;
   EXPECT_NE(text.find("file bytes:     " + std::to_string(bytes) + " B"), std::string::npos) << text;
+
+  // A huge segment length: the bake is counted in double, where std::size_t wrapped around and
+  // printed "9223372036854775809 frames"; past double's range it is said so.
+  DeformAsset huge = *asset_;
+  huge.segment_seconds = 1e300;
+  const AssetStats huge_stats = assetStats(huge, bytes);
+  EXPECT_EQ(huge_stats.baked_frames, 3e301);
+  std::ostringstream huge_text;
+  printAssetStats(huge_text, "huge.odsk", huge_stats);
+  EXPECT_NE(huge_text.str().find("1e+300 s)"), std::string::npos) << huge_text.str();
+  EXPECT_NE(huge_text.str().find(" (3e+301 frames x V x 3 float32)"), std::string::npos) << huge_text.str();
+  huge.segment_seconds = 1e308;
+  std::ostringstream endless_text;
+  printAssetStats(endless_text, "huge.odsk", assetStats(huge, bytes));
+  EXPECT_NE(endless_text.str().find("baked 30 fps:   more frames than a double can count"), std::string::npos)
+      << endless_text.str();
 
   // A render layout whose bind normals split vertex 0 into the two sides of a hard edge.
   DeformAsset seamed = *asset_;
