@@ -13,8 +13,10 @@
 
 namespace odeskin::visual {
 
-// e_i = |p_i - r_i| / Lbox(r). kInvalidArgument when the counts differ (both named) or the
-// reference is empty or has no extent.
+// e_i = |p_i - r_i| / Lbox(r), exact to rounding for any finite coordinates (no overflow of the
+// squares). kInvalidArgument when the counts differ (both named), a vertex is not finite (named),
+// or the reference is empty or has no extent; kOutOfRange (naming the vertex) when an error is
+// beyond double's range (a vertex far outside a tiny reference box).
 Result<std::vector<double>> relativeVertexErrors(std::span<const Vec3> positions, std::span<const Vec3> reference);
 
 }  // namespace odeskin::visual

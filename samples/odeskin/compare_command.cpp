@@ -99,16 +99,25 @@ int runCompareCommand(const CompareOptions& o, Console& console, CompareReport* 
   CompareReport r;
   r.vertices = errors->size();
   r.box = longestBoxSide(reference->positions);
-  double sum = 0.0, squares = 0.0;
   for (std::size_t i = 0; i < errors->size(); ++i) {
-    const double e = (*errors)[i];
-    if (e > r.max_error) r.max_error = e, r.max_vertex = i;
-    sum += e;
-    squares += e * e;
+    if ((*errors)[i] > r.max_error) r.max_error = (*errors)[i], r.max_vertex = i;
   }
-  r.mean_error = sum / static_cast<double>(r.vertices);
-  r.rms_error = std::sqrt(squares / static_cast<double>(r.vertices));
+  // Sums of errors over the largest one: errors of a vertex far outside a small box are finite, yet
+  // their squares (or their sum) would overflow.
+  const double scale = r.max_error > 0.0 ? r.max_error : 1.0;
+  double sum = 0.0, squares = 0.0;
+  for (const double e : *errors) {
+    sum += e / scale;
+    squares += (e / scale) * (e / scale);
+  }
+  r.mean_error = scale * (sum / static_cast<double>(r.vertices));
+  r.rms_error = scale * std::sqrt(squares / static_cast<double>(r.vertices));
   r.p99_error = percentile(*errors, 0.99);
+  if (!std::isfinite(r.max_error * r.box)) {
+    return reportError(console, "compare: " + o.mesh.string() + " against " + o.reference.string() + ": the box (" +
+                                    numberText(r.box) + ") or the largest distance (vertex " + std::to_string(r.max_vertex) +
+                                    ") is beyond double's range", kExitFailure);
+  }
 
   for (const std::filesystem::path& out : {o.ply, o.json}) {
     if (Status s = createParentFolder(out); !s.ok()) return reportFailure(console, s);

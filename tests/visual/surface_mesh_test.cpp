@@ -76,6 +76,28 @@ TEST(VertexError, IsDistanceOverTheLongestBoxSide) {
             StatusCode::kInvalidArgument);
 }
 
+// Coordinates far beyond 1e154, whose squared distances overflowed to an error of "inf", and far
+// below 1e-154, whose squares underflowed to 0: the errors are the same as at unit scale.
+TEST(VertexError, HugeAndTinyCoordinatesKeepTheirRelativeErrors) {
+  for (const double scale : {1e200, 1e-200, 1.5e308}) {
+    const std::vector<Vec3> ref{{scale, 0, 0}, {-scale, 0, 0}, {0, 1e-300, 0}};
+    const std::vector<Vec3> p{{0, 0, 0}, {scale, 0, 0}, {0, 1e-300, 0}};
+    Result<std::vector<double>> e = relativeVertexErrors(p, ref);
+    ASSERT_TRUE(e.ok()) << e.status().toString();
+    EXPECT_DOUBLE_EQ((*e)[0], 0.5) << scale;
+    EXPECT_DOUBLE_EQ((*e)[1], 1.0) << scale;
+    EXPECT_EQ((*e)[2], 0.0) << scale;
+  }
+  // An error beyond double's range is an error, not "inf"; so is a vertex that is not finite.
+  const std::vector<Vec3> tiny{{0, 0, 0}, {1e-300, 0, 0}};
+  const std::vector<Vec3> far{{1e300, 0, 0}, {1e-300, 0, 0}};
+  const Result<std::vector<double>> beyond = relativeVertexErrors(far, tiny);
+  EXPECT_EQ(beyond.status().code(), StatusCode::kOutOfRange);
+  EXPECT_NE(beyond.status().message().find("vertex 0 is more than"), std::string::npos) << beyond.status().message();
+  const std::vector<Vec3> nan{{std::nan(""), 0, 0}, {1, 0, 0}};
+  EXPECT_EQ(relativeVertexErrors(nan, tiny).status().code(), StatusCode::kInvalidArgument);
+}
+
 TEST(CurveLines, SegmentsFollowTheDeformedEdges) {
   IsoCurve closed;
   closed.points = {{0, 1, 0.5}, {1, 2, 0.25}, {2, 2, 0.0}};
