@@ -40,8 +40,9 @@ enum class Ode4Basis {
 
 // Classifies (alpha, beta, gamma). The sign of D is decided from beta^2 - 4 alpha gamma with
 // exact products (fma), so parameters on a double-root line classify as G or H exactly.
-// Errors: kInvalidArgument naming the parameter that is NaN or infinite, or when beta/alpha or
-// gamma/alpha overflows or exceeds 1e150 / 1e300 (b^2 would overflow); kDegenerate for alpha = 0
+// Errors: kInvalidArgument naming the parameter that is NaN or infinite, or when |beta/alpha|
+// exceeds 1e150 (b^2 would overflow) or |gamma/alpha| exceeds 1e12 (beyond it the end slopes lose
+// the accuracy a blend's constraints need, measured in ode4_cardinal.cpp); kDegenerate for alpha = 0
 // (second-order ODE, cannot meet four conditions; MATH.md 2.8), including alpha = beta = gamma = 0.
 Result<Ode4Regime> classifyOde4(double alpha, double beta, double gamma);
 

@@ -136,7 +136,7 @@ const std::vector<Params> kEveryRegime = {
     {1, 2e4, 1e8, Ode4Regime::kImaginaryDoublePair},
     {1, 1, 1, Ode4Regime::kComplexQuadruple},
     {-1, -1, -1, Ode4Regime::kComplexQuadruple},
-    {1, 0, 1e16, Ode4Regime::kComplexQuadruple},
+    {1, 0, 1e12, Ode4Regime::kComplexQuadruple},   // the largest |gamma/alpha| accepted
     {1, -1e3, 1e9, Ode4Regime::kComplexQuadruple},
     {1e-6, 1e-6, 1e-6, Ode4Regime::kComplexQuadruple},
 };
@@ -331,7 +331,11 @@ TEST(Ode4Cardinal, RejectsNonFiniteParametersNamingThem) {
     const char* message;
   } cases[] = {{kNaN, 1, 1, "alpha is NaN"}, {1, kNaN, 1, "beta is NaN"},   {1, 1, kNaN, "gamma is NaN"},
                {inf, 1, 1, "alpha is infinite"}, {1, -inf, 1, "beta is infinite"}, {1, 1, inf, "gamma is infinite"},
-               {1e-300, 1e200, 1, "beta/alpha"}, {1e-200, 1e-200, 1e200, "gamma/alpha"}};
+               {1e-300, 1e200, 1, "beta/alpha"}, {1e-200, 1e-200, 1e200, "gamma/alpha"},
+               // Accepted up to 1e300 before, where from 1e16 the blends missed their constraints.
+               {1, 0, 1.0000000000000002e12, "gamma/alpha = 1000000000000.0002 is outside [-1e12, 1e12]"},
+               {1, 0, -1e30, "gamma/alpha = -1e+30 is outside [-1e12, 1e12]"},
+               {2, 2e20, 2e40, "gamma/alpha"}};
   for (const auto& c : cases) {
     Result<Ode4Cardinal> r = Ode4Cardinal::create(c.alpha, c.beta, c.gamma);
     ASSERT_FALSE(r.ok()) << c.message;
