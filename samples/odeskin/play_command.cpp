@@ -78,8 +78,10 @@ std::string usageProblem(const PlayOptions& o) {
 // through a link, as well); "" when none would.
 std::string overwrittenInput(const PlayOptions& o, const std::vector<std::filesystem::path>& files, std::size_t frames) {
   const std::filesystem::path inputs[] = {o.asset, o.materials};
-  for (const std::filesystem::path& file : files) {
-    if (overwritesInput(file, inputs)) return file.string();
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    // A .glb or point cache names its one file once per frame: it is checked once.
+    if (f > 0 && files[f] == files[f - 1]) continue;
+    if (overwritesInput(files[f], inputs)) return files[f].string();
   }
   if (o.png_dir.empty()) return {};
   const std::filesystem::path strip = o.png_dir / "strip.png";
@@ -263,8 +265,11 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     return reportUsage(console, "play: " + clash + " is an input; it would be overwritten");
   }
   // Before the first frame is written: a folder in frame 3's place left frames 0-2 behind.
-  for (const std::filesystem::path& file : files) {
-    if (const std::string why = folderNotFile(file); !why.empty()) return reportUsage(console, "play: " + file.string() + " " + why);
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    if (f > 0 && files[f] == files[f - 1]) continue;
+    if (const std::string why = folderNotFile(files[f]); !why.empty()) {
+      return reportUsage(console, "play: " + files[f].string() + " " + why);
+    }
   }
   // .glb: every frame goes into one file (morph target per frame, STEP weights animation).
   const bool glb = lowerExtension(o.output) == ".glb";
