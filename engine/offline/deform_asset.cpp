@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "../core/float32_range.hpp"
+#include "../core/finite_vector.hpp"
 #include "../core/number_text.hpp"
 #include "../core/render_layout_check.hpp"
 #include "../core/smoothing_groups.hpp"
@@ -118,6 +119,20 @@ Status validateDeformAsset(const DeformAsset& a) {
   ODESKIN_TRY(fieldSize("segments", a.segments.size(), a.key_poses.size() - 1));
   for (std::size_t k = 0; k < a.key_poses.size(); ++k) {
     ODESKIN_TRY(fieldSize("key pose " + std::to_string(k), a.key_poses[k].size(), a.bone_count));
+    for (std::size_t b = 0; b < a.bone_count; ++b) {
+      // validateRig's test: a NaN here played as NaN positions on every backend, with no error.
+      const RigidTransform& m = a.key_poses[k][b];
+      const double norm = glm::length(m.rotation);
+      if (!isFinite(m.translation) || !std::isfinite(norm) || std::abs(norm - 1.0) > 1e-6) {
+        return invalidArgument("deform asset: key pose " + std::to_string(k) + " moves bone " + std::to_string(b) +
+                               " by a non-finite transform or a rotation that is not unit");
+      }
+    }
+  }
+  for (std::size_t b = 0; b < a.bone_count; ++b) {
+    if (!isFinite(a.bone_pivots[b])) {
+      return invalidArgument("deform asset: the pivot of bone " + std::to_string(b) + " is not finite");
+    }
   }
   for (std::size_t c = 0; c < c_count; ++c) {
     if (a.curve_materials[c] >= a.materials.size()) {
@@ -127,7 +142,8 @@ Status validateDeformAsset(const DeformAsset& a) {
   }
   for (std::size_t i = 0; i < v_count; ++i) {
     const CurveBinding& b = a.bindings[i];
-    if (b.curve_a >= c_count || b.curve_b >= c_count || !(b.w >= 0.0 && b.w <= 1.0) || !std::isfinite(b.v)) {
+    // v is a curve parameter in [0, 1): one of 1e300 passed and became inf, and NaN on the GPU.
+    if (b.curve_a >= c_count || b.curve_b >= c_count || !(b.w >= 0.0 && b.w <= 1.0) || !(b.v >= 0.0 && b.v <= 1.0)) {
       return invalidArgument("deform asset: vertex " + std::to_string(i) + " has an invalid curve binding");
     }
   }

@@ -3,9 +3,14 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -394,6 +399,26 @@ TEST_F(AssetFile, MissingDuplicateOrOverrunningSectionsAreErrors) {
   const std::size_t last = payload.size() - parts.back().second.size();
   writeU64(payload, last + 4, parts.back().second.size() - 12 + 1);
   EXPECT_NE(decodeAsset(withPayload(*bytes_, payload), "o").status().message().find("overruns"), std::string::npos);
+}
+
+// Found by a review of the runtime API: these passed validation and played NaN positions (a
+// binding of 1e300 became inf in float32, NaN on the GPU alone), with every call returning ok.
+TEST_F(AssetFile, KeyPosesPivotsAndBindingsMustBeUsable) {
+  const std::vector<std::pair<std::function<void(DeformAsset&)>, std::string>> cases{
+      {[](DeformAsset& a) { a.key_poses[1][0].rotation.w = std::nan(""); }, "key pose 1 moves bone 0 by a non-finite"},
+      {[](DeformAsset& a) { a.key_poses[0][0].translation.y = INFINITY; }, "key pose 0 moves bone 0 by a non-finite"},
+      {[](DeformAsset& a) { a.key_poses[1][0].rotation *= 2.0; }, "a rotation that is not unit"},
+      {[](DeformAsset& a) { a.bone_pivots[0].x = std::nan(""); }, "the pivot of bone 0 is not finite"},
+      {[](DeformAsset& a) { a.bindings[0].v = 1e300; }, "vertex 0 has an invalid curve binding"},
+      {[](DeformAsset& a) { a.bindings[1].v = -0.25; }, "vertex 1 has an invalid curve binding"},
+  };
+  for (const auto& [change, message] : cases) {
+    DeformAsset asset = *asset_;
+    change(asset);
+    const Status s = validateDeformAsset(asset);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidArgument) << message;
+    EXPECT_NE(s.message().find(message), std::string::npos) << s.message();
+  }
 }
 
 TEST_F(AssetFile, ConsistentChecksumButBadContentIsRejected) {
