@@ -36,11 +36,14 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
     return outOfRange("cpu runtime: capacity " + std::to_string(options.capacity) + " x " + std::to_string(r) +
                       " render vertices does not fit in memory");
   }
-  const std::uint64_t tangent_bytes = options.tangents ? std::uint64_t{asset.renderVertexCount()} * sizeof(gpu::Float4) : 0;
-  const std::uint64_t output_bytes =
-      std::uint64_t{options.frames_in_flight} * options.capacity *
-      ((v + r) * sizeof(gpu::Float4) * (options.normals ? 2 : 1) + tangent_bytes);
-  ODESKIN_TRY(checkFitsInMemory(output_bytes, physicalMemoryBytes(),
+  // In double: the product of instances and bytes per instance can pass 2^64, and a wrapped count
+  // once let an impossible size through to the allocations.
+  const double tangent_bytes = options.tangents ? double(asset.renderVertexCount()) * sizeof(gpu::Float4) : 0.0;
+  const double output_bytes = double(options.frames_in_flight) * options.capacity *
+                              (double(v + r) * sizeof(gpu::Float4) * (options.normals ? 2 : 1) + tangent_bytes);
+  constexpr double kMaxBytes = 18446744073709549568.0;  // the largest double below 2^64
+  const std::uint64_t bytes = output_bytes < kMaxBytes ? static_cast<std::uint64_t>(output_bytes) : UINT64_MAX;
+  ODESKIN_TRY(checkFitsInMemory(bytes, physicalMemoryBytes(),
                                 "cpu runtime: the output buffers of " + std::to_string(options.frames_in_flight) +
                                     " frames of " + std::to_string(options.capacity) + " instances x " +
                                     std::to_string(v) + " vertices" +

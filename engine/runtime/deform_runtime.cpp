@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <charconv>
 #include <cmath>
 #include <string>
 #include <tuple>
@@ -17,9 +18,13 @@ constexpr std::size_t kPrepareGrain = 16;
 
 std::string instanceName(std::uint32_t index) { return "runtime: instance " + std::to_string(index); }
 
+// The shortest text that reads back as `value`: nine digits printed a time one ulp past the end
+// as the end itself ("time 4 is outside [0, 4]").
 std::string number(double value) {
   if (std::isnan(value)) return "NaN";
-  return messageNumber(value);
+  char text[32];
+  const auto [end, ec] = std::to_chars(text, text + sizeof text, value);
+  return ec == std::errc() ? std::string(text, end) : messageNumber(value);
 }
 
 bool finiteBone(const gpu::BoneMatrix& m) {
@@ -37,6 +42,10 @@ double seconds(std::chrono::steady_clock::time_point since) {
 
 Status DeformRuntime::checkOptions(const RuntimeAsset& asset, const RuntimeOptions& options) {
   if (options.frames_in_flight == 0) return invalidArgument("runtime: frames_in_flight must be at least 1");
+  if (options.frames_in_flight > kMaxFramesInFlight) {
+    return outOfRange("runtime: frames_in_flight " + std::to_string(options.frames_in_flight) + " is above " +
+                      std::to_string(kMaxFramesInFlight));
+  }
   if (!options.tangents) return okStatus();
   if (!asset.hasTangents()) {
     return invalidArgument("runtime: tangents asked for, but the asset has none (RuntimeAssetOptions::render_tangents)");

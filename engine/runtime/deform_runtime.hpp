@@ -28,9 +28,13 @@
 
 namespace odeskin {
 
+// Each frame in flight holds a slot of outputs and bookkeeping; an engine keeps two or three. The
+// bound keeps a typo (UINT32_MAX) from asking for gigabytes of slots before any output is sized.
+inline constexpr std::uint32_t kMaxFramesInFlight = 256;
+
 struct RuntimeOptions {
   std::uint32_t capacity = 1;          // most instances per frame; every buffer is sized for it once
-  std::uint32_t frames_in_flight = 2;  // frames whose outputs stay readable (>= 1); Vulkan runs that many at once
+  std::uint32_t frames_in_flight = 2;  // frames whose outputs stay readable (1..kMaxFramesInFlight); Vulkan runs that many at once
   bool normals = true;                 // recompute vertex normals every frame
   // Outputs in the asset's render vertices (RuntimeAsset::renderTopology: glTF input split at UV
   // and normal seams) instead of its topology vertices, so they bind beside the glTF's own UVs.
@@ -183,7 +187,8 @@ class DeformRuntime {
 
  protected:
   // kInvalidArgument for frames_in_flight = 0, or tangents on an asset without them, without
-  // normals, or without the render layout of an asset that has one (other limits are the backends').
+  // normals, or without the render layout of an asset that has one; kOutOfRange for frames_in_flight
+  // above kMaxFramesInFlight (other limits are the backends').
   static Status checkOptions(const RuntimeAsset& asset, const RuntimeOptions& options);
   DeformRuntime(const RuntimeAsset& asset, const RuntimeOptions& options);
   DeformRuntime(DeformRuntime&&) noexcept = default;

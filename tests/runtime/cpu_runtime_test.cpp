@@ -4,6 +4,7 @@
 // against interpolated ones, bounds, normals, instance counts 0, 1 and many, held frames, and bad
 // input. Tolerance 1e-5 of the bounding box's longest side (float32 against float64).
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -264,6 +265,9 @@ TEST(CpuRuntime, RejectsBadInputNamingTheProblem) {
   expectStatus(rt.setInstance(0, InstanceState::atTime(NAN)), StatusCode::kInvalidArgument, "instance 0: time is NaN");
   expectStatus(rt.setInstance(1, InstanceState::atTime(INFINITY)), StatusCode::kInvalidArgument, "instance 1: time is inf");
   expectStatus(rt.setInstance(1, InstanceState::atTime(3.5)), StatusCode::kInvalidArgument, "instance 1: time 3.5 is outside [0, 3]");
+  // One ulp past the end is printed as itself, not rounded to the end it exceeds.
+  expectStatus(rt.setInstance(1, InstanceState::atTime(std::nextafter(3.0, 4.0))), StatusCode::kInvalidArgument,
+               "instance 1: time 3.0000000000000004 is outside [0, 3]");
   expectStatus(rt.setInstance(0, InstanceState::atSegment(3, 0.5)), StatusCode::kInvalidArgument, "instance 0: segment 3 is out of range");
   expectStatus(rt.setInstance(0, InstanceState::atSegment(1, NAN)), StatusCode::kInvalidArgument, "instance 0: tau NaN is outside [0, 1]");
   std::vector<gpu::BoneMatrix> bones(asset.boneCount() + 1);
@@ -286,6 +290,10 @@ TEST(CpuRuntime, RejectsBadInputNamingTheProblem) {
   RuntimeOptions no_frames;
   no_frames.frames_in_flight = 0;
   expectStatus(CpuRuntime::create(asset, no_frames).status(), StatusCode::kInvalidArgument, "frames_in_flight");
+  // UINT32_MAX slots of bookkeeping once threw std::bad_alloc out of create().
+  no_frames.frames_in_flight = UINT32_MAX;
+  expectStatus(CpuRuntime::create(asset, no_frames).status(), StatusCode::kOutOfRange,
+               "runtime: frames_in_flight 4294967295 is above 256");
   // More output than the machine has memory: refused before any buffer is made (Linux would grant
   // it and kill the process while zeroing it).
   RuntimeOptions huge;
