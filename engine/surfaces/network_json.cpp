@@ -281,11 +281,12 @@ Status readShapes(const json& root, NetworkDescription& d) {
                               std::to_string(rows) + " x " + std::to_string(d.columns) + " network");
       }
       // A second entry for one patch would win silently, by its place in the list.
-      const auto [earlier, first] = given.emplace(std::uint64_t{row} * d.columns + column, i);
-      if (!first) {
+      const std::uint64_t patch = std::uint64_t{row} * d.columns + column;
+      if (const auto earlier = given.find(patch); earlier != given.end()) {
         return fail(path, "patch (" + std::to_string(row) + ", " + std::to_string(column) + ") is already shaped by " +
                               jsonElement("patch_shapes", earlier->second));
       }
+      given[patch] = i;
       d.shapes[std::size_t{row} * d.columns + column] = s;
     }
   }
