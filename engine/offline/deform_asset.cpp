@@ -120,10 +120,7 @@ Status validateDeformAsset(const DeformAsset& a) {
   for (std::size_t k = 0; k < a.key_poses.size(); ++k) {
     ODESKIN_TRY(fieldSize("key pose " + std::to_string(k), a.key_poses[k].size(), a.bone_count));
     for (std::size_t b = 0; b < a.bone_count; ++b) {
-      // validateRig's test: a NaN here played as NaN positions on every backend, with no error.
-      const RigidTransform& m = a.key_poses[k][b];
-      const double norm = glm::length(m.rotation);
-      if (!isFinite(m.translation) || !std::isfinite(norm) || std::abs(norm - 1.0) > 1e-6) {
+      if (!isUnitRigid(a.key_poses[k][b])) {
         return invalidArgument("deform asset: key pose " + std::to_string(k) + " moves bone " + std::to_string(b) +
                                " by a non-finite transform or a rotation that is not unit");
       }

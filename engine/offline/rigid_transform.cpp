@@ -4,7 +4,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../core/finite_vector.hpp"
+
 namespace odeskin {
+
+bool isUnitRigid(const RigidTransform& m) {
+  const double norm = glm::length(m.rotation);
+  return isFinite(m.translation) && std::isfinite(norm) && std::abs(norm - 1.0) <= 1e-6;
+}
+
 namespace {
 
 // log and exp of unit quaternions as 3-vectors (half the rotation vector).

@@ -20,6 +20,10 @@ struct RigidTransform {
   BoneTransform matrix() const;
 };
 
+// A finite translation and a rotation of unit length within 1e-6: what rigs and assets require of
+// every key transform (a NaN there plays as NaN positions on every backend).
+bool isUnitRigid(const RigidTransform& m);
+
 // Key-to-key interpolation for a segment (PIPELINE.md 3, K = 2): the rotation by slerp along the
 // shortest arc, and the translation by lerp of the bone's pivot (its joint, in bind space), so a
 // bone turning about its joint keeps the joint in place. Lerping the raw matrix translation would

@@ -43,9 +43,7 @@ Status validateRig(const Rig& rig, std::size_t vertex_count, std::size_t pose_co
                                " bone transforms for " + std::to_string(bones) + " bones");
       }
       for (std::size_t b = 0; b < bones; ++b) {
-        const RigidTransform& m = rig.key_poses[k][b];
-        const double norm = glm::length(m.rotation);
-        if (!isFinite(m.translation) || !std::isfinite(norm) || std::abs(norm - 1.0) > 1e-6) {
+        if (!isUnitRigid(rig.key_poses[k][b])) {
           return invalidArgument("rig: pose " + std::to_string(k) + " bone " + std::to_string(b) +
                                  " has a non-finite transform or a rotation that is not unit");
         }
