@@ -13,7 +13,6 @@ namespace {
 
 constexpr std::size_t kMaxUnknowns = 4'000'000;
 
-
 }  // namespace
 
 Result<FdCurveSystem> FdCurveSystem::create(const Material& material, std::uint32_t points, std::uint32_t steps) {

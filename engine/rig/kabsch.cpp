@@ -21,7 +21,6 @@
 namespace odeskin {
 namespace {
 
-
 Eigen::Vector3d toEigen(const Vec3& p) { return {p.x, p.y, p.z}; }
 
 }  // namespace

@@ -287,7 +287,7 @@ Status readShapes(const json& root, NetworkDescription& d) {
                               jsonElement("patch_shapes", earlier->second));
       }
       given[patch] = i;
-      d.shapes[std::size_t{row} * d.columns + column] = s;
+      d.shapes[patch] = s;
     }
   }
   return okStatus();

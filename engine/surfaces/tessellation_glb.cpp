@@ -17,7 +17,6 @@ int addVec3(tinygltf::Model& m, std::span<const Vec3> values, bool bounds) {
   return gltf::appendFloatAccessor(m, xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, bounds);
 }
 
-
 }  // namespace
 
 Status writeSurfaceGlb(const std::filesystem::path& path, const SurfaceMesh& mesh, std::span<const Vec3> normals,
