@@ -78,6 +78,7 @@ if command -v gltfpack > /dev/null; then
 fi
 printf 'v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nv 0 0 1e-1\r\nf 1 2 3\r\nf 1/1 -1/2 -2/3\r\nf 1//1 2/2/2 4//3 3\r\n' > "$seeds/obj/tetra-crlf.obj"
 printf 'v 0 0 0 # x y z\nvt 0 0\nvn 0 0 1\ng part\nv 1 0 0\nv 1 1 0\nf 1 2 3' > "$seeds/obj/triangle-no-newline.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nvt 1 0.25\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/-1/-1 4/4/1\n' > "$seeds/obj/square-uv-seam.obj"
 printf '1 0 0 0\n2 0 1 0\n3 0 2 0\n#\n1 2\n2 3\n#\n' > "$seeds/tgf/chain.tgf"
 printf '2 3\n0.5 0.25 1\n0.5 0.75 0\n' > "$seeds/dmat/small.dmat"
 # .Tmat and pose .json seeds start with the byte their target reads as the bone count (1 + byte % 32).

@@ -31,6 +31,7 @@ Status checkRenderLayout(const RenderLayout& render, std::size_t topology_vertic
   for (std::uint32_t t : render.topology_of_render) {
     if (t >= topology_vertices) return invalidArgument(context + ": render vertex maps to topology vertex " + std::to_string(t));
   }
+  if (render.obj_order && render.empty()) return invalidArgument(context + ": an OBJ render layout without render vertices");
   ODESKIN_TRY(checkFaceList(render.faces, render_vertices, context, "render face"));
   if (!render.normals.empty()) {
     if (render.normals.size() != render_vertices) {

@@ -72,6 +72,10 @@ struct RenderLayout {
   // The input's primitives in file order, or empty for one primitive without a material: the
   // exports write them back as they were, so `export --materials` can give each its material.
   std::vector<RenderPrimitive> primitives;
+  // The layout came from an OBJ's `vt`/`vn` corners (objRenderLayout). OBJ frames and point caches
+  // then keep the topology vertices in the input's order, each corner naming its `vt`, so a point
+  // cache still fits the mesh the user started from; glTF outputs use the render vertices.
+  bool obj_order = false;
   bool empty() const { return topology_of_render.empty(); }
 };
 

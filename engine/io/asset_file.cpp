@@ -45,7 +45,10 @@ constexpr std::array<std::uint32_t, 12> kRequired{kMeta,  kRest,           kFace
 constexpr std::uint32_t kRenderNormals = fourcc("RNRM");  // the render layout's bind normals (hard edges)
 constexpr std::uint32_t kRenderUvs = fourcc("RUV0");      // the render layout's TEXCOORD_0
 constexpr std::uint32_t kRenderPrimitives = fourcc("RPRM");  // the render layout's primitives and materials
-constexpr std::array<std::uint32_t, 3> kOptional{kRenderNormals, kRenderUvs, kRenderPrimitives};
+// Empty: present when the render layout came from an OBJ (RenderLayout::obj_order). A reader that
+// predates it writes OBJ frames in render order, as it did for every layout.
+constexpr std::uint32_t kRenderObjOrder = fourcc("ROBJ");
+constexpr std::array<std::uint32_t, 4> kOptional{kRenderNormals, kRenderUvs, kRenderPrimitives, kRenderObjOrder};
 
 std::string tagName(std::uint32_t tag) {
   std::string name;
@@ -150,6 +153,10 @@ void writeSections(const DeformAsset& a, Writer& w) {
   if (!a.render.uvs.empty()) {
     w.beginSection(kRenderUvs);
     w.vec2s(a.render.uvs);
+    w.endSection();
+  }
+  if (a.render.obj_order) {
+    w.beginSection(kRenderObjOrder);
     w.endSection();
   }
   if (!a.render.primitives.empty()) {
@@ -355,6 +362,8 @@ void readSection(std::uint32_t tag, Reader& r, DeformAsset& a) {
     a.render.normals = r.vec3s();
   } else if (tag == kRenderUvs) {
     a.render.uvs = r.vec2s();
+  } else if (tag == kRenderObjOrder) {
+    a.render.obj_order = true;
   } else if (tag == kRenderPrimitives) {
     a.render.primitives.resize(r.count(8));
     for (RenderPrimitive& p : a.render.primitives) {

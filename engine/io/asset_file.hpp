@@ -6,7 +6,8 @@
 //            readers skip tags they do not know. Version 1 writes (and requires) META REST FACE
 //            RNDR BIND CURV CMAT MATL INFL BONE KEYS SEGM, tags being the four ASCII letters,
 //            and, when the asset has them, RNRM (the render layout's bind normals), RUV0 (its
-//            TEXCOORD_0) and RPRM (its glTF primitives: face runs and material indices).
+//            TEXCOORD_0), RPRM (its glTF primitives: face runs and material indices) and ROBJ
+//            (empty: the layout came from an OBJ's corners, RenderLayout::obj_order).
 // Doubles are stored bit-exactly: save -> load reproduces the asset exactly.
 #pragma once
 

@@ -132,13 +132,21 @@ Status writeFileAtomically(const std::filesystem::path& path, const std::string&
 }
 
 Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces,
-                const std::string& comment, std::span<const Vec2> uvs) {
-  if (!uvs.empty() && uvs.size() != positions.size()) {
+                const std::string& comment, std::span<const Vec2> uvs, std::span<const std::uint32_t> position_of_uv) {
+  const bool split = !position_of_uv.empty();
+  const std::size_t corner_count = split ? position_of_uv.size() : positions.size();  // what face indices name
+  if (!uvs.empty() && uvs.size() != corner_count) {
     return invalidArgument(path.string() + ": " + std::to_string(uvs.size()) + " texture coordinates for " +
-                           std::to_string(positions.size()) + " vertices");
+                           std::to_string(corner_count) + (split ? " corner vertices" : " vertices"));
+  }
+  for (std::size_t r = 0; r < position_of_uv.size(); ++r) {
+    if (position_of_uv[r] >= positions.size()) {
+      return invalidArgument(path.string() + ": texture coordinate " + std::to_string(r) + " belongs to vertex " +
+                             std::to_string(position_of_uv[r]) + " of " + std::to_string(positions.size()));
+    }
   }
   std::string text;
-  text.reserve(positions.size() * 40 + faces.indices.size() * 8 + 64);
+  text.reserve(positions.size() * 40 + uvs.size() * 28 + faces.indices.size() * 16 + 64);
   if (!comment.empty()) text += "# " + comment + "\n";
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Vec3& p = positions[i];
@@ -167,13 +175,14 @@ Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positio
   for (std::size_t f = 0; f < faces.faceCount(); ++f) {
     text += 'f';
     for (std::uint32_t k = faces.face_offsets[f]; k < faces.face_offsets[f + 1]; ++k) {
-      if (faces.indices[k] >= positions.size()) {
+      const std::uint32_t index = faces.indices[k];
+      if (index >= corner_count) {
         return invalidArgument(path.string() + ": face " + std::to_string(f) + " references vertex " +
-                               std::to_string(faces.indices[k]) + " of " + std::to_string(positions.size()));
+                               std::to_string(index) + " of " + std::to_string(corner_count));
       }
       text += ' ';
-      text += std::to_string(faces.indices[k] + 1);
-      if (!uvs.empty()) text += '/' + std::to_string(faces.indices[k] + 1);
+      text += std::to_string((split ? position_of_uv[index] : index) + 1);
+      if (!uvs.empty()) text += '/' + std::to_string(index + 1);
     }
     text += '\n';
   }

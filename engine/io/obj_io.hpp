@@ -16,10 +16,14 @@ namespace odeskin {
 
 // `uvs`: empty, or one texture coordinate per vertex, written as `vt` lines with faces `f i/i ...`
 // (a glTF input's TEXCOORD_0, whose v runs down the image: OBJ's runs up, so v is written 1 - v).
-// kInvalidArgument for an index >= positions.size(), a non-finite coordinate or a uvs count that
-// is not the vertex count; kIoError naming the path when the file cannot be written.
+// `position_of_uv` (RenderLayout::topology_of_render of an OBJ input's layout): empty, or the
+// position of each texture coordinate; `faces` then index `uvs` and corner r is written
+// `f p/r` with p = position_of_uv[r], so the `v` lines keep the positions' order.
+// kInvalidArgument for an index out of range, a non-finite coordinate or a uvs count that is not
+// the vertex count (or position_of_uv's); kIoError naming the path when the file cannot be written.
 Status writeObj(const std::filesystem::path& path, std::span<const Vec3> positions, const FaceList& faces,
-                const std::string& comment = {}, std::span<const Vec2> uvs = {});
+                const std::string& comment = {}, std::span<const Vec2> uvs = {},
+                std::span<const std::uint32_t> position_of_uv = {});
 
 // Writes `content` to `path` through a temporary file and rename (kIoError naming the path). A
 // symbolic link is followed: the link stays and its target is replaced, keeping its permission

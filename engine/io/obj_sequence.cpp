@@ -73,6 +73,8 @@ Result<ExampleSet> readObjSequence(std::span<const std::filesystem::path> poses,
   } else {
     set.rest_positions = std::move(first.positions);
   }
+  set.render = objRenderLayout(first);
+  set.warnings = objLayoutWarnings(first);
   set.faces = std::move(first.faces);
   set.pose_labels.reserve(poses.size());
   for (const std::filesystem::path& path : poses) set.pose_labels.push_back(fileName(path));

@@ -61,6 +61,15 @@ std::size_t outputVertexCount(const DeformAsset& asset) {
   return asset.render.empty() ? asset.vertexCount() : asset.render.topology_of_render.size();
 }
 
+std::vector<Vec3> objPositions(const DeformAsset& asset, std::span<const Vec3> topology_positions) {
+  if (asset.render.obj_order) return {topology_positions.begin(), topology_positions.end()};
+  return outputPositions(asset, topology_positions);
+}
+
+std::size_t objVertexCount(const DeformAsset& asset) {
+  return asset.render.obj_order ? asset.vertexCount() : outputVertexCount(asset);
+}
+
 std::vector<Vec3> outputNormals(const DeformAsset& asset, std::span<const Vec3> topology_positions) {
   // Twice each polygon's vector area (its fan's cross products), added to each of its corners.
   auto faceNormal = [&](const FaceList& faces, std::size_t f, auto position) {

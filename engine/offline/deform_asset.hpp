@@ -57,6 +57,11 @@ std::vector<Vec3> outputPositions(const DeformAsset& asset, std::span<const Vec3
 // The faces of that layout, and its vertex count.
 const FaceList& outputFaces(const DeformAsset& asset);
 std::size_t outputVertexCount(const DeformAsset& asset);
+// The vertices OBJ frames and point caches hold: the topology vertices, in the input's order, when
+// the render layout came from an OBJ (RenderLayout::obj_order: the frames' corners name their UVs),
+// else the output layout's. A point cache thus fits the mesh `play --t 0 -o BASE.obj` writes.
+std::vector<Vec3> objPositions(const DeformAsset& asset, std::span<const Vec3> topology_positions);
+std::size_t objVertexCount(const DeformAsset& asset);
 // Unit vertex normals of the shape `topology_positions` (V) in that layout: the area-weighted
 // normals of the welded topology (polygon fans), so UV seams do not show, except across the
 // input's hard edges (RenderLayout::normals, engine/core/smoothing_groups.hpp), where each side

@@ -68,6 +68,7 @@ AssetStats assetStats(const DeformAsset& asset, std::uintmax_t file_bytes) {
     s.hard_edge_vertices = smoothingGroups(asset.render.topology_of_render, asset.vertexCount(), asset.render.normals).hard_vertices;
   }
   s.texcoords = !asset.render.uvs.empty();
+  s.obj_layout = asset.render.obj_order;
   s.primitives = asset.render.primitives.size();
   s.curves = asset.curveCount();
   std::set<std::uint32_t> parts;
@@ -100,7 +101,7 @@ void printAssetStats(std::ostream& out, const std::filesystem::path& path, const
     if (s.hard_edge_vertices > 0) out << ", " << s.hard_edge_vertices << " on hard edges";
     out << ")";
   }
-  if (s.texcoords) out << "; with the input's TEXCOORD_0";
+  if (s.texcoords) out << (s.obj_layout ? "; with the input's texture coordinates (vt)" : "; with the input's TEXCOORD_0");
   if (s.primitives > 0) out << "; " << s.primitives << " glTF primitive" << (s.primitives == 1 ? "" : "s") << " with their materials";
   out << "\nfaces:          " << s.faces << "\n";
   out << "curves:         " << s.curves << "\n";

@@ -18,7 +18,8 @@ struct AssetStats {
   std::size_t vertices = 0;           // V topology vertices
   std::size_t render_vertices = 0;    // glTF render vertices (== V without a render layout)
   std::size_t hard_edge_vertices = 0; // topology vertices the input's normals put on a hard edge
-  bool texcoords = false;             // the input's TEXCOORD_0 travels to the exports
+  bool texcoords = false;             // the input's TEXCOORD_0 (or OBJ vt) travels to the exports
+  bool obj_layout = false;            // the render layout came from an OBJ's vt/vn corners
   std::size_t primitives = 0;         // the input's glTF primitives it records (0: none recorded)
   std::size_t faces = 0;
   std::size_t curves = 0;             // C

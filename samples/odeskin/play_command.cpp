@@ -165,6 +165,16 @@ Status playPictures(const PlayOptions& o, const DeformAsset& asset, AssetPlaybac
   return session.checkValidation();
 }
 
+// One frame as OBJ. An OBJ input's layout keeps its `v` lines in the input's order, each corner
+// naming its `vt`; a glTF input's is written in render vertices, as its point caches are.
+Status writeFrameObj(const std::filesystem::path& path, const DeformAsset& asset, std::span<const Vec3> positions,
+                     const std::string& comment) {
+  if (asset.render.obj_order) {
+    return writeObj(path, positions, asset.render.faces, comment, asset.render.uvs, asset.render.topology_of_render);
+  }
+  return writeObj(path, outputPositions(asset, positions), outputFaces(asset), comment, asset.render.uvs);
+}
+
 }  // namespace
 
 Result<FramePattern> FramePattern::parse(std::string_view pattern) {
@@ -283,12 +293,12 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     }
   }
   if (point_cache) {
-    if (const std::string problem = pointCacheSizeProblem(times.size(), outputVertexCount(asset)); !problem.empty()) {
+    if (const std::string problem = pointCacheSizeProblem(times.size(), objVertexCount(asset)); !problem.empty()) {
       return reportUsage(console, "play: " + o.output + ": " + problem + "; lower --fps or --seconds");
     }
   }
   std::optional<PointCacheBuilder> cache;
-  if (point_cache) cache.emplace(mdd ? PointCacheFormat::kMdd : PointCacheFormat::kPc2, outputVertexCount(asset), times.size());
+  if (point_cache) cache.emplace(mdd ? PointCacheFormat::kMdd : PointCacheFormat::kPc2, objVertexCount(asset), times.size());
   std::optional<gltf::MaterialLibrary> materials;
   if (!o.materials.empty()) {
     Result<gltf::MaterialLibrary> library = gltf::readMaterialLibrary(o.materials);
@@ -339,7 +349,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     }
     if (Status s = ensureParentDirectory(files[f], last_directory); !s.ok()) return reportFailure(console, s);
     if (point_cache) {
-      if (Status s = cache->add(outputPositions(asset, positions)); !s.ok()) {
+      if (Status s = cache->add(objPositions(asset, positions)); !s.ok()) {
         return reportError(console, "play: " + o.output + ": " + s.message(), kExitFailure);
       }
       bar.step(f + 1);
@@ -352,8 +362,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       continue;
     }
     const std::string comment = "odeskin play " + o.asset.filename().string() + " t = " + numberText(times[f]);
-    if (Status s = writeObj(files[f], outputPositions(asset, positions), outputFaces(asset), comment, asset.render.uvs);
-        !s.ok()) {
+    if (Status s = writeFrameObj(files[f], asset, positions, comment); !s.ok()) {
       return reportFailure(console, s);
     }
     bar.step(f + 1);
@@ -405,7 +414,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     char timing[64];
     std::snprintf(timing, sizeof timing, "%.3f ms", 1e3 * mean);
     const std::string cache_note =
-        " (point cache of " + std::to_string(outputVertexCount(asset)) + " vertices for the mesh `play --t 0 -o BASE.obj` writes)";
+        " (point cache of " + std::to_string(objVertexCount(asset)) + " vertices for the mesh `play --t 0 -o BASE.obj` writes)";
     if (o.t) {
       const auto segment = static_cast<std::size_t>(std::min(std::floor(*o.t), std::max(t_end - 1.0, 0.0)));
       console.out << "t = " << numberText(*o.t) << " (segment " << segment << ", tau " << numberText(*o.t - static_cast<double>(segment))

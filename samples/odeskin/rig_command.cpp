@@ -124,8 +124,8 @@ struct RigInput {
   std::vector<Vec3> rest;
   FaceList faces;
   std::vector<std::vector<Vec3>> poses;
-  RenderLayout render;                  // a glTF input's render vertices, else empty
-  std::vector<std::string> warnings;    // the glTF reader's, naming the file
+  RenderLayout render;                  // the input's render vertices (glTF, or an OBJ with vt/vn), or empty
+  std::vector<std::string> warnings;    // the readers', naming the file
   std::size_t replaced_skin_joints = 0; // the joints of a skin the input already had
 };
 
@@ -149,6 +149,8 @@ Result<RigInput> readRigInput(const RigCommandOptions& o) {
     ODESKIN_ASSIGN_OR_RETURN(ObjMesh mesh, readObj(o.meshes.front()));
     // The manifold check a sequence's reader makes: the curves and levels assume manifold faces.
     ODESKIN_TRY(buildPolyMesh(mesh.positions, mesh.faces, o.meshes.front().string()).status());
+    in.render = objRenderLayout(mesh);
+    in.warnings = objLayoutWarnings(mesh);
     in.rest = std::move(mesh.positions);
     in.faces = std::move(mesh.faces);
   } else {
@@ -156,6 +158,8 @@ Result<RigInput> readRigInput(const RigCommandOptions& o) {
     ODESKIN_ASSIGN_OR_RETURN(ExampleSet set, readObjSequence(o.meshes));
     in.rest = set.rest_positions;
     in.faces = std::move(set.faces);
+    in.render = std::move(set.render);
+    in.warnings = std::move(set.warnings);
     in.poses.assign(std::make_move_iterator(set.poses.begin() + 1), std::make_move_iterator(set.poses.end()));
   }
   return in;
@@ -274,7 +278,8 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
                 poses.size(), poses.size() == 1 ? "" : "s");
   out << line;
   if (!input->render.empty()) {
-    out << "glTF: " << input->render.topology_of_render.size() << " render vertices welded into " << rest.size()
+    out << (input->render.obj_order ? "OBJ: " : "glTF: ") << input->render.topology_of_render.size()
+        << " render vertices welded into " << rest.size()
         << ", " << std::max<std::size_t>(input->render.primitives.size(), 1) << " primitive"
         << (input->render.primitives.size() > 1 ? "s" : "");
     if (input->replaced_skin_joints > 0) out << "; its skin of " << input->replaced_skin_joints << " joints is not used";

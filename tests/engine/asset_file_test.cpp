@@ -88,6 +88,7 @@ void expectSameAsset(const DeformAsset& a, const DeformAsset& b) {
     EXPECT_TRUE(sameBits(a.render.uvs[r].x, b.render.uvs[r].x) && sameBits(a.render.uvs[r].y, b.render.uvs[r].y)) << "UV " << r;
   }
   EXPECT_EQ(a.render.primitives, b.render.primitives);
+  EXPECT_EQ(a.render.obj_order, b.render.obj_order);
   ASSERT_EQ(a.bindings.size(), b.bindings.size());
   for (std::size_t i = 0; i < a.bindings.size(); ++i) {
     EXPECT_EQ(a.bindings[i].curve_a, b.bindings[i].curve_a) << i;
@@ -342,6 +343,20 @@ TEST_F(AssetFile, RenderTexcoordsAreAnOptionalSection) {
   EXPECT_NE(encodeAsset(asset).status().message().find("render UV " + std::to_string(asset.render.uvs.size() - 1) +
                                                        " is not finite"),
             std::string::npos);
+}
+
+// A layout read from an OBJ's corners is marked by an empty ROBJ section, so OBJ frames keep the
+// input's vertex order; a file without it plays in render order, as every layout did before.
+TEST_F(AssetFile, ObjVertexOrderIsAnOptionalSection) {
+  DeformAsset asset = *asset_;
+  asset.render.obj_order = true;
+  DeformAsset older;
+  ASSERT_NO_FATAL_FAILURE(expectOptionalSection(asset, "ROBJ", older));
+  EXPECT_FALSE(older.render.obj_order);
+
+  asset.render = RenderLayout{};
+  asset.render.obj_order = true;
+  EXPECT_NE(encodeAsset(asset).status().message().find("an OBJ render layout without render vertices"), std::string::npos);
 }
 
 // The input's primitives (face runs and materials) go in the optional RPRM section; runs must

@@ -161,6 +161,88 @@ TEST_F(ObjTempDir, MalformedFilesNamePathAndLine) {
   expectError(tri, StatusCode::kParseError, "no faces");
 }
 
+// A square of two triangles with a UV seam at its corner 3 (1-based), which takes vt 3 in the first
+// face and vt 5 (written -1) in the second; every corner names the one normal.
+const std::string kSeamSquare =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+    "vt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nvt 1 0.25\n"
+    "vn 0 0 2\n"
+    "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/-1/-1 4/4/1\n";
+
+TEST_F(ObjTempDir, TexcoordsAndNormalsArePerCorner) {
+  const Result<ObjMesh> mesh = readObj(write("square.obj", kSeamSquare));
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  EXPECT_EQ(mesh->texcoords.size(), 5u);
+  EXPECT_EQ(mesh->texcoords[4], Vec2(1.0, 0.25));
+  EXPECT_EQ(mesh->corner_texcoords, (std::vector<std::uint32_t>{0, 1, 2, 0, 4, 3}));
+  EXPECT_EQ(mesh->normals, std::vector<Vec3>{Vec3(0.0, 0.0, 2.0)});
+  EXPECT_EQ(mesh->corner_normals, (std::vector<std::uint32_t>(6, 0)));
+  EXPECT_TRUE(mesh->texcoord_warning.empty() && mesh->normal_warning.empty());
+  EXPECT_EQ(face(mesh->faces, 1), (std::vector<std::uint32_t>{0, 2, 3}));
+}
+
+// Render vertices are the distinct (v, vt, vn) corners in first-use order; UVs turn to run down the
+// image as RenderLayout's do; the render faces map back onto the topology faces.
+TEST_F(ObjTempDir, RenderLayoutSplitsVerticesAtUvSeams) {
+  const Result<ObjMesh> mesh = readObj(write("square.obj", kSeamSquare));
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  const RenderLayout layout = objRenderLayout(*mesh);
+  EXPECT_TRUE(layout.obj_order);
+  EXPECT_EQ(layout.topology_of_render, (std::vector<std::uint32_t>{0, 1, 2, 2, 3}));
+  EXPECT_EQ(layout.faces.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 3, 4}));
+  EXPECT_EQ(layout.faces.face_offsets, mesh->faces.face_offsets);
+  for (std::size_t k = 0; k < layout.faces.indices.size(); ++k) {
+    EXPECT_EQ(layout.topology_of_render[layout.faces.indices[k]], mesh->faces.indices[k]) << "corner " << k;
+  }
+  EXPECT_EQ(layout.uvs, (std::vector<Vec2>{{0.0, 1.0}, {0.5, 1.0}, {0.5, 0.0}, {1.0, 0.75}, {0.0, 0.0}}));
+  EXPECT_EQ(layout.normals, std::vector<Vec3>(5, Vec3(0.0, 0.0, 2.0)));
+
+  // Without vt and vn there is nothing to lay out.
+  const Result<ObjMesh> plain = readObj(write("plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  ASSERT_TRUE(plain.ok());
+  EXPECT_TRUE(objRenderLayout(*plain).empty());
+  EXPECT_FALSE(objRenderLayout(*plain).obj_order);
+}
+
+// A broken texture mapping or normal set drops only itself, with a warning naming the file and
+// the line; the positions and faces still read. Corners naming a `vt` in a file without any (the
+// data's cylinder) drop them silently: there is nothing to lose.
+TEST_F(ObjTempDir, BrokenTexcoordsOrNormalsAreDroppedWithAWarning) {
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n";
+  auto warnings = [&](const std::string& text) {
+    const fs::path path = write("w.obj", text);
+    const Result<ObjMesh> mesh = readObj(path);
+    EXPECT_TRUE(mesh.ok()) << mesh.status().toString();
+    if (!mesh.ok()) return std::string();
+    EXPECT_EQ(mesh->faces.faceCount(), 1u);
+    EXPECT_EQ(mesh->texcoords.empty(), mesh->corner_texcoords.empty());
+    EXPECT_EQ(mesh->normals.empty(), mesh->corner_normals.empty());
+    std::string all;
+    for (const std::string& w : objLayoutWarnings(*mesh)) {
+      EXPECT_NE(w.find(path.string()), std::string::npos) << w;
+      all += w + "\n";
+    }
+    return all;
+  };
+  EXPECT_EQ(warnings(tri + "f 1/1/1 2/2/1 3/3/1\n"), "");
+  EXPECT_NE(warnings(tri + "f 1/1 2/2 3\n").find("texture coordinates (vt) are not kept: " + (dir_ / "w.obj").string() +
+                                                  ": 2 of 3 face corners name a `vt`; all or none must"),
+            std::string::npos);
+  EXPECT_NE(warnings(tri + "f 1/1 2/2 3/4\n").find("w.obj:8: texture coordinate index '4', but only 3 `vt` lines come before it"), std::string::npos);
+  EXPECT_NE(warnings(tri + "f 1/1 2/x 3/3\n").find("w.obj:8: texture coordinate index 'x' is not a number above 0"), std::string::npos);
+  EXPECT_NE(warnings(tri + "f 1/-4 2/2 3/3\n").find("texture coordinate index '-4' points before the first `vt`"), std::string::npos);
+  EXPECT_NE(warnings("vt 0 nan\n" + tri + "f 1/1 2/2 3/3\n").find("w.obj:1: `vt` needs finite coordinates"),
+            std::string::npos);
+  EXPECT_NE(warnings(tri + "vn 0 0 0\nf 1//1 2//2 3//1\n").find("normals (vn) are not kept: " + (dir_ / "w.obj").string() +
+                                                               ": normal 2 is zero"),
+            std::string::npos);
+  EXPECT_NE(warnings(tri + "f 1 2 3\n").find("3 `vt` lines, but no face names one"), std::string::npos);
+  const std::string only_texcoords = warnings(tri + "f 1/1 2/2 3/3\n");  // the unused vn line is reported too
+  EXPECT_NE(only_texcoords.find("1 `vn` line, but no face names one"), std::string::npos);
+  EXPECT_EQ(only_texcoords.find("texture coordinates"), std::string::npos);
+  EXPECT_EQ(warnings("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/2 3/3\n"), "");
+}
+
 TEST(ReadObj, MissingFileIsAnIoError) {
   const fs::path path = fs::temp_directory_path() / "odeskin_obj_reader_test_no_such_dir/none.obj";
   const Result<ObjMesh> mesh = readObj(path);
@@ -248,6 +330,32 @@ TEST(ReadObjSequence, BindMeshBecomesTheRestPositions) {
             (std::vector<std::string>{"cylinder-1.obj", "cylinder-2.obj", "cylinder-3.obj", "cylinder-4.obj"}));
 }
 
+// The first pose's `vt` and `vn` make the set's render layout, and its warnings are the set's.
+TEST_F(ObjTempDir, SequenceTakesTheFirstPosesTexcoords) {
+  std::string moved = kSeamSquare;
+  moved.replace(moved.find("v 1 1 0"), 7, "v 1 1 1");
+  const std::vector<fs::path> poses{write("a.obj", kSeamSquare), write("b.obj", moved)};
+  Result<ExampleSet> set = readObjSequence(poses);
+  ASSERT_TRUE(set.ok()) << set.status().toString();
+  EXPECT_TRUE(set->render.obj_order);
+  EXPECT_EQ(set->render.topology_of_render, (std::vector<std::uint32_t>{0, 1, 2, 2, 3}));
+  EXPECT_EQ(set->render.uvs.size(), 5u);
+  EXPECT_TRUE(set->warnings.empty());
+
+  std::string partial = kSeamSquare;
+  partial.replace(partial.find("4/4/1"), 5, "4");
+  const std::vector<fs::path> broken{write("c.obj", partial), write("b.obj", moved)};
+  set = readObjSequence(broken);
+  ASSERT_TRUE(set.ok()) << set.status().toString();
+  EXPECT_TRUE(set->render.uvs.empty());
+  ASSERT_EQ(set->warnings.size(), 2u);
+  EXPECT_NE(set->warnings[0].find("texture coordinates (vt) are not kept: " + (dir_ / "c.obj").string() +
+                                  ": 5 of 6 face corners name a `vt`"),
+            std::string::npos)
+      << set->warnings[0];
+  EXPECT_NE(set->warnings[1].find("normals (vn) are not kept"), std::string::npos) << set->warnings[1];
+}
+
 // Poses written from the cylinder, then edited one way or another.
 class ObjSequenceTempDir : public ObjTempDir {
  protected:
@@ -304,6 +412,37 @@ TEST_F(ObjSequenceTempDir, TexcoordsAreWrittenAsVtAndReadBack) {
   const Status wrong = writeObj(dir_ / "wrong.obj", a_.positions, a_.faces, {}, uvs);
   EXPECT_NE(wrong.message().find("419 texture coordinates for 420 vertices"), std::string::npos) << wrong.message();
   EXPECT_FALSE(fs::exists(dir_ / "wrong.obj"));
+}
+
+// An OBJ input's layout goes back out with its `v` lines in the input's order and each corner naming
+// its own `vt`: the written file reads back as the mesh and layout it came from.
+TEST_F(ObjTempDir, CornerTexcoordsKeepThePositionsOrder) {
+  const Result<ObjMesh> mesh = readObj(write("square.obj", kSeamSquare));
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  const RenderLayout layout = objRenderLayout(*mesh);
+  const fs::path path = dir_ / "out.obj";
+  ASSERT_TRUE(writeObj(path, mesh->positions, layout.faces, {}, layout.uvs, layout.topology_of_render).ok());
+  EXPECT_NE(slurp(path).find("f 1/1 2/2 3/3\nf 1/1 3/4 4/5\n"), std::string::npos) << slurp(path);
+  const Result<ObjMesh> back = readObj(path);
+  ASSERT_TRUE(back.ok()) << back.status().toString();
+  EXPECT_EQ(back->positions, mesh->positions);
+  EXPECT_EQ(back->faces.indices, mesh->faces.indices);
+  const RenderLayout again = objRenderLayout(*back);
+  EXPECT_EQ(again.topology_of_render, layout.topology_of_render);
+  EXPECT_EQ(again.uvs, layout.uvs);
+
+  // Without UVs (a layout of normals only) the faces are the topology's.
+  ASSERT_TRUE(writeObj(path, mesh->positions, layout.faces, {}, {}, layout.topology_of_render).ok());
+  EXPECT_NE(slurp(path).find("f 1 2 3\nf 1 3 4\n"), std::string::npos) << slurp(path);
+
+  const fs::path refused = dir_ / "refused.obj";
+  std::vector<std::uint32_t> wrong = layout.topology_of_render;
+  wrong[2] = 4;
+  Status s = writeObj(refused, mesh->positions, layout.faces, {}, layout.uvs, wrong);
+  EXPECT_NE(s.message().find("refused.obj: texture coordinate 2 belongs to vertex 4 of 4"), std::string::npos) << s.message();
+  s = writeObj(refused, mesh->positions, layout.faces, {}, std::span(layout.uvs).first(4), layout.topology_of_render);
+  EXPECT_NE(s.message().find("refused.obj: 4 texture coordinates for 5 corner vertices"), std::string::npos) << s.message();
+  EXPECT_FALSE(fs::exists(refused));
 }
 
 // Output that a reader would take for a mesh it is not: a NaN position or texture coordinate, or

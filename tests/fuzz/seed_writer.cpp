@@ -63,6 +63,11 @@ int main(int argc, char** argv) {
   const auto faces = static_cast<std::uint32_t>(hard.render.faces.faceCount());
   hard.render.primitives = {{faces / 2, 0}, {faces, -1}};
   if (Status s = saveAsset(folder / "odsk" / "arm-hard-edges.odsk", hard); !s.ok()) return fail(s.toString());
+  // The same layout as an OBJ input's (ROBJ): OBJ frames keep the topology vertices.
+  DeformAsset obj_layout = hard;
+  obj_layout.render.primitives.clear();
+  obj_layout.render.obj_order = true;
+  if (Status s = saveAsset(folder / "odsk" / "arm-obj-texcoords.odsk", obj_layout); !s.ok()) return fail(s.toString());
 
   GltfExportOptions compact;
   const fs::path glb = folder / "gltf" / "arm-compact.glb";

@@ -27,6 +27,10 @@
 #            textured material) and exports it as glTF; `odeskin fit` reads it, `odeskin export
 #            --materials` (and `play -o OUT.glb --materials`) write it back, and Blender imports
 #            them: the same vertices, UVs and material, moving as `odeskin play` does.
+#   obj_uv   Blender's textured character as in roundtrip, written by Blender's OBJ exporter as one
+#            OBJ per pose (vt and vn on every corner); `odeskin fit` reads them, and Blender imports
+#            `play --t 0`'s OBJ (the input's vertices in order, the same UVs corner by corner), plays
+#            a PC2 cache on it, and imports `odeskin export`'s glTF (the same UVs, the same motion).
 #   rig_gltf Blender's textured character as in roundtrip (--poses: the shape keys are example
 #            poses, `--targets`); `odeskin rig CHARACTER.glb --gltf OUT.glb` rigs it, and Blender
 #            imports an armature of the .tgf's bones over the same vertices, UVs and material.
@@ -54,7 +58,7 @@ from blender_support import (CheckFailure, compare, evaluated_positions, failure
 # between keys (odeskin export prints its bounds), and --quantize's rounding adds about 1e-4 more
 # (2.5e-5 to a bake).
 TOLERANCE = {"compact": 1e-4, "quantized": 2e-4, "baked": 1e-5, "baked_quantized": 5e-5, "pc2": 1e-6, "mdd": 1e-6, "rig": 1e-6, "ply": 1e-6, "surface": 1e-6,
-             "roundtrip": 1e-4, "animated": 1e-4, "rig_gltf": 1e-6}
+             "roundtrip": 1e-4, "animated": 1e-4, "rig_gltf": 1e-6, "obj_uv": 1e-4}
 
 
 def parse_args():
@@ -262,6 +266,12 @@ def check_ply(options, out):
 
 def make_character(poses, glb):
     """A textured character with one shape key per further pose, exported by Blender's glTF exporter."""
+    textured_character(poses)
+    bpy.ops.export_scene.gltf(filepath=str(glb), export_format="GLB", export_morph=True)
+
+
+def textured_character(poses):
+    """The first pose with one shape key per further pose, smooth shading, UV islands and a textured material."""
     reset_scene(24)
     bpy.ops.wm.obj_import(filepath=poses[0])
     obj = only_mesh()
@@ -290,7 +300,99 @@ def make_character(poses, glb):
     texture.image = image
     material.node_tree.links.new(texture.outputs["Color"], material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
     obj.data.materials.append(material)
-    bpy.ops.export_scene.gltf(filepath=str(glb), export_format="GLB", export_morph=True)
+    return obj
+
+
+def loop_uvs(obj, name):
+    """`obj`'s UVs per face corner, in its loop order."""
+    if not obj.data.uv_layers:
+        raise CheckFailure(f"{name}: the imported mesh has no UVs")
+    uvs = numpy.empty(len(obj.data.loops) * 2)
+    obj.data.uv_layers[0].data.foreach_get("uv", uvs)
+    return uvs.reshape(-1, 2)
+
+
+def render_vertex_map(path):
+    """The vertex each `vt` of an OBJ belongs to, from its `f v/vt` corners (0-based)."""
+    vertex_of = {}
+    with open(path) as f:
+        for line in f:
+            if line.startswith("f "):
+                for corner in line.split()[1:]:
+                    v, t = (int(i) - 1 for i in corner.split("/")[:2])
+                    if vertex_of.setdefault(t, v) != v:
+                        raise CheckFailure(f"{path.name}: texture coordinate {t + 1} is on vertices {vertex_of[t] + 1} and {v + 1}")
+    if sorted(vertex_of) != list(range(len(vertex_of))):
+        raise CheckFailure(f"{path.name}: some texture coordinates are on no face")
+    return numpy.array([vertex_of[t] for t in range(len(vertex_of))])
+
+
+def check_obj_uv(options, out):
+    character = textured_character(options.poses)
+    keys = character.data.shape_keys.key_blocks
+    exported = []
+    for k in range(len(options.poses)):
+        for i in range(1, len(keys)):
+            keys[i].value = 1.0 if i == k else 0.0
+        bpy.context.view_layer.update()
+        exported.append(out / f"pose-{k}.obj")
+        bpy.ops.wm.obj_export(filepath=str(exported[-1]), export_selected_objects=True, export_uv=True,
+                              export_normals=True, export_materials=False, apply_modifiers=True)
+    moved = float(numpy.abs(obj_positions(exported[1]) - obj_positions(exported[0])).max())
+    log(f"Blender's OBJ files: pose 1 moves up to {moved:.3g} from pose 0")
+    if moved == 0.0:
+        raise CheckFailure("Blender wrote every pose alike: the shape keys were not applied")
+    asset, base, glb, cache = out / "character.odsk", out / "base.obj", out / "exported.glb", out / "cache.pc2"
+    odeskin(options, "fit", *(str(p) for p in exported), "-o", str(asset))
+    odeskin(options, "play", str(asset), "--t", "0", "-o", str(base))
+    odeskin(options, "export", str(asset), "--interpolation", "linear", "-o", str(glb))
+
+    reset_scene(24)
+    bpy.ops.wm.obj_import(filepath=str(exported[0]))
+    source = only_mesh()
+    source_vertices, source_uvs = len(source.data.vertices), loop_uvs(source, exported[0].name)
+    for written in (base, glb):
+        reset_scene(100)
+        if written == base:
+            bpy.ops.wm.obj_import(filepath=str(written))
+        else:
+            bpy.ops.import_scene.gltf(filepath=str(written))
+        obj = only_mesh()
+        uvs = loop_uvs(obj, written.name)
+        log(f"{written.name}: {len(obj.data.vertices)} vertices (the input {source_vertices}), {len(uvs)} face corners")
+        if written == base and len(obj.data.vertices) != source_vertices:
+            failures.append(f"{written.name}: {len(obj.data.vertices)} vertices, the input {source_vertices}")
+        if uvs.shape != source_uvs.shape:
+            raise CheckFailure(f"{written.name}: {len(uvs)} face corners with UVs, the input {len(source_uvs)}")
+        uv_error = float(numpy.abs(uvs - source_uvs).max())
+        log(f"{written.name} UVs: largest difference {uv_error:.2e} from the input's, corner by corner")
+        if uv_error > 1e-6:
+            failures.append(f"{written.name}: UVs differ from the input's by {uv_error:.2e}")
+    # The glTF holds render vertices (split at the UV seams), play's OBJ the input's vertices: the
+    # OBJ's corners `v/vt` say which vertex each render vertex (each `vt`) is.
+    vertex_of_render = render_vertex_map(base)
+    if len(vertex_of_render) != len(obj.data.vertices):
+        raise CheckFailure(f"{base.name} names {len(vertex_of_render)} texture coordinates, {glb.name} has "
+                           f"{len(obj.data.vertices)} vertices")
+    seconds = segment_seconds(options, asset)
+    for t in (0.0, 0.37, 1.0, float(len(options.poses) - 1)):
+        reference = out / f"obj_uv-t{t}.obj"
+        odeskin(options, "play", str(asset), "--t", str(t), "-o", str(reference))
+        compare(f"obj_uv t {t}", evaluated_positions(obj, round(t * seconds * 100)),
+                obj_positions(reference)[vertex_of_render], TOLERANCE["obj_uv"])
+
+    # The point cache animates the OBJ `play --t 0` wrote, which is the input's mesh.
+    fps = 4
+    odeskin(options, "play", str(asset), "--fps", str(fps), "-o", str(cache))
+    odeskin(options, "play", str(asset), "--fps", str(fps), "-o", str(out / "frame_%04d.obj"))
+    reset_scene(fps)
+    bpy.ops.wm.obj_import(filepath=str(base))
+    obj = only_mesh()
+    modifier = obj.modifiers.new("odeskin", "MESH_CACHE")
+    modifier.cache_format = "PC2"
+    modifier.filepath = str(cache)
+    for k, reference in enumerate(sorted(out.glob("frame_*.obj"))):
+        compare(f"pc2 frame {k}", evaluated_positions(obj, k), obj_positions(reference), TOLERANCE["pc2"])
 
 
 def imported_look(glb, fps):
@@ -298,15 +400,12 @@ def imported_look(glb, fps):
     reset_scene(fps)
     bpy.ops.import_scene.gltf(filepath=str(glb))
     obj = only_mesh()
-    if not obj.data.uv_layers:
-        raise CheckFailure(f"{glb.name}: the imported mesh has no UVs")
-    uvs = numpy.empty(len(obj.data.loops) * 2)
-    obj.data.uv_layers[0].data.foreach_get("uv", uvs)
+    uvs = loop_uvs(obj, glb.name)
     materials = [m for m in obj.data.materials if m is not None]
     images = [n.image for m in materials if m.node_tree for n in m.node_tree.nodes if n.type == "TEX_IMAGE" and n.image]
     if len(materials) != 1 or len(images) != 1:
         raise CheckFailure(f"{glb.name}: {len(materials)} materials with {len(images)} images, expected one of each")
-    return obj, uvs.reshape(-1, 2), materials[0].name, tuple(images[0].size)
+    return obj, uvs, materials[0].name, tuple(images[0].size)
 
 
 def check_roundtrip(options, out):
@@ -447,10 +546,10 @@ def main():
     out = Path(options.out)
     out.mkdir(parents=True, exist_ok=True)
     log(f"Blender {bpy.app.version_string}, check {options.check}, input {options.mesh or options.asset or options.network or options.poses}")
-    needs = {"rig": "mesh", "animated": "mesh", "roundtrip": "poses", "rig_gltf": "poses",
+    needs = {"rig": "mesh", "animated": "mesh", "roundtrip": "poses", "rig_gltf": "poses", "obj_uv": "poses",
              "surface": "network"}.get(options.check, "asset")
     given = [name for name in ("mesh", "poses", "asset", "network") if getattr(options, name) is not None]
-    if given != [needs] or (options.check in ("roundtrip", "rig_gltf") and len(options.poses) < 2):
+    if given != [needs] or (options.check in ("roundtrip", "rig_gltf", "obj_uv") and len(options.poses) < 2):
         log(f"FAILED: the {options.check} check takes --{needs}" + (" with two or more poses" if needs == "poses" else ""))
         sys.exit(1)
     if (options.check == "ply") != (options.reference is not None):
@@ -461,7 +560,8 @@ def main():
             checks = {"compact": check_compact, "quantized": check_compact, "baked": check_baked,
                       "baked_quantized": check_baked, "pc2": check_point_cache,
                       "mdd": check_point_cache, "rig": check_rig, "ply": check_ply, "roundtrip": check_roundtrip,
-                      "rig_gltf": check_rig_gltf, "surface": check_surface, "animated": check_animated}
+                      "rig_gltf": check_rig_gltf, "surface": check_surface, "animated": check_animated,
+                      "obj_uv": check_obj_uv}
             checks[options.check](options, Path(scratch))
         if failures:
             raise CheckFailure(f"{len(failures)} comparison(s) over the tolerance; first: {failures[0]}")

@@ -268,6 +268,53 @@ TEST_F(Cli, PlayUsesTheSegmentLengthAndTheRenderLayout) {
   EXPECT_LE(maxDistance(last->positions, arm_->end_positions), kKeyTolerance * box());
 }
 
+// An asset fitted from OBJ files with `vt` keeps the input's vertex order in its OBJ frames and
+// point caches (each corner naming its UV, the seams kept), and says where its UVs came from.
+TEST_F(Cli, PlayKeepsAnObjInputsVertexOrderAndTexcoords) {
+  const fs::path dir = scratch("obj-uvs");
+  const std::size_t v = asset_->vertexCount();
+  ObjMesh input;
+  input.positions = asset_->rest_positions;
+  input.faces = asset_->faces;
+  for (std::size_t i = 0; i < v; ++i) {
+    input.texcoords.emplace_back(static_cast<double>(i % 8) / 8.0, static_cast<double>(i / 8 % 8) / 8.0);
+  }
+  input.texcoords.emplace_back(0.5, 0.5);  // the first corner's, across a seam
+  input.corner_texcoords = input.faces.indices;
+  input.corner_texcoords[0] = static_cast<std::uint32_t>(v);
+  DeformAsset asset = *asset_;
+  asset.render = objRenderLayout(input);
+  ASSERT_EQ(asset.render.topology_of_render.size(), v + 1);
+  ASSERT_TRUE(saveAsset(dir / "uv.odsk", asset).ok());
+
+  PlayOptions o;
+  o.asset = dir / "uv.odsk";
+  o.t = 1.0;
+  o.output = (dir / "t1.obj").string();
+  Captured io;
+  ASSERT_EQ(play(o, io), kExitOk) << io.err.str();
+  Result<ObjMesh> frame = readObj(dir / "t1.obj");
+  ASSERT_TRUE(frame.ok()) << frame.status().toString();
+  ASSERT_EQ(frame->positions.size(), v);
+  EXPECT_LE(maxDistance(frame->positions, arm_->end_positions), kKeyTolerance * box());
+  EXPECT_EQ(frame->faces.indices, asset.faces.indices);
+  const RenderLayout read_back = objRenderLayout(*frame);
+  EXPECT_EQ(read_back.topology_of_render, asset.render.topology_of_render);
+  EXPECT_EQ(read_back.uvs, asset.render.uvs);
+
+  o.output = (dir / "t1.pc2").string();
+  ASSERT_EQ(play(o, io), kExitOk) << io.err.str();
+  EXPECT_EQ(fs::file_size(dir / "t1.pc2"), 32 + v * 12);
+  EXPECT_NE(io.out.str().find("(point cache of " + std::to_string(v) + " vertices"), std::string::npos) << io.out.str();
+
+  Captured info;
+  ASSERT_EQ(runInfoCommand(o.asset, info.console), kExitOk) << info.err.str();
+  EXPECT_NE(info.out.str().find(std::to_string(v) + " (" + std::to_string(v + 1) +
+                                " render vertices); with the input's texture coordinates (vt)"),
+            std::string::npos)
+      << info.out.str();
+}
+
 TEST_F(Cli, PlayRejectsBadUsageWithExitCode2) {
   const fs::path dir = scratch("usage");
   std::vector<CommandCase<PlayOptions>> cases;

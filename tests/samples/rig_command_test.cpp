@@ -16,6 +16,7 @@
 #include "engine/io/gltf_baked_writer.hpp"
 #include "engine/io/gltf_reader.hpp"
 #include "engine/io/libigl_io.hpp"
+#include "engine/io/obj_io.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/rig/curve_rig.hpp"
 #include "engine/data_mesh.hpp"  // tests/engine
@@ -210,6 +211,43 @@ TEST_F(RigCommand, GltfInputKeepsItsLookAndGetsTheArraysRig) {
   const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(model.images[0].bufferView));
   EXPECT_TRUE(view.byteLength == kOnePixelPng.size() &&
               std::equal(kOnePixelPng.begin(), kOnePixelPng.end(), model.buffers[0].data.begin() + static_cast<std::ptrdiff_t>(view.byteOffset)));
+}
+
+// An OBJ's texture coordinates reach the skinned glTF too: its vertices are split where a
+// corner's `vt` differs, as a glTF input's render vertices are.
+TEST_F(RigCommand, ObjTexcoordsReachTheRiggedGlb) {
+  const SeamedCylinder c = seamedCylinder();
+  const fs::path obj = dir_ / "textured.obj";
+  ASSERT_TRUE(writeObj(obj, c.positions, c.render.faces, {}, c.render.uvs, c.render.topology_of_render).ok());
+  Result<ObjMesh> mesh = readObj(obj);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().toString();
+  const RenderLayout layout = objRenderLayout(*mesh);
+  ASSERT_GT(layout.topology_of_render.size(), c.positions.size()) << "the cylinder's UV seam splits vertices";
+  RigCommandOptions o;
+  o.meshes = {obj};
+  o.template_kind = "none";
+  o.output = dir_ / "textured.tgf";
+  o.gltf = dir_ / "textured.glb";
+  testing::Captured io;
+  ASSERT_EQ(runRigCommand(o, io.console), kExitOk) << io.err.str();
+  EXPECT_NE(io.out.str().find("OBJ: " + std::to_string(layout.topology_of_render.size()) + " render vertices welded into 420"),
+            std::string::npos)
+      << io.out.str();
+  EXPECT_TRUE(io.err.str().empty()) << io.err.str();
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  Result<ExampleSet> back = readGltfExamples(o.gltf, request);
+  ASSERT_TRUE(back.ok()) << back.status().toString();
+  EXPECT_EQ(back->rest_positions.size(), c.positions.size());
+  // The reader numbers the welded vertices its own way: render vertex r is compared by what it holds.
+  ASSERT_EQ(back->render.topology_of_render.size(), layout.topology_of_render.size());
+  ASSERT_EQ(back->render.uvs.size(), layout.uvs.size());
+  for (std::size_t r = 0; r < layout.uvs.size(); ++r) {
+    EXPECT_LT(glm::length(back->rest_positions[back->render.topology_of_render[r]] - c.positions[layout.topology_of_render[r]]),
+              1e-6)
+        << r;
+    EXPECT_LT(glm::length(back->render.uvs[r] - layout.uvs[r]), 1e-7) << r;
+  }
 }
 
 // The rigged file rigs again to the same skeleton, and says that its own skin is not used.
