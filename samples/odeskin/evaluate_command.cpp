@@ -2,6 +2,7 @@
 #include "evaluate_command.hpp"
 
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <system_error>
 #include <vector>
@@ -95,7 +96,8 @@ std::string frameName(std::uint32_t frame) {
 }
 
 // One picture per in-between frame: a panel per method, heat = distance to the ground truth.
-int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Console& console, const std::string& device) {
+int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Console& console, const std::string& device,
+                 RenderSession& session) {
   for (const EvaluatedFrame& f : r.frames) {
     RenderOptions render;
     render.output = (o.png_dir / (frameName(f.frame) + ".png")).string();
@@ -108,7 +110,7 @@ int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Con
     }
     render.size = std::to_string(360 * r.methods.size()) + "x400";
     Console quiet{console.out, console.err, true, false};
-    if (const int code = runRenderCommand(render, quiet); code != kExitOk) return code;
+    if (const int code = runRenderCommand(render, quiet, nullptr, &session); code != kExitOk) return code;
     if (!console.quiet) console.out << "wrote " << render.output << "\n";
   }
   return kExitOk;
@@ -174,11 +176,16 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   options.pipeline.curve_rig = o.rig == "curves";
   options.pipeline.auto_bones = o.bones;
   options.skeleton_fit = o.skeleton_fit == "lbs" ? SkeletonFit::kLbsOptimal : SkeletonFit::kPerBoneRigid;
+  std::optional<RenderSession> pictures;  // --png: opened once for every heat map
   if (!o.png_dir.empty()) {
     // The heat maps are drawn last; a missing device must fail before the JSON and OBJs are written.
-    if (Result<RenderSession> session = RenderSession::open(device, false, vk::PictureStyle{}); !session.ok()) {
+    RenderOptions look;
+    look.device = device;
+    Result<RenderSession> session = openRenderSession(look);
+    if (!session.ok()) {
       return reportFailure(console, Status(session.status().code(), "evaluate: --png: " + session.status().message()));
     }
+    pictures.emplace(std::move(session).value());
     std::error_code made;
     std::filesystem::create_directories(o.png_dir / "obj", made);
     if (made) return reportFailure(console, ioError((o.png_dir / "obj").string() + ": cannot create directory: " + made.message()));
@@ -200,7 +207,7 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
     printTable(console.out, *result);
     console.out << "wrote " << o.json.string() << "\n";
   }
-  if (!o.png_dir.empty()) return drawHeatMaps(o, *result, console, device);
+  if (pictures) return drawHeatMaps(o, *result, console, device, *pictures);
   return kExitOk;
 }
 

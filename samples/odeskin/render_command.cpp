@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <ostream>
 #include <system_error>
 #include <tuple>
@@ -270,7 +271,15 @@ void printSummary(const RenderOptions& o, const Panels& panels, const RenderRepo
 
 }  // namespace
 
-int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* report) {
+Result<RenderSession> openRenderSession(const RenderOptions& o) {
+  ODESKIN_ASSIGN_OR_RETURN(const visual::Rgba8 background, parseColour(o.background));
+  vk::PictureStyle style;
+  style.background = background;
+  style.samples = o.samples;
+  return RenderSession::open(o.device, o.validation, style);
+}
+
+int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* report, RenderSession* shared) {
   if (const std::string problem = usageProblem(o); !problem.empty()) return reportUsage(console, problem);
   if (const std::string clash = outputClash(o); !clash.empty()) return reportUsage(console, "render: " + clash);
 
@@ -286,11 +295,13 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
   Result<std::vector<visual::Camera>> cameras = pictureCameras(o, panels, *layout);
   if (!cameras.ok()) return reportUsage(console, "render: " + cameras.status().message());
 
-  vk::PictureStyle style;
-  style.background = *parseColour(o.background);
-  style.samples = o.samples;
-  Result<RenderSession> session = RenderSession::open(o.device, o.validation, style);
-  if (!session.ok()) return reportFailure(console, Status(session.status().code(), "render: " + session.status().message()));
+  std::optional<RenderSession> own;
+  RenderSession* session = shared;
+  if (session == nullptr) {
+    Result<RenderSession> opened = openRenderSession(o);
+    if (!opened.ok()) return reportFailure(console, Status(opened.status().code(), "render: " + opened.status().message()));
+    session = &own.emplace(std::move(opened).value());
+  }
 
   std::vector<vk::PanelContent> contents;
   for (const PanelGeometry& g : panels.geometry) contents.push_back(g.content());
@@ -314,7 +325,7 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
   if (!o.strip.empty()) {
     const std::uint32_t columns = visual::balancedColumns(frames.size(), kStripColumns);
     const std::uint32_t thumb = std::min(layout->width, kStripWidth / columns);
-    const visual::Image sheet = visual::contactSheet(frames, columns, thumb, 4, style.background);
+    const visual::Image sheet = visual::contactSheet(frames, columns, thumb, 4, *parseColour(o.background));
     if (Status s = writePicture(o.strip, sheet); !s.ok()) return reportFailure(console, s);
     result.files.emplace_back(o.strip);
   }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "console.hpp"
+#include "engine/core/result.hpp"
 
 namespace odeskin {
 
@@ -51,10 +52,19 @@ struct RenderReport {
   std::uint32_t samples = 0;                 // per pixel, as drawn: --samples lowered to what the device offers
 };
 
+class RenderSession;
+
+// The Vulkan session runRenderCommand draws with for `options` (their --device, --validation,
+// --background and --samples): a caller that draws many pictures with one look opens it once.
+// kInvalidArgument for a bad --background; RenderSession::open's errors.
+Result<RenderSession> openRenderSession(const RenderOptions& options);
+
 // Exit status as console.hpp: usage (2) for option errors (a malformed --size, an asset time out of
 // range, --curves without an asset...); failure (1) for unreadable inputs, a --heat reference
 // whose vertex count differs from a panel's, no Vulkan device, validation messages, write errors.
-// Pictures are written atomically; on failure none is left half-written.
-int runRenderCommand(const RenderOptions& options, Console& console, RenderReport* report = nullptr);
+// Pictures are written atomically; on failure none is left half-written. `session`: one that
+// openRenderSession made for options with the same look, or null to open one for this call.
+int runRenderCommand(const RenderOptions& options, Console& console, RenderReport* report = nullptr,
+                     RenderSession* session = nullptr);
 
 }  // namespace odeskin
