@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "obj_reader.hpp"
 
-#include <limits>
 #include <string_view>
 #include <unordered_map>
 

@@ -362,12 +362,7 @@ def check_obj_uv(options, out):
         log(f"{written.name}: {len(obj.data.vertices)} vertices (the input {source_vertices}), {len(uvs)} face corners")
         if written == base and len(obj.data.vertices) != source_vertices:
             failures.append(f"{written.name}: {len(obj.data.vertices)} vertices, the input {source_vertices}")
-        if uvs.shape != source_uvs.shape:
-            raise CheckFailure(f"{written.name}: {len(uvs)} face corners with UVs, the input {len(source_uvs)}")
-        uv_error = float(numpy.abs(uvs - source_uvs).max())
-        log(f"{written.name} UVs: largest difference {uv_error:.2e} from the input's, corner by corner")
-        if uv_error > 1e-6:
-            failures.append(f"{written.name}: UVs differ from the input's by {uv_error:.2e}")
+        compare_uvs(written.name, uvs, source_uvs, "the input")
     # The glTF holds render vertices (split at the UV seams), play's OBJ the input's vertices: the
     # OBJ's corners `v/vt` say which vertex each render vertex (each `vt`) is.
     vertex_of_render = render_vertex_map(base)
@@ -434,13 +429,18 @@ def check_same_look(written, source_look):
     if (material, image) != (source_material, source_image):
         failures.append(f"{written.name}: material '{material}' {image} is not the source's "
                         f"'{source_material}' {source_image}")
-    if uvs.shape != source_uvs.shape:
-        raise CheckFailure(f"{written.name}: {len(uvs)} face corners with UVs, the source {len(source_uvs)}")
-    uv_error = float(numpy.abs(uvs - source_uvs).max())
-    log(f"{written.name} UVs: largest difference {uv_error:.2e} from the source's, corner by corner")
-    if uv_error > 1e-6:
-        failures.append(f"{written.name}: UVs differ from the source's by {uv_error:.2e}")
+    compare_uvs(written.name, uvs, source_uvs, "the source")
     return obj
+
+
+def compare_uvs(name, uvs, reference, reference_name):
+    """UVs per face corner against `reference`'s, corner by corner, to float32's 1e-6."""
+    if uvs.shape != reference.shape:
+        raise CheckFailure(f"{name}: {len(uvs)} face corners with UVs, {reference_name} {len(reference)}")
+    uv_error = float(numpy.abs(uvs - reference).max())
+    log(f"{name} UVs: largest difference {uv_error:.2e} from {reference_name}'s, corner by corner")
+    if uv_error > 1e-6:
+        failures.append(f"{name}: UVs differ from {reference_name}'s by {uv_error:.2e}")
 
 
 def check_rig_gltf(options, out):

@@ -287,10 +287,8 @@ TEST_F(Cli, PlayKeepsAnObjInputsVertexOrderAndTexcoords) {
   ASSERT_EQ(asset.render.topology_of_render.size(), v + 1);
   ASSERT_TRUE(saveAsset(dir / "uv.odsk", asset).ok());
 
-  PlayOptions o;
+  PlayOptions o = atTime(1.0, dir / "t1.obj");
   o.asset = dir / "uv.odsk";
-  o.t = 1.0;
-  o.output = (dir / "t1.obj").string();
   Captured io;
   ASSERT_EQ(play(o, io), kExitOk) << io.err.str();
   Result<ObjMesh> frame = readObj(dir / "t1.obj");
