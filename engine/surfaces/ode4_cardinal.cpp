@@ -16,8 +16,7 @@ namespace {
 // omega ~ |c|^(1/4), and swept over powers of ten (b from 0 to +-1e150, every regime, the four
 // blend examples) the surfaces first miss their constraints by more than 1e-9 of the data at
 // |c| = 1e16 on a double-root line (1.5e19 in regime C, 1e30 with b = 0). Up to 1e12 the worst
-// miss is 4.6e-11, twenty times inside that check (apart from a band of regime A near the basis
-// switch, b ~ -1e4 and c ~ 1e8, whose misses come from the pq basis, not from the range).
+// miss is 4.6e-11, twenty times inside that check.
 constexpr double kMaxB = 1e150;
 constexpr double kMaxC = 1e12;
 
@@ -110,31 +109,13 @@ Result<Ode4Cardinal> Ode4Cardinal::create(double alpha, double beta, double gamm
   out.b_ = beta / alpha;
   out.c_ = gamma / alpha;
   const double w = out.chooseBasis();
-
-  // 2x2 block inverses at t = +1/2 with slope rows divided by W (MATH.md 2.5). For a block basis
-  // (f, g): V = (G' f - F' g)/Wr and Dd = (F g - G f)/Wr with Wr = F G' - G F'.
-  auto invert = [w](const Pair& p, double& ratio) {
-    const double fp = p.df / w;
-    const double gp = p.dg / w;
-    const double wr = p.f * gp - p.g * fp;
-    ratio = std::fabs(wr) / (std::hypot(p.f, fp) * std::hypot(p.g, gp));
-    BlockInverse inv;
-    inv.v_f = gp / wr;
-    inv.v_g = -fp / wr;
-    inv.d_f = -p.g / (wr * w);
-    inv.d_g = p.f / (wr * w);
-    return inv;
-  };
-  double even_ratio = 0.0;
-  double odd_ratio = 0.0;
-  out.even_ = invert(out.evenPair(0.5), even_ratio);
-  out.odd_ = invert(out.oddPair(0.5), odd_ratio);
-  out.hadamard_ratio_ = std::min(even_ratio, odd_ratio);
+  const BlockRatios ratios = out.setUpBlocks(w);
+  out.hadamard_ratio_ = ratios.smaller();
   // `!(ratio >= threshold)` also catches a NaN ratio from a zero column.
-  if (!(even_ratio >= kOde4ResonanceThreshold) || !(odd_ratio >= kOde4ResonanceThreshold)) {
-    const bool even = !(even_ratio >= kOde4ResonanceThreshold);
+  if (!(ratios.even >= kOde4ResonanceThreshold) || !(ratios.odd >= kOde4ResonanceThreshold)) {
+    const bool even = !(ratios.even >= kOde4ResonanceThreshold);
     char ratio_text[32];
-    std::snprintf(ratio_text, sizeof ratio_text, "%.2e", even ? even_ratio : odd_ratio);
+    std::snprintf(ratio_text, sizeof ratio_text, "%.2e", even ? ratios.even : ratios.odd);
     return illPosed("shape parameters: " + params(alpha, beta, gamma) + " is resonant: the " +
                     (even ? "symmetric (even)" : "antisymmetric (odd)") +
                     " boundary-value problem has no unique solution (Hadamard ratio " + ratio_text +
@@ -160,12 +141,7 @@ double Ode4Cardinal::chooseBasis() {
       for (std::size_t n = 0; n + 4 <= static_cast<std::size_t>(kSeriesTerms); ++n) a[n + 4] = -b * a[n + 2] - c * a[n];
     }
   } else if (d >= 0.25 * omega * omega * omega * omega) {
-    basis_ = Ode4Basis::kReal;
-    // Stable quadratic formula: s1 is the root of larger magnitude (never 0 here), s2 = c / s1.
-    const double sqrt_d = std::sqrt(d);
-    const double s1 = b >= 0.0 ? 0.5 * (-b - sqrt_d) : 0.5 * (-b + sqrt_d);
-    x1_ = s1;
-    x2_ = c / s1;
+    useRealRoots(d);
   } else {
     basis_ = Ode4Basis::kPq;
     // X1 = (sqrt(c) - b/2)/2, X2 = -(sqrt(c) + b/2)/2 (c > 0 on this branch); the one that
@@ -180,6 +156,53 @@ double Ode4Cardinal::chooseBasis() {
     }
   }
   return w;
+}
+
+void Ode4Cardinal::useRealRoots(double d) {
+  basis_ = Ode4Basis::kReal;
+  // Stable quadratic formula: s1 is the root of larger magnitude (never 0 when D > 0), s2 = c / s1.
+  const double sqrt_d = std::sqrt(d);
+  x1_ = b_ >= 0.0 ? 0.5 * (-b_ - sqrt_d) : 0.5 * (-b_ + sqrt_d);
+  x2_ = c_ / x1_;
+}
+
+Ode4Cardinal::BlockRatios Ode4Cardinal::invertBlocks(double w) {
+  // 2x2 block inverses at t = +1/2 with slope rows divided by W (MATH.md 2.5). For a block basis
+  // (f, g): V = (G' f - F' g)/Wr and Dd = (F g - G f)/Wr with Wr = F G' - G F'.
+  auto invert = [w](const Pair& p, double& ratio) {
+    const double fp = p.df / w;
+    const double gp = p.dg / w;
+    const double wr = p.f * gp - p.g * fp;
+    ratio = std::fabs(wr) / (std::hypot(p.f, fp) * std::hypot(p.g, gp));
+    BlockInverse inv;
+    inv.v_f = gp / wr;
+    inv.v_g = -fp / wr;
+    inv.d_f = -p.g / (wr * w);
+    inv.d_g = p.f / (wr * w);
+    return inv;
+  };
+  BlockRatios ratios;
+  even_ = invert(evenPair(0.5), ratios.even);
+  odd_ = invert(oddPair(0.5), ratios.odd);
+  return ratios;
+}
+
+Ode4Cardinal::BlockRatios Ode4Cardinal::setUpBlocks(double w) {
+  const BlockRatios ratios = invertBlocks(w);
+  if (basis_ != Ode4Basis::kPq || !(x2_ > 0.0)) return ratios;
+  // Regime A (X2 = Q^2 > 0): the pq products are (cosh p1 t +- cosh p2 t) / 2 (over PQ for the
+  // second) with p1 = P + Q, p2 = P - Q, so at the ends both are cosh p1 t up to a part e^{-Q}
+  // smaller and the block ratio falls like e^{-Q}. The real basis scales each exponential on its
+  // own; its ratio falls only like Q / W, as the roots merge at D = 0. Q^2 = D / (8 (sqrt(c) - b/2))
+  // grows with |b| at a fixed D / omega^4, so no threshold on D suits every |b|: MATH.md 2.6's
+  // D >= omega^4 / 4 left misses of 1.6e-5 (b = -3e4, c = 2e8) and, from b = -5e4, refused these
+  // never-resonant parameters (MATH.md 2.7) as resonant. The better of the two is kept.
+  Ode4Cardinal real = *this;
+  real.useRealRoots(std::fma(b_, b_, -4.0 * c_));
+  const BlockRatios real_ratios = real.invertBlocks(w);
+  if (!(real_ratios.smaller() > ratios.smaller())) return ratios;
+  *this = real;
+  return real_ratios;
 }
 
 Ode4Cardinal::Pair Ode4Cardinal::seriesPair(int first, double t) const {

@@ -8,6 +8,7 @@
 // the double-root lines, tiny and very large shape parameters evaluate in float64 without overflow.
 #pragma once
 
+#include <algorithm>
 #include <array>
 
 #include "../core/result.hpp"
@@ -34,7 +35,8 @@ const char* ode4RegimeName(Ode4Regime regime);
 // Which well-conditioned fundamental system evaluates the cardinal functions (MATH.md 2.6).
 enum class Ode4Basis {
   kSeries,  // omega <= 1: power series, entire in (b, c)
-  kReal,    // D >= omega^4 / 4: Ch/Sh of the two real roots s1, s2 of s^2 + b s + c
+  kReal,    // D >= omega^4 / 4: Ch/Sh of the two real roots s1, s2 of s^2 + b s + c; also in
+            // regime A below that threshold wherever its block ratios beat the pq basis's
   kPq,      // otherwise (c > 0): products Ch(X1) Ch(X2) etc., continuous across D = 0
 };
 
@@ -86,10 +88,21 @@ class Ode4Cardinal {
   struct BlockInverse {  // value- and slope-cardinal functions as combinations of (f, g)
     double v_f = 0.0, v_g = 0.0, d_f = 0.0, d_g = 0.0;
   };
+  struct BlockRatios {  // Hadamard ratios of the two row-scaled blocks (MATH.md 2.7)
+    double even = 0.0, odd = 0.0;
+    double smaller() const { return std::min(even, odd); }
+  };
   Ode4Cardinal() = default;
   // Picks the basis of MATH.md 2.6 for (b_, c_) and sets its constants; returns the slope-row
   // scale W = max(1, omega) of MATH.md 2.5.
   double chooseBasis();
+  // Sets the kReal basis from D = b^2 - 4c > 0.
+  void useRealRoots(double d);
+  // Sets even_ and odd_ for the current basis and returns their ratios.
+  BlockRatios invertBlocks(double w);
+  // invertBlocks, after switching regime A from the pq to the real basis where that conditions
+  // the blocks better.
+  BlockRatios setUpBlocks(double w);
   Pair evenPair(double t) const;
   Pair oddPair(double t) const;
   Pair seriesPair(int first, double t) const;

@@ -2,7 +2,8 @@
 // The chapter-3 cardinal functions (MATH.md 2): every case of spec/vectors/ode4_cardinal.json
 // within its stated tolerance, the unit boundary conditions in every regime (degenerate ones and
 // large shape parameters included), the mirror identities, an independent complex-exponential
-// construction at random parameters, the Hermite limit, and the errors of MATH.md 2.7-2.8.
+// construction at random parameters, regime A next to the real-basis threshold against a long-double
+// end-anchored solve, the Hermite limit, and the errors of MATH.md 2.7-2.8.
 #include "engine/surfaces/ode4_cardinal.hpp"
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -267,6 +269,86 @@ TEST(Ode4Cardinal, AgreesWithComplexExponentialsAtRandomParameters) {
   std::printf("random (b, c): worst deviation from the complex-exponential reference %.2e (per gain)\n", worst);
 }
 
+// Regime A (roots +-p1, +-p2, both real) by MATH.md 2.4 with the end-anchored system
+// e^{-p_j u}, e^{-p_j (1-u)}, every function at most 1 on [0, 1], and a full 4x4 LU solve in
+// long double: independent of the even/odd blocks, the scaled Ch/Sh and the basis choice.
+std::vector<CardinalSample> anchoredReference(double b, double c, const std::vector<double>& us) {
+  using LD = long double;
+  const LD sqrt_d = std::sqrt(static_cast<LD>(b) * b - 4.0L * c);
+  const LD s1 = (-static_cast<LD>(b) + sqrt_d) / 2.0L;
+  const LD p[2] = {std::sqrt(s1), std::sqrt(static_cast<LD>(c) / s1)};
+  Eigen::Matrix<LD, 4, 4> m;
+  for (int j = 0; j < 2; ++j) {
+    const LD e = std::exp(-p[j]);
+    m.col(2 * j) << 1.0L, -p[j], e, -p[j] * e;       // e^{-p u}
+    m.col(2 * j + 1) << e, p[j] * e, 1.0L, p[j];     // e^{-p (1-u)}
+  }
+  const Eigen::Matrix<LD, 4, 4> a = m.fullPivLu().inverse();
+  std::vector<CardinalSample> out;
+  for (double u : us) {
+    CardinalSample s;
+    for (int k = 0; k < 4; ++k) {
+      LD v = 0.0L, d = 0.0L;
+      for (int j = 0; j < 2; ++j) {
+        const LD left = std::exp(-p[j] * u), right = std::exp(-p[j] * (1.0L - u));
+        v += a(2 * j, k) * left + a(2 * j + 1, k) * right;
+        d += p[j] * (a(2 * j + 1, k) * right - a(2 * j, k) * left);
+      }
+      s.r[static_cast<std::size_t>(k)] = static_cast<double>(v);
+      s.dr[static_cast<std::size_t>(k)] = static_cast<double>(d);
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+// The band of regime A next to the real-basis threshold (D just below omega^4/4) where the pq
+// basis's two growth rates p1 = P + Q and p2 = P - Q differ by a large 2Q: its Hadamard ratio
+// fell to ~1e-10 (b -7000 to -30000, c 1e7 to 2e8, misses up to 1.4e-5 in `blend`), and further
+// out (|b| >= 1e5) it reported these never-resonant parameters (MATH.md 2.7) as resonant.
+TEST(Ode4Cardinal, RegimeANextToTheRealBasisThreshold) {
+  std::vector<std::pair<double, double>> bc = {{-30000, 2e8}};  // the worst miss in `blend`
+  for (int i = 0; i <= 12; ++i) {
+    for (int j = 0; j <= 12; ++j) {
+      bc.emplace_back(-7000.0 * std::pow(30000.0 / 7000.0, i / 12.0), 1e7 * std::pow(20.0, j / 12.0));
+    }
+  }
+  bc.insert(bc.end(), {{-1e5, 2e9}, {-1e6, 2e11}, {-2e6, 9e11}});
+  std::vector<double> us;
+  for (int i = 0; i <= 40; ++i) us.push_back(i / 40.0);
+  int tested = 0;
+  double worst_unit = 0.0, worst_reference = 0.0;
+  for (const auto& [b, c] : bc) {
+    if (b * b - 4.0 * c < 1e-6 * b * b) continue;  // regime I or G, or too near it for the reference
+    SCOPED_TRACE(::testing::Message() << "b = " << b << ", c = " << c);
+    Result<Ode4Cardinal> r = Ode4Cardinal::create(1.0, b, c);
+    ASSERT_TRUE(r.ok()) << r.status().toString();
+    ASSERT_EQ(r->regime(), Ode4Regime::kTwoRealPairs);
+    const std::vector<CardinalSample> ref = anchoredReference(b, c, us);
+    // MATH.md 2.5's W: slopes are differences of terms of that size (layers of width 1/sqrt(|b|)).
+    const double slope_scale = std::max(1.0, std::sqrt(-b));
+    const CardinalSample s0 = r->at(0.0), s1 = r->at(1.0);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double unit = std::max({std::fabs(s0.r[k] - (k == 0)), std::fabs(s1.r[k] - (k == 2)),
+                                    std::fabs(s0.dr[k] - (k == 1)) / slope_scale, std::fabs(s1.dr[k] - (k == 3)) / slope_scale});
+      worst_unit = std::max(worst_unit, unit);
+      EXPECT_LT(unit, 1e-12) << "r" << k + 1;
+    }
+    for (std::size_t i = 0; i < us.size(); ++i) {
+      const CardinalSample s = r->at(us[i]);
+      for (std::size_t k = 0; k < 4; ++k) {
+        const double e = std::max(std::fabs(s.r[k] - ref[i].r[k]), std::fabs(s.dr[k] - ref[i].dr[k]) / slope_scale);
+        worst_reference = std::max(worst_reference, e);
+        EXPECT_LT(e, 1e-12) << "u = " << us[i] << ", r" << k + 1;
+      }
+    }
+    ++tested;
+  }
+  EXPECT_GT(tested, 60);
+  std::printf("regime A band, %d (b, c): unit conditions within %.2e, reference within %.2e (slopes per W)\n",
+              tested, worst_unit, worst_reference);
+}
+
 TEST(Ode4Cardinal, BasisBranchesFollowTheThresholds) {
   EXPECT_EQ(Ode4Cardinal::create(1, 0.5, 0.5)->basis(), Ode4Basis::kSeries);     // omega <= 1
   EXPECT_EQ(Ode4Cardinal::create(1, -5, 4)->basis(), Ode4Basis::kReal);         // D = 9 >= 25/4
@@ -274,6 +356,9 @@ TEST(Ode4Cardinal, BasisBranchesFollowTheThresholds) {
   EXPECT_EQ(Ode4Cardinal::create(1, 2, 1)->basis(), Ode4Basis::kPq);            // D = 0
   EXPECT_EQ(Ode4Cardinal::create(1, 1, 1)->basis(), Ode4Basis::kSeries);
   EXPECT_EQ(Ode4Cardinal::create(1, 0, 1e8)->basis(), Ode4Basis::kPq);          // D < 0
+  // Regime A below D = omega^4/4: pq while Q = sqrt(X2) is small, real once its ratio is the better.
+  EXPECT_EQ(Ode4Cardinal::create(1, -20000, 0.9999e8)->basis(), Ode4Basis::kPq);   // Q = 0.5
+  EXPECT_EQ(Ode4Cardinal::create(1, -30000, 2e8)->basis(), Ode4Basis::kReal);      // Q = 20
 }
 
 // Across the double-root lines D = 0 the functions are continuous: no branch switch in the pq basis.
