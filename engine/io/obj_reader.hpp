@@ -53,8 +53,9 @@ std::vector<std::string> objLayoutWarnings(const ObjMesh& mesh);
 // `bind` (optional): a rest mesh with the same topology; the bind mesh X is then that mesh, else
 // X = pose 0. Labels are the file names. readObj's errors pass through; fewer than 2 poses, and a
 // bind mesh that differs (named like a differing pose), are kInvalidArgument. No rig is attached.
-// The first pose's `vt` and `vn` become the render layout (objRenderLayout), so outputs keep the
-// texture mapping; the readers' warnings about them land in ExampleSet::warnings.
+// The bind mesh's `vt` and `vn` (when it has any kept, else the first pose's) become the render
+// layout (objRenderLayout), so outputs keep the texture mapping; the readers' warnings about the
+// file they came from land in ExampleSet::warnings.
 Result<ExampleSet> readObjSequence(std::span<const std::filesystem::path> poses, const std::filesystem::path* bind = nullptr);
 
 }  // namespace odeskin

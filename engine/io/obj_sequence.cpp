@@ -66,15 +66,20 @@ Result<ExampleSet> readObjSequence(std::span<const std::filesystem::path> poses,
     ODESKIN_TRY(checkSameTopology(pose, poses[k], first, poses[0]));
     set.poses.push_back(std::move(pose.positions));
   }
+  set.render = objRenderLayout(first);
+  set.warnings = objLayoutWarnings(first);
   if (bind != nullptr) {
     ODESKIN_ASSIGN_OR_RETURN(ObjMesh rest, readObj(*bind));
     ODESKIN_TRY(checkSameTopology(rest, *bind, first, poses[0]));
+    // The rest mesh is the one artists texture; poses from a simulation often carry positions only.
+    if (RenderLayout layout = objRenderLayout(rest); !layout.empty()) {
+      set.render = std::move(layout);
+      set.warnings = objLayoutWarnings(rest);
+    }
     set.rest_positions = std::move(rest.positions);
   } else {
     set.rest_positions = std::move(first.positions);
   }
-  set.render = objRenderLayout(first);
-  set.warnings = objLayoutWarnings(first);
   set.faces = std::move(first.faces);
   set.pose_labels.reserve(poses.size());
   for (const std::filesystem::path& path : poses) set.pose_labels.push_back(fileName(path));

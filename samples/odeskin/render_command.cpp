@@ -279,7 +279,7 @@ Result<RenderSession> openRenderSession(const RenderOptions& o) {
   return RenderSession::open(o.device, o.validation, style);
 }
 
-int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* report, RenderSession* shared) {
+int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* report, RenderSession* session) {
   if (const std::string problem = usageProblem(o); !problem.empty()) return reportUsage(console, problem);
   if (const std::string clash = outputClash(o); !clash.empty()) return reportUsage(console, "render: " + clash);
 
@@ -295,8 +295,7 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
   Result<std::vector<visual::Camera>> cameras = pictureCameras(o, panels, *layout);
   if (!cameras.ok()) return reportUsage(console, "render: " + cameras.status().message());
 
-  std::optional<RenderSession> own;
-  RenderSession* session = shared;
+  std::optional<RenderSession> own;  // when the caller gave none
   if (session == nullptr) {
     Result<RenderSession> opened = openRenderSession(o);
     if (!opened.ok()) return reportFailure(console, Status(opened.status().code(), "render: " + opened.status().message()));

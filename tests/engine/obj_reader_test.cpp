@@ -330,8 +330,8 @@ TEST(ReadObjSequence, BindMeshBecomesTheRestPositions) {
             (std::vector<std::string>{"cylinder-1.obj", "cylinder-2.obj", "cylinder-3.obj", "cylinder-4.obj"}));
 }
 
-// The first pose's `vt` and `vn` make the set's render layout, and its warnings are the set's.
-TEST_F(ObjTempDir, SequenceTakesTheFirstPosesTexcoords) {
+// The first pose's `vt` and `vn` (or the bind mesh's) make the render layout, with their warnings.
+TEST_F(ObjTempDir, SequenceTakesTheBindMeshsOrFirstPosesTexcoords) {
   std::string moved = kSeamSquare;
   moved.replace(moved.find("v 1 1 0"), 7, "v 1 1 1");
   const std::vector<fs::path> poses{write("a.obj", kSeamSquare), write("b.obj", moved)};
@@ -354,6 +354,19 @@ TEST_F(ObjTempDir, SequenceTakesTheFirstPosesTexcoords) {
             std::string::npos)
       << set->warnings[0];
   EXPECT_NE(set->warnings[1].find("normals (vn) are not kept"), std::string::npos) << set->warnings[1];
+
+  // A bind mesh with texture coordinates gives them to poses without (a simulation's output).
+  const fs::path bind = write("rest.obj", kSeamSquare);
+  const std::vector<fs::path> bare{write("d.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n"), poses[1]};
+  set = readObjSequence(bare, &bind);
+  ASSERT_TRUE(set.ok()) << set.status().toString();
+  EXPECT_EQ(set->render.topology_of_render, (std::vector<std::uint32_t>{0, 1, 2, 2, 3}));
+  EXPECT_TRUE(set->warnings.empty());
+  // ... and a bind mesh without them leaves the first pose's.
+  const fs::path plain_bind = bare[0];
+  set = readObjSequence(poses, &plain_bind);
+  ASSERT_TRUE(set.ok()) << set.status().toString();
+  EXPECT_EQ(set->render.uvs.size(), 5u);
 }
 
 // Poses written from the cylinder, then edited one way or another.
