@@ -40,7 +40,7 @@ struct CornerAttribute {
         return [&, why] { return source + ":" + std::to_string(line) + ": " + what + " index '" + std::string(token) + "'" + why; };
       };
       if (!parseInt(token, index) || index == 0) {
-        fail(said(" is not a number above 0"));
+        fail(said(" is not an index (a whole number other than 0)"));
         index = kNone;
       } else if (index < 0) {
         index += static_cast<long long>(lines) + 1;

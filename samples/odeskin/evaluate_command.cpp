@@ -34,6 +34,10 @@ std::vector<BaselineMethod> parseMethods(const std::string& text, std::string* p
   std::string name;
   while (std::getline(in, name, ',')) {
     BaselineMethod method{};
+    if (name.empty()) {
+      *problem = "evaluate: --methods '" + text + "' has an empty name (a comma too many)";
+      return {};
+    }
     if (!parseBaselineMethod(name, &method)) {
       *problem = "evaluate: unknown method '" + name +
                  "' (all, or a comma list of linear, lbs, dqs, psd_lbs, psd_dqs, fd_curve, odeskin_static, "

@@ -229,7 +229,9 @@ TEST_F(ObjTempDir, BrokenTexcoordsOrNormalsAreDroppedWithAWarning) {
                                                   ": 2 of 3 face corners name a `vt`; all or none must"),
             std::string::npos);
   EXPECT_NE(warnings(tri + "f 1/1 2/2 3/4\n").find("w.obj:8: texture coordinate index '4', but only 3 `vt` lines come before it"), std::string::npos);
-  EXPECT_NE(warnings(tri + "f 1/1 2/x 3/3\n").find("w.obj:8: texture coordinate index 'x' is not a number above 0"), std::string::npos);
+  EXPECT_NE(warnings(tri + "f 1/1 2/x 3/3\n").find("w.obj:8: texture coordinate index 'x' is not an index (a whole number other than 0)"), std::string::npos);
+  EXPECT_NE(warnings(tri + "f 1/1 2/2 3/99999999999999999999\n").find("index '99999999999999999999' is not an index"),
+            std::string::npos);
   EXPECT_NE(warnings(tri + "f 1/-4 2/2 3/3\n").find("texture coordinate index '-4' points before the first `vt`"), std::string::npos);
   EXPECT_NE(warnings("vt 0 nan\n" + tri + "f 1/1 2/2 3/3\n").find("w.obj:1: `vt` needs finite coordinates"),
             std::string::npos);

@@ -110,12 +110,17 @@ TEST(EvaluateCommand, TimesWithMoreKeysAreLocalToEachSegment) {
   EXPECT_NEAR(doc["frames"][0]["t"].get<double>(), 0.8, 1e-15);
 }
 
-TEST(EvaluateCommand, BadTimesAreUsageErrors) {
+TEST(EvaluateCommand, BadTimesAndMethodsAreUsageErrors) {
   const fs::path dir = scratch("bad");
   const fs::path json = dir / "bad.json";
   auto with_times = [&](std::vector<double> times) {
     EvaluateCommandOptions o = cylinderOptions(json);
     o.times = std::move(times);
+    return o;
+  };
+  auto with_methods = [&](const std::string& methods) {
+    EvaluateCommandOptions o = cylinderOptions(json);
+    o.methods = methods;
     return o;
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -126,6 +131,9 @@ TEST(EvaluateCommand, BadTimesAreUsageErrors) {
       {with_times({0.0, 2.0, 1.0, 3.0}), "times must be strictly increasing (frame 2)"},
       {with_times({0.0, nan, 2.0, 3.0}), "time 1 is not finite"},
       {with_times({0.0, 1.0, 2.0, std::numeric_limits<double>::infinity()}), "time 3 is not finite"},
+      {with_methods(",lbs"), "--methods ',lbs' has an empty name (a comma too many)"},
+      {with_methods("lbs,,dqs"), "--methods 'lbs,,dqs' has an empty name"},
+      {with_methods("lbs,skin"), "unknown method 'skin'"},
   };
   testing::expectRejected(
       cases, [](const EvaluateCommandOptions& o, Captured& io) { return runEvaluateCommand(o, io.console); },
