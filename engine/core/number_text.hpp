@@ -45,6 +45,14 @@ inline std::string percentText(double fraction) {
   return number_text_detail::formatted(100.0 * fraction, 3, std::chars_format::general) + "%";
 }
 
+// The shortest text that reads back as x exactly, for values compared against a bound: nine
+// digits print a value one ulp past the bound as the bound itself.
+inline std::string exactText(double x) {
+  char text[32];  // to_chars's shortest double is at most 24 characters
+  const auto [end, ec] = std::to_chars(text, text + sizeof text, x);
+  return std::string(text, ec == std::errc() ? end : text);
+}
+
 // "%.9g", for values in error messages: enough digits to tell a sum of 1.000001 from 1.
 inline std::string messageNumber(double x) { return number_text_detail::formatted(x, 9, std::chars_format::general); }
 

@@ -25,30 +25,27 @@ struct CornerAttribute {
   std::size_t lines = 0;       // `vt`/`vn` lines read so far
   std::string problem;
 
-  // Keeps the first problem: `message` builds it only then, so the corners of a large mesh that
-  // repeat one fault cost nothing more.
-  template <typename Message>
-  void fail(Message message) {
-    if (problem.empty()) problem = message();
+  // Keeps the first problem only.
+  void fail(std::string why) {
+    if (problem.empty()) problem = std::move(why);
   }
   // `token`: the corner's field for this attribute (empty when the corner has none), on `line` of
   // `source`.
   void addCorner(std::string_view token, const std::string& source, std::size_t line) {
     long long index = kNone;
     if (!token.empty()) {
-      const auto said = [&](const std::string& why) {
-        return [&, why] { return source + ":" + std::to_string(line) + ": " + what + " index '" + std::string(token) + "'" + why; };
-      };
-      if (!parseInt(token, index) || index == 0) {
-        fail(said(" is not an index (a whole number other than 0)"));
-        index = kNone;
-      } else if (index < 0) {
-        index += static_cast<long long>(lines) + 1;
-        if (index < 1) fail(said(std::string(" points before the first `") + keyword + "`"));
-      } else if (index > static_cast<long long>(lines)) {
-        fail(said(", but only " + std::to_string(lines) + " `" + keyword + "` lines come before it"));
-      }
       ++named;
+      const bool number = parseInt(token, index) && index != 0;
+      if (!number) index = kNone;
+      if (index < 0) index += static_cast<long long>(lines) + 1;  // counts back from the lines so far
+      // Only the first problem is kept, so its text is made only while there is none: a file whose
+      // every corner repeats one fault costs no more than a good one.
+      if (problem.empty() && (!number || index < 1 || index > static_cast<long long>(lines))) {
+        const std::string why = !number    ? std::string(" is not an index (a whole number other than 0)")
+                                : index < 1 ? std::string(" points before the first `") + keyword + "`"
+                                            : ", but only " + std::to_string(lines) + " `" + keyword + "` lines come before it";
+        problem = source + ":" + std::to_string(line) + ": " + what + " index '" + std::string(token) + "'" + why;
+      }
     }
     raw.push_back(index);
   }
@@ -58,16 +55,12 @@ struct CornerAttribute {
   std::vector<std::uint32_t> resolve(const std::string& source) {
     if (lines == 0) problem.clear();
     if (named > 0 && named < raw.size() && lines > 0) {
-      fail([&] {
-        return source + ": " + std::to_string(named) + " of " + std::to_string(raw.size()) + " face corners name a `" +
-               keyword + "`; all or none must";
-      });
+      fail(source + ": " + std::to_string(named) + " of " + std::to_string(raw.size()) + " face corners name a `" +
+           keyword + "`; all or none must");
     }
     if (named == 0 && lines > 0) {
-      fail([&] {
-        return source + ": " + std::to_string(lines) + " `" + keyword + "` line" + (lines == 1 ? "" : "s") +
-               ", but no face names one";
-      });
+      fail(source + ": " + std::to_string(lines) + " `" + keyword + "` line" + (lines == 1 ? "" : "s") +
+           ", but no face names one");
     }
     std::vector<std::uint32_t> out;
     if (!problem.empty() || named == 0 || lines == 0) return out;
@@ -128,7 +121,7 @@ Result<ObjMesh> parseObj(const std::string& text, const std::string& source) {
       const std::string_view u_token = nextToken(line);
       const std::string_view v_token = nextToken(line);
       if (!parseDouble(u_token, uv.x) || (!v_token.empty() && !parseDouble(v_token, uv.y))) {
-        texcoords.fail([&] { return where() + "`vt` needs finite coordinates"; });
+        texcoords.fail(where() + "`vt` needs finite coordinates");
       }
       mesh.texcoords.push_back(uv);
       ++texcoords.lines;
@@ -136,7 +129,7 @@ Result<ObjMesh> parseObj(const std::string& text, const std::string& source) {
       Vec3 n;
       for (int k = 0; k < 3; ++k) {
         if (!parseDouble(nextToken(line), n[k])) {
-          normals.fail([&] { return where() + "`vn` needs 3 finite coordinates"; });
+          normals.fail(where() + "`vn` needs 3 finite coordinates");
           break;
         }
       }
@@ -177,7 +170,7 @@ Result<ObjMesh> parseObj(const std::string& text, const std::string& source) {
   // A named normal that is zero cannot shade; the hard edges it would mark are dropped with it.
   for (std::uint32_t n : mesh.corner_normals) {
     if (!isUsableNormal(mesh.normals[n])) {
-      normals.fail([&] { return source + ": normal " + std::to_string(n + 1) + " is zero"; });
+      normals.fail(source + ": normal " + std::to_string(n + 1) + " is zero");
       mesh.corner_normals.clear();
       break;
     }

@@ -66,18 +66,20 @@ Result<ExampleSet> readObjSequence(std::span<const std::filesystem::path> poses,
     ODESKIN_TRY(checkSameTopology(pose, poses[k], first, poses[0]));
     set.poses.push_back(std::move(pose.positions));
   }
-  set.render = objRenderLayout(first);
-  set.warnings = objLayoutWarnings(first);
+  // The layout is made before the positions move out of the mesh it comes from.
+  auto takeLayout = [&set](const ObjMesh& mesh) {
+    set.render = objRenderLayout(mesh);
+    set.warnings = objLayoutWarnings(mesh);
+  };
   if (bind != nullptr) {
     ODESKIN_ASSIGN_OR_RETURN(ObjMesh rest, readObj(*bind));
     ODESKIN_TRY(checkSameTopology(rest, *bind, first, poses[0]));
     // The rest mesh is the one artists texture; poses from a simulation often carry positions only.
-    if (RenderLayout layout = objRenderLayout(rest); !layout.empty()) {
-      set.render = std::move(layout);
-      set.warnings = objLayoutWarnings(rest);
-    }
+    const bool rest_has_layout = !rest.corner_texcoords.empty() || !rest.corner_normals.empty();
+    takeLayout(rest_has_layout ? rest : first);
     set.rest_positions = std::move(rest.positions);
   } else {
+    takeLayout(first);
     set.rest_positions = std::move(first.positions);
   }
   set.faces = std::move(first.faces);

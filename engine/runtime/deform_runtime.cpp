@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <charconv>
 #include <cmath>
 #include <string>
 #include <tuple>
@@ -18,14 +17,8 @@ constexpr std::size_t kPrepareGrain = 16;
 
 std::string instanceName(std::uint32_t index) { return "runtime: instance " + std::to_string(index); }
 
-// The shortest text that reads back as `value`: nine digits printed a time one ulp past the end
-// as the end itself ("time 4 is outside [0, 4]").
-std::string number(double value) {
-  if (std::isnan(value)) return "NaN";
-  char text[32];
-  const auto [end, ec] = std::to_chars(text, text + sizeof text, value);
-  return ec == std::errc() ? std::string(text, end) : messageNumber(value);
-}
+// Exact: nine digits printed a time one ulp past the end as the end itself ("time 4 is outside [0, 4]").
+std::string number(double value) { return std::isnan(value) ? "NaN" : exactText(value); }
 
 bool finiteBone(const gpu::BoneMatrix& m) {
   for (const gpu::Float4& r : {m.row0, m.row1, m.row2}) {
