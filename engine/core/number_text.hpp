@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
-// How odeskin prints numbers, in messages and in the files it writes: short and independent of the
-// C locale. std::to_string writes "%f": a weight of -1e-9 read "-0.000000 < 0", a rank test's 1e-17
+// How odeskin prints numbers, in messages and in the files it writes, and reads them from option
+// values: short and independent of the C locale. std::to_string writes "%f": a weight of -1e-9 read "-0.000000 < 0", a rank test's 1e-17
 // read "0.000000", and 1e308 took 309 digits. snprintf follows LC_NUMERIC: an application that set
 // a German locale got OBJ vertices written "v 1,5 2 0", which no reader takes. std::to_chars
 // gives printf's "C" output whatever the locale.
 #pragma once
 
 #include <charconv>
+#include <cmath>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 namespace odeskin {
@@ -55,5 +58,18 @@ inline std::string exactText(double x) {
 
 // "%.9g", for values in error messages: enough digits to tell a sum of 1.000001 from 1.
 inline std::string messageNumber(double x) { return number_text_detail::formatted(x, 9, std::chars_format::general); }
+
+// The finite number all of `text` spells in the "C" locale: an optional sign, then decimal or
+// scientific notation. std::stod and operator>> read a denormal such as 1e-320 as a range error,
+// and stod follows LC_NUMERIC and takes hexadecimal; neither is wanted for an option's value.
+// Hexadecimal, inf, nan, spaces and magnitudes past double's range give nullopt.
+inline std::optional<double> finiteNumberIn(std::string_view text) {
+  if (text.size() > 1 && text.front() == '+' && text[1] != '-' && text[1] != '+') text.remove_prefix(1);
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
 
 }  // namespace odeskin

@@ -2,26 +2,28 @@
 #include "material_options.hpp"
 
 #include <cmath>
-#include <sstream>
+#include <optional>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
 #include "engine/core/input_file.hpp"
 #include "engine/core/json_path.hpp"
+#include "engine/core/number_text.hpp"
 
 namespace odeskin {
 namespace {
 
 using Json = nlohmann::json;
 
+// Spaces around a field are allowed: "1, 2, 3, 4" reads as typed.
 Result<double> finiteNumber(std::string_view text, const std::string& what) {
-  std::string s(text);
-  std::istringstream in(s);
-  in.imbue(std::locale::classic());
-  double x = 0.0;
-  in >> x;
-  if (!in || !(in >> std::ws).eof() || !std::isfinite(x)) return invalidArgument(what + ": '" + s + "' is not a finite number");
-  return x;
+  const std::size_t first = text.find_first_not_of(" \t");
+  const std::size_t last = text.find_last_not_of(" \t");
+  const std::optional<double> x =
+      first == std::string_view::npos ? std::nullopt : finiteNumberIn(text.substr(first, last + 1 - first));
+  if (!x) return invalidArgument(what + ": '" + std::string(text) + "' is not a finite number");
+  return *x;
 }
 
 Result<Material> materialFromObject(const Json& object, const std::string& where) {

@@ -2,11 +2,12 @@
 #include "reconstruct_command.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <set>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -36,16 +37,9 @@ bool parseNumbers(const std::string& text, std::size_t count, std::vector<double
   std::size_t start = 0;
   for (;;) {
     const std::size_t end = std::min(text.find(',', start), text.size());
-    const std::string field = text.substr(start, end - start);
-    std::size_t used = 0;
-    double value = 0.0;
-    try {
-      value = std::stod(field, &used);
-    } catch (const std::exception&) {
-      return false;
-    }
-    if (used != field.size() || !std::isfinite(value) || std::isspace(static_cast<unsigned char>(field[0]))) return false;
-    out.push_back(value);
+    const std::optional<double> value = finiteNumberIn(std::string_view(text).substr(start, end - start));
+    if (!value) return false;
+    out.push_back(*value);
     if (end == text.size()) break;
     start = end + 1;
   }

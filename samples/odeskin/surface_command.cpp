@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <set>
+#include <string_view>
 
 #include "engine/core/finite_vector.hpp"
 #include "engine/core/machine_memory.hpp"
@@ -51,14 +53,9 @@ bool parseShape(const std::string& text, Ode6Shape& shape) {
   for (int i = 0; i < 3; ++i) {
     const std::size_t end = i < 2 ? text.find(',', start) : text.size();
     if (end == std::string::npos || end == start) return false;
-    const std::string field = text.substr(start, end - start);
-    std::size_t used = 0;
-    try {
-      values[i] = std::stod(field, &used);
-    } catch (const std::exception&) {
-      return false;
-    }
-    if (used != field.size() || !std::isfinite(values[i])) return false;
+    const std::optional<double> value = finiteNumberIn(std::string_view(text).substr(start, end - start));
+    if (!value) return false;
+    values[i] = *value;
     start = end + 1;
   }
   shape = {values[0], values[1], values[2]};

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,20 @@ TEST_F(GermanNumbers, WrittenFilesKeepTheirPoints) {
   EXPECT_EQ(messageNumber(0.5), "0.5");
   EXPECT_EQ(numberText(2.75), "2.75");
   EXPECT_EQ(scientific(1.234e-4), "1.23e-04");
+  EXPECT_EQ(finiteNumberIn("1.5"), 1.5);  // not 1 with ",5" expected, as strtod would read it here
+}
+
+TEST(FiniteNumberIn, ReadsWhatAnOptionsValueSpells) {
+  EXPECT_EQ(finiteNumberIn("2.5e-6"), 2.5e-6);
+  EXPECT_EQ(finiteNumberIn("-3"), -3.0);
+  EXPECT_EQ(finiteNumberIn("+3"), 3.0);
+  EXPECT_EQ(finiteNumberIn(".5"), 0.5);
+  EXPECT_EQ(finiteNumberIn("1e-320"), 1e-320);  // a denormal is a number; std::stod threw out_of_range
+  EXPECT_EQ(finiteNumberIn("4.9e-324"), 4.9e-324);
+  for (const char* bad : {"", "+", "+-1", "++1", " 3", "3 ", "0x10", "inf", "-inf", "nan", "1e400", "1e-400", "1,5",
+                          "1.5.2", "e5", "3x"}) {
+    EXPECT_EQ(finiteNumberIn(bad), std::nullopt) << "'" << bad << "'";
+  }
 }
 
 }  // namespace

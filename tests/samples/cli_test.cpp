@@ -631,7 +631,12 @@ TEST(MaterialOptions, Presets) {
   EXPECT_EQ(numbers->zeta, 1e4);
   EXPECT_EQ(numbers->xi, 2.5e-6);
   EXPECT_EQ(numbers->bending, BendingSign::kThesis);
-  for (const char* bad : {"", "rubber", "1,2,3", "1,2,3,4,5", "1,2,x,4", "1,,3,4", "1,2,3,inf", "1,2,3,4 x", "1e999,0,1,0"}) {
+  const Result<Material> spaced = parseMaterial("1050, 0.619 ,1e4,\t1e-320");
+  ASSERT_TRUE(spaced.ok()) << spaced.status().toString();
+  EXPECT_EQ(spaced->eta, 0.619);
+  EXPECT_EQ(spaced->xi, 1e-320);
+  for (const char* bad : {"", "rubber", "1,2,3", "1,2,3,4,5", "1,2,x,4", "1,,3,4", "1,2,3,inf", "1,2,3,4 x", "1e999,0,1,0",
+                          "0x10,1,1,1", "1, ,3,4"}) {
     const Result<Material> m = parseMaterial(bad);
     EXPECT_EQ(m.status().code(), StatusCode::kInvalidArgument) << "'" << bad << "'";
   }

@@ -242,6 +242,8 @@ TEST(SurfaceCommand, BadOptionsAreUsageErrors) {
       {shaped("1,3,x"), "--shape '1,3,x'"},
       {shaped("1,3,1,2"), "--shape '1,3,1,2'"},
       {shaped("1,nan,1"), "--shape '1,nan,1'"},
+      {shaped("0x10,3,1"), "--shape '0x10,3,1'"},
+      {shaped("1, 3,1"), "--shape '1, 3,1'"},
   };
   testing::expectRejected(cases, run, kExitUsage, "surface");
   EXPECT_TRUE(fs::is_empty(dir));
