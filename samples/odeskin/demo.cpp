@@ -43,7 +43,10 @@ std::vector<Vec3> toVec3(std::span<const gpu::Float4> in) {
 
 // Opens Vulkan for kVulkan (required) or kAuto (optional: nullopt means "use the CPU").
 Result<std::optional<vk::Gpu>> openGpu(const DemoOptions& options, std::ostream& log) {
-  if (options.backend == Backend::kCpu) return std::optional<vk::Gpu>{};
+  if (options.backend == Backend::kCpu) {
+    if (options.validation) log << "note: --validation checks Vulkan calls, and --backend cpu makes none\n";
+    return std::optional<vk::Gpu>{};
+  }
   Result<vk::Gpu> gpu = vk::Gpu::open(options.device, options.validation);
   if (gpu.ok()) return std::optional<vk::Gpu>(std::move(gpu).value());
   if (options.backend == Backend::kVulkan) return gpu.status();

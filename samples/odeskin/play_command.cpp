@@ -236,6 +236,9 @@ std::vector<double> sequenceSeconds(double fps, double seconds) {
 
 int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   if (const std::string problem = usageProblem(o); !problem.empty()) return reportUsage(console, problem);
+  if (o.playback.validation && o.playback.backend == Backend::kCpu && o.png_dir.empty() && !console.quiet) {
+    console.err << "note: --validation checks Vulkan calls, and --backend cpu without --png makes none\n";
+  }
 
   Result<DeformAsset> loaded = loadAsset(o.asset);
   if (!loaded.ok()) return reportFailure(console, loaded.status());

@@ -151,6 +151,9 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
   TessellationResolution resolution;
   Ode6Shape shape;
   if (const std::string problem = usageProblem(o, resolution, shape); !problem.empty()) return reportUsage(console, problem);
+  if (o.validation && o.backend == "cpu" && !console.quiet) {
+    console.err << "note: --validation checks Vulkan calls, and --backend cpu makes none\n";
+  }
   Result<NetworkDescription> description = readNetworkDescription(o.network);
   if (!description.ok()) return reportError(console, "surface: " + description.status().message(), kExitFailure);
   if (!o.shape.empty()) std::fill(description->shapes.begin(), description->shapes.end(), shape);

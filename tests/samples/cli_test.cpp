@@ -575,12 +575,15 @@ TEST_F(CliOnGpu, CpuAndVulkanOutputsAgree) {
   o.fps = 5.0;
   o.output = (dir / "cpu" / "%d.obj").string();
   o.playback.backend = Backend::kCpu;
+  o.playback.validation = true;
   Captured io;
   PlayReport cpu;
   ASSERT_EQ(runPlayCommand(o, io.console, &cpu), kExitOk) << io.err.str();
+  EXPECT_NE(io.err.str().find("note: --validation checks Vulkan calls, and --backend cpu without --png makes none"),
+            std::string::npos)
+      << io.err.str();
   o.output = (dir / "vulkan" / "%d.obj").string();
   o.playback.backend = Backend::kVulkan;
-  o.playback.validation = true;
   PlayReport gpu;
   ASSERT_EQ(runPlayCommand(o, io.console, &gpu), kExitOk) << io.err.str();
   EXPECT_EQ(gpu.device.rfind("vulkan: ", 0), 0u) << gpu.device;

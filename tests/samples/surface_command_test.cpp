@@ -124,6 +124,27 @@ TEST(SurfaceCommand, ShapeOverridesEveryPatch) {
   EXPECT_EQ(run(o, resonant), kExitFailure);
   EXPECT_NE(resonant.err.str().find("fig4_1b.json: patch (row 0, column 0): ode6: resonant"), std::string::npos)
       << resonant.err.str();
+  // A denormal is a number, so the network says why it cannot be used.
+  o.shape = "1e-320,3,1";
+  Captured tiny;
+  EXPECT_EQ(run(o, tiny), kExitFailure);
+  EXPECT_NE(tiny.err.str().find("fig4_1b.json: patch (row 0, column 0): ode6: eta/rho or lambda/rho overflows"),
+            std::string::npos)
+      << tiny.err.str();
+  fs::remove_all(dir);
+}
+
+TEST(SurfaceCommand, ValidationOnTheCpuBackendIsANote) {
+  const fs::path dir = scratch("validation");
+  SurfaceCommandOptions o;
+  o.network = kNetworks / "sheet.json";
+  o.output = dir / "sheet.glb";
+  o.validation = true;
+  Captured io;
+  ASSERT_EQ(run(o, io), 0) << io.err.str();
+  EXPECT_NE(io.err.str().find("note: --validation checks Vulkan calls, and --backend cpu makes none"), std::string::npos)
+      << io.err.str();
+  EXPECT_TRUE(fs::exists(o.output));
   fs::remove_all(dir);
 }
 
