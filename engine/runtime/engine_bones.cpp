@@ -25,7 +25,7 @@ Result<std::vector<std::uint32_t>> engineJointOfEachBone(const RuntimeAsset& ass
                                                          std::span<const std::string> engine_joints) {
   const std::vector<std::string>& names = asset.source().bone_names;
   if (names.empty()) {
-    return invalidArgument("engine bones: the asset's bones have no names (an automatic or libigl rig numbers them); "
+    return invalidArgument("engine bones: the asset's bones have no names; "
                            "pass its " + std::to_string(asset.boneCount()) + " bones in its own order");
   }
   std::unordered_map<std::string_view, std::uint32_t> wanted;

@@ -29,8 +29,9 @@ gpu::BoneMatrix boneMatrixFromMat4(const glm::mat4& m);
 // that joint_of_bone[b] = j with engine_joints[j] == asset.source().bone_names[b]. Engine joints
 // the asset does not use are ignored. kInvalidArgument naming the bone when no engine joint has its
 // name, naming the name when two engine joints (or two of the asset's bones) share a name the
-// asset uses, and when the asset has no bone names (an automatic or libigl rig: its bones are
-// numbered, pass them in its own order).
+// asset uses, and when the asset has no bone names (a nameless skeleton fitted through the API:
+// pass its bones in its own order). odeskin's own rigs name bones auto_N, boneN (libigl) or
+// root_N, junction_N, ... (curve rig), which an engine's joints rarely match.
 Result<std::vector<std::uint32_t>> engineJointOfEachBone(const RuntimeAsset& asset,
                                                          std::span<const std::string> engine_joints);
 

@@ -80,8 +80,10 @@ CLI::App* addFitCommand(CLI::App& app, odeskin::FitCommandOptions& o, std::strin
   fit->add_option("--transforms", o.transforms, "One .Tmat per pose for --rig SKELETON.tgf")->delimiter(',');
   fit->add_option("--mesh", o.mesh, "glTF: the mesh node (default: the first skinned mesh)");
   fit->add_option("--animation", o.animation, "glTF: animation name or index (default: the first)");
-  fit->add_option("--times", o.times, "glTF: animation times in seconds, one example pose each")->delimiter(',');
-  fit->add_option("--targets", o.targets, "glTF: morph target indices, one example pose each")->delimiter(',');
+  fit->add_option("--times", o.times, "glTF: animation times in seconds, one example pose each after the bind mesh (pose 0)")
+      ->delimiter(',');
+  fit->add_option("--targets", o.targets, "glTF: morph target indices, one example pose each after the times'")
+      ->delimiter(',');
   fit->add_option("--terms", o.terms, "Fourier terms N per curve")->check(CLI::Range(1, odeskin::kMaxFourierModes));
   fit->add_option("--material", o.material, "skin, static, or rho,eta,zeta,xi for every part (default skin)");
   fit->add_option("--materials", o.materials_json,
