@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "../core/finite_vector.hpp"
 #include "../core/number_text.hpp"
 #include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
@@ -154,6 +155,12 @@ Result<NetworkDescription> MeshNetwork::describe(std::span<const Vec3> positions
         const Vec3 difference = pointPosition(points_[at++], x) - c[j];
         first += s.first[k] * difference;
         second += s.second[k] * difference;
+      }
+      // A window far below the mesh's facets divides rounding by window^2 until it overflows.
+      if (!isFinite(first) || !isFinite(second)) {
+        return invalidArgument("boundary " + std::to_string(b) + ": the derivative fit over a window of " +
+                               messageNumber(options_.derivative_window) +
+                               " row heights gives u-derivatives that are not finite; widen the window");
       }
       c_u[j] = first;
       c_uu[j] = second;

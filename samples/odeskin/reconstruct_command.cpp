@@ -276,6 +276,24 @@ void printSummary(std::ostream& out, const ReconstructCommandOptions& o, const M
       << ", left out of the figures, their positions filled in from their neighbours for the curve samples\n";
 }
 
+// Defaults on the data's faces stay within 7% of the box; a surface that misses by much more is not
+// a reconstruction, and the table alone is easy to read past.
+constexpr double kFarDeviation = 0.2;
+
+void warnOfLargeDeviations(std::ostream& err, const MeshNetworkOptions& n, const ReconstructReport& r) {
+  for (const ReconstructPoseReport& p : r.poses) {
+    if (!(p.max > kFarDeviation)) continue;
+    err << "warning: " << p.file.string() << ": the rebuilt surface misses vertex " << p.worst_vertex + 1 << " by "
+        << percentText(p.max) << " of the box";
+    if (n.derivative_window < kDefaultDerivativeWindow) {
+      err << "; a --derivative-fit window of " << numberText(n.derivative_window)
+          << " row heights turns the mesh's facets into large S_uu (the default is " << kDefaultDerivativeFit << ")\n";
+    } else {
+      err << "; the network does not follow this mesh (one sheet with one rim, such as a face, suits it)\n";
+    }
+  }
+}
+
 }  // namespace
 
 int runReconstructCommand(const ReconstructCommandOptions& o, Console& console, ReconstructReport* report_out) {
@@ -332,7 +350,10 @@ int runReconstructCommand(const ReconstructCommandOptions& o, Console& console, 
   if (Status s = writeOutputs(o, options, *m, *mesh, objs, report); !s.ok()) {
     return reportError(console, "reconstruct: " + s.message(), kExitFailure);
   }
-  if (!console.quiet) printSummary(console.out, o, *m, report);
+  if (!console.quiet) {
+    printSummary(console.out, o, *m, report);
+    warnOfLargeDeviations(console.err, options, report);
+  }
   if (report_out) *report_out = std::move(report);
   return kExitOk;
 }

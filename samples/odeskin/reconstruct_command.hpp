@@ -15,6 +15,9 @@
 
 namespace odeskin {
 
+inline constexpr const char* kDefaultDerivativeFit = "6,3,0.5";
+constexpr double kDefaultDerivativeWindow = 0.5;  // its WINDOW
+
 struct ReconstructCommandOptions {
   std::filesystem::path mesh;                 // .obj: one open surface, a disk once its holes are filled
   std::vector<std::filesystem::path> poses;   // .obj: same vertex count and face list as `mesh`
@@ -22,7 +25,7 @@ struct ReconstructCommandOptions {
   std::uint32_t columns = 16;                 // patches along v
   std::uint32_t points = 2;                   // curve points per patch along v
   std::string shape = "1,3,1";                // RHO,ETA,LAMBDA for every patch
-  std::string derivative_fit = "6,3,0.5";     // POINTS,DEGREE,WINDOW of the S_u, S_uu fit (mesh_network.hpp)
+  std::string derivative_fit = kDefaultDerivativeFit;  // POINTS,DEGREE,WINDOW of the S_u, S_uu fit (mesh_network.hpp)
   double tear_ratio = 4.0;                    // pose edges stretched more than this flag their vertices
   std::filesystem::path output;               // optional .obj: MESH's reconstruction; poses beside it
   std::filesystem::path network;              // optional .json: MESH's network, for `odeskin surface`

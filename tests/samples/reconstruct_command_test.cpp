@@ -143,6 +143,36 @@ TEST(ReconstructCommand, WritesReconstructionsReportAndNetwork) {
   EXPECT_TRUE(tessellateNetwork(*network, {5, 5}).ok());
 }
 
+// A window far below the facets differentiates the mesh's kinks: the rebuilt surface is far off, and
+// is said to be; smaller still, the derivatives overflow, and the message names the window.
+TEST(ReconstructCommand, ATinyDerivativeWindowIsWarnedOfOrRefused) {
+  const fs::path dir = scratch("window");
+  const Inputs in = writeInputs(dir);
+  ReconstructCommandOptions o = options(in);
+  o.derivative_fit = "6,3,1e-4";
+  Captured warned;
+  ReconstructReport report;
+  ASSERT_EQ(runReconstructCommand(o, warned.console, &report), kExitOk) << warned.err.str();
+  ASSERT_EQ(report.poses.size(), 1u);
+  EXPECT_GT(report.poses[0].max, 0.2);
+  EXPECT_NE(warned.err.str().find("warning: " + in.mesh.string() + ": the rebuilt surface misses vertex " +
+                                  std::to_string(report.poses[0].worst_vertex + 1) + " by "),
+            std::string::npos)
+      << warned.err.str();
+  EXPECT_NE(warned.err.str().find("a --derivative-fit window of 0.0001 row heights"), std::string::npos) << warned.err.str();
+
+  o.derivative_fit = "6,3,1e-300";
+  o.output = dir / "out" / "recon.obj";
+  Captured refused;
+  EXPECT_EQ(run(o, refused), kExitFailure);
+  EXPECT_NE(refused.err.str().find(in.mesh.string() + ": boundary 0: the derivative fit over a window of 1e-300 row "
+                                   "heights gives u-derivatives that are not finite"),
+            std::string::npos)
+      << refused.err.str();
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
 TEST(ReconstructCommand, BadOptionsAreUsageErrors) {
   const fs::path dir = scratch("usage");
   const Inputs in = writeInputs(dir);
