@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "demo.hpp"
+#include "file_extension.hpp"
 #include "output_paths.hpp"
 
 #include <chrono>
@@ -73,6 +74,9 @@ Status writeOutputs(const DemoOptions& options, const FaceList& faces, const Dem
 
 Result<DemoResult> runDemo(const DemoOptions& options, std::ostream& log) {
   if (options.frames < 2) return invalidArgument("--frames must be at least 2, got " + std::to_string(options.frames));
+  if (!options.asset_path.empty() && lowerExtension(options.asset_path) != ".odsk") {
+    return invalidArgument("--save-asset " + options.asset_path.string() + ": the asset is written as .odsk");
+  }
   ODESKIN_ASSIGN_OR_RETURN(Material material, namedMaterial(options.material));
   ODESKIN_ASSIGN_OR_RETURN(ProceduralArm arm, makeProceduralArm(ArmOptions{}));
 

@@ -62,7 +62,17 @@ std::string fitUsageProblem(const FitCommandOptions& o) {
   if (!(o.key_tolerance > 0.0) || !std::isfinite(o.key_tolerance)) {
     return "fit: --key-tolerance must be a positive fraction of the box, got " + numberText(o.key_tolerance);
   }
+  // Below, double precision's own key error (~1e-16 of the box) may not meet it; above, no key is hit.
+  if (o.key_tolerance < kMinKeyTolerance || o.key_tolerance > kMaxKeyTolerance) {
+    return "fit: --key-tolerance " + numberText(o.key_tolerance) + " is outside [" + numberText(kMinKeyTolerance) + ", " +
+           numberText(kMaxKeyTolerance) + "] of the box";
+  }
   if (!(o.segment_seconds > 0.0) || !std::isfinite(o.segment_seconds)) return "fit: --segment-seconds must be positive";
+  // glTF keeps times in float32, and play counts frames in them; outside this range neither works.
+  if (o.segment_seconds < kMinSegmentSeconds || o.segment_seconds > kMaxSegmentSeconds) {
+    return "fit: --segment-seconds " + numberText(o.segment_seconds) + " is outside [" + numberText(kMinSegmentSeconds) +
+           ", " + numberText(kMaxSegmentSeconds) + "] seconds";
+  }
   if (o.bones < 0) return "fit: --bones must be >= 0 (0: chosen from the mesh)";
   if (o.bones > 0 && !o.rig.empty() && o.rig != "auto") return "fit: --bones applies to the automatic rig (--rig auto)";
   if (!o.rig.empty() && o.rig != "auto" && o.rig != "curves" && lowerExtension(o.rig) != ".tgf") {
@@ -75,6 +85,8 @@ std::string fitUsageProblem(const FitCommandOptions& o) {
   for (const std::filesystem::path& p : {o.bind, o.weights, o.materials_json}) inputs.push_back(p);
   if (lowerExtension(o.rig) == ".tgf") inputs.emplace_back(o.rig);
   if (overwritesInput(o.output, inputs)) return "fit: " + o.output.string() + " is an input; it would be overwritten";
+  // A mesh meant as another pose (`fit a.obj b.obj -o c.obj`) would be replaced by the binary asset.
+  if (lowerExtension(o.output) != ".odsk") return "fit: -o " + o.output.string() + ": the asset is written as .odsk";
   if (const std::string why = folderNotFile(o.output); !why.empty()) return "fit: -o " + o.output.string() + " " + why;
   std::string problem;
   fitInputKind(o, &problem);

@@ -11,6 +11,10 @@
 
 namespace odeskin {
 
+// The ranges fit accepts: --key-tolerance as a fraction of the box, --segment-seconds in seconds.
+constexpr double kMinKeyTolerance = 1e-12, kMaxKeyTolerance = 0.1;
+constexpr double kMinSegmentSeconds = 1e-4, kMaxSegmentSeconds = 1e6;
+
 struct FitCommandOptions {
   std::vector<std::filesystem::path> inputs;       // OBJ poses, or one .gltf/.glb
   std::filesystem::path output;                    // the .odsk to write
@@ -29,10 +33,10 @@ struct FitCommandOptions {
   std::filesystem::path materials_json;            // per-part overrides (material_options.hpp)
   ResidualSpace residual_space = ResidualSpace::kBind;
   SkinningMode skinning = SkinningMode::kLinear;
-  double key_tolerance = 1e-4;                     // x longest bounding-box side
+  double key_tolerance = 1e-4;                     // x longest bounding-box side, [kMinKeyTolerance, kMaxKeyTolerance]
   bool pure_fourier = false;
   int bones = 0;                                   // automatic rig: bone count, 0 = chosen
-  double segment_seconds = 1.0;
+  double segment_seconds = 1.0;                    // [kMinSegmentSeconds, kMaxSegmentSeconds]
   bool timings = false;                            // print the thesis Table 6.3 stage breakdown
 };
 

@@ -752,6 +752,11 @@ TEST(FitOptions, UsageProblems) {
       {[](FitCommandOptions& o) { o.key_tolerance = -1e-3; }, "--key-tolerance"},
       {[](FitCommandOptions& o) { o.key_tolerance = 0.0; }, "--key-tolerance must be a positive fraction of the box, got 0"},
       {[](FitCommandOptions& o) { o.segment_seconds = 0.0; }, "--segment-seconds must be positive"},
+      {[](FitCommandOptions& o) { o.segment_seconds = 1e-320; }, "--segment-seconds 9.99989e-321 is outside [0.0001, 1e+06]"},
+      {[](FitCommandOptions& o) { o.segment_seconds = 1e300; }, "--segment-seconds 1e+300 is outside"},
+      {[](FitCommandOptions& o) { o.key_tolerance = 1e-320; }, "--key-tolerance 9.99989e-321 is outside [1e-12, 0.1] of the box"},
+      {[](FitCommandOptions& o) { o.key_tolerance = 2.0; }, "--key-tolerance 2 is outside"},
+      {[](FitCommandOptions& o) { o.output = "d.obj"; }, "-o d.obj: the asset is written as .odsk"},
       {[](FitCommandOptions& o) { o.bones = -2; }, "--bones must be >= 0"},
       {[](FitCommandOptions& o) { o.material = "rubber"; }, "--material: material 'rubber'"},
       {[](FitCommandOptions& o) {
