@@ -60,7 +60,7 @@ Result<std::vector<InBetween>> inBetweenFrames(std::size_t frame_count, std::spa
                              std::to_string(frame_count) + " frames (one per frame)");
     }
     for (std::size_t f = 0; f < times.size(); ++f) {
-      if (!std::isfinite(times[f])) return invalidArgument("evaluate: time " + std::to_string(f) + " is not finite");
+      if (!std::isfinite(times[f])) return invalidArgument("evaluate: the time of frame " + std::to_string(f) + " is not finite");
       if (f > 0 && times[f] <= times[f - 1]) {
         return invalidArgument("evaluate: times must be strictly increasing (frame " + std::to_string(f) + ")");
       }

@@ -76,8 +76,12 @@ Status PointCacheBuilder::write(const std::filesystem::path& path, const PointCa
     return invalidArgument(where + "frames per second must be positive, got " + messageNumber(timing.fps));
   }
   const double last_frame = timing.start_frame + static_cast<double>(samples_);
-  if (!(std::abs(timing.start_frame) <= kFloatMax && std::abs(last_frame / timing.fps) <= kFloatMax)) {
+  if (!(std::abs(timing.start_frame) <= kFloatMax)) {
     return invalidArgument(where + "the first frame " + messageNumber(timing.start_frame) + " is not a float32 number");
+  }
+  if (!(std::abs(last_frame / timing.fps) <= kFloatMax)) {
+    return invalidArgument(where + "frame " + messageNumber(last_frame) + " at " + messageNumber(timing.fps) +
+                           " frames per second lies at a time past float32's range");
   }
   std::string header;
   if (format_ == PointCacheFormat::kPc2) {

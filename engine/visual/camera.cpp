@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -35,9 +36,13 @@ Bounds boundsOf(std::span<const Vec3> points) {
 }
 
 Status validateViewSpec(const ViewSpec& v) {
-  const bool finite = isFinite(v.up) && std::isfinite(v.azimuth_deg) && std::isfinite(v.elevation_deg) &&
-                      std::isfinite(v.fov_y_deg) && std::isfinite(v.margin);
-  if (!finite) return invalidArgument("view: a camera setting is not a finite number");
+  if (!isFinite(v.up)) return invalidArgument("view: the up axis is not finite");
+  for (const auto& [name, value] : {std::pair{"azimuth", v.azimuth_deg}, std::pair{"elevation", v.elevation_deg},
+                                    std::pair{"field of view", v.fov_y_deg}, std::pair{"margin", v.margin}}) {
+    if (!std::isfinite(value)) {
+      return invalidArgument(std::string("view: ") + name + " " + numberText(value) + " is not a finite number");
+    }
+  }
   if (std::abs(glm::length(v.up) - 1.0) > 1e-6) return invalidArgument("view: the up axis must have unit length");
   if (std::abs(v.elevation_deg) >= 89.0) {
     return invalidArgument("view: elevation " + numberText(v.elevation_deg) + " must lie in (-89, 89) degrees");

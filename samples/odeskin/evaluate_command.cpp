@@ -143,6 +143,9 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   if (!libigl_rig && (!o.bind.empty() || !o.weights.empty())) {
     return reportUsage(console, "evaluate: --bind and --weights apply to --rig SKELETON.tgf");
   }
+  if (o.bones != 0 && !o.rig.empty() && o.rig != "auto") {
+    return reportUsage(console, "evaluate: --bones applies to the automatic rig (--rig auto)");
+  }
   std::vector<std::filesystem::path> inputs = o.frames;
   inputs.push_back(o.bind);
   inputs.push_back(o.weights);

@@ -246,7 +246,8 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
   cmd->add_option("--template", o.template_kind, "auto, humanoid, quadruped or none (default auto)")
       ->check(CLI::IsMember({"auto", "humanoid", "quadruped", "none"}));
   cmd->add_option("--gltf", o.gltf, "Also write the mesh with its skin and joints as a .glb");
-  cmd->add_option("--png", o.png, "Also draw the curves and the skeleton over the mesh (Vulkan; lavapipe works)");
+  CLI::Option* rig_png =
+      cmd->add_option("--png", o.png, "Also draw the curves and the skeleton over the mesh (Vulkan; lavapipe works)");
   cmd->add_option("--curves", o.curves, "auto (default: loops on a mesh of >= 80% quads, else levels), levels (geodesic\n"
                   "rings), cuts (odeskin's plane-cut curve identification run on the parts the rings find) or loops\n"
                   "(the quad edge loops the ray-and-fan test calls circumferential)")
@@ -254,7 +255,7 @@ CLI::App* addRigCommand(CLI::App& app, odeskin::RigCommandOptions& o) {
   cmd->add_option("--angle", o.angle_deg, "Turn in degrees that makes a joint (default 20)");
   cmd->add_option("--up", o.up, "The mesh's up axis: x, y, z, -x, -y or -z (default y)");
   cmd->add_option("--compare", o.compare, "A ground-truth skeleton (.tgf): print joint errors and bone counts against it");
-  cmd->add_option("--azimuth", o.azimuth_deg, "--png camera angle about the up axis in degrees (default 30)");
+  cmd->add_option("--azimuth", o.azimuth_deg, "--png camera angle about the up axis in degrees (default 30)")->needs(rig_png);
   cmd->add_option("--repeat", o.repeat, "Run the rig N times and print the median and fastest time of each stage");
   cmd->add_option("--mesh", o.mesh, "glTF: the mesh node (default: the first skinned mesh, else the first mesh)");
   cmd->add_option("--animation", o.animation, "glTF: animation name or index for --times (default: the first)");
@@ -429,11 +430,14 @@ int run(int argc, char** argv, std::string& verb) {
   play_cmd->add_flag("--quantize", play.quantize,
                      "With -o OUT.glb: KHR_mesh_quantization (16-bit positions and deltas, 8-bit normals); the summary\n"
                      "gives the rounding's error");
-  play_cmd->add_option("--png", play.png_dir, "Also draw the frames to DIR/frame_NNNN.png and DIR/strip.png (Vulkan)");
-  play_cmd->add_option("--size", play.png_size, "--png picture size WIDTHxHEIGHT");
-  play_cmd->add_flag("--curves", play.png_curves, "--png: draw the iso-parametric curves");
-  play_cmd->add_option("--azimuth", play.png_azimuth_deg, "--png camera angle about +y in degrees");
-  play_cmd->add_option("--elevation", play.png_elevation_deg, "--png camera height above the horizon in degrees");
+  CLI::Option* play_png =
+      play_cmd->add_option("--png", play.png_dir, "Also draw the frames to DIR/frame_NNNN.png and DIR/strip.png (Vulkan)");
+  // The picture options without --png would be ignored, so they are refused.
+  play_cmd->add_option("--size", play.png_size, "--png picture size WIDTHxHEIGHT")->needs(play_png);
+  play_cmd->add_flag("--curves", play.png_curves, "--png: draw the iso-parametric curves")->needs(play_png);
+  play_cmd->add_option("--azimuth", play.png_azimuth_deg, "--png camera angle about +y in degrees")->needs(play_png);
+  play_cmd->add_option("--elevation", play.png_elevation_deg, "--png camera height above the horizon in degrees")
+      ->needs(play_png);
   play_cmd->add_option("--backend", play_backend, "cpu (double reference), vulkan, or auto")
       ->check(CLI::IsMember({"auto", "cpu", "vulkan"}));
   play_cmd->add_flag("--validation", play.playback.validation, "Enable the Khronos validation layer; fail on any message");

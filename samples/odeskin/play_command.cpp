@@ -249,6 +249,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   const bool write_meshes = !o.output.empty();
   std::vector<std::filesystem::path> files;
   std::vector<double> times;
+  std::optional<double> held_after;  // --seconds past the asset's end
   if (o.t) {
     if (*o.t < 0.0 || *o.t > t_end) {
       return reportUsage(console, "play: --t " + messageNumber(*o.t) + " is outside [0, " + numberText(t_end) +
@@ -265,6 +266,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       return reportUsage(console, "play: --fps " + numberText(*o.fps) + " for " + numberText(seconds) +
                                       " s is more than " + std::to_string(kMaxFrames) + " frames");
     }
+    held_after = seconds > length ? std::optional<double>(seconds) : std::nullopt;
     const bool one_file = lowerExtension(o.output) != ".obj";
     const FramePattern pattern = one_file || !write_meshes ? FramePattern{} : *FramePattern::parse(o.output);
     for (std::size_t f = 0; f < clock.size(); ++f) {
@@ -299,6 +301,10 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     if (const std::string problem = pointCacheSizeProblem(times.size(), objVertexCount(asset)); !problem.empty()) {
       return reportUsage(console, "play: " + o.output + ": " + problem + "; lower --fps or --seconds");
     }
+  }
+  if (held_after && !console.quiet) {
+    console.err << "note: --seconds " << numberText(*held_after) << " runs past " << o.asset.string() << "'s "
+                << numberText(t_end * asset.segment_seconds) << " s; the frames after it hold the last key pose\n";
   }
   std::optional<PointCacheBuilder> cache;
   if (point_cache) cache.emplace(mdd ? PointCacheFormat::kMdd : PointCacheFormat::kPc2, objVertexCount(asset), times.size());

@@ -63,16 +63,23 @@ std::string usageProblem(const RenderOptions& o) {
   view.elevation_deg = o.elevation_deg;
   view.fov_y_deg = o.fov_deg;
   if (Status s = visual::validateViewSpec(view); !s.ok()) return "render: " + s.message();
-  bool any_asset = false;
+  bool any_asset = false, any_timed = false;
   for (const std::filesystem::path& input : o.inputs) {
     Result<RenderInputKind> kind = renderInputKind(input);
     if (!kind.ok()) return "render: " + kind.status().message();
     any_asset = any_asset || *kind == RenderInputKind::kAsset;
+    any_timed = any_timed || *kind != RenderInputKind::kObj;
   }
   if (o.curves && !any_asset) return "render: --curves needs a .odsk input (only assets carry iso-parametric curves)";
   if (o.lbs && !any_asset) return "render: --lbs needs a .odsk input (the skinning of a fitted asset)";
   if (o.turntable > 0 && o.output.find('%') != std::string::npos) {
     if (Result<FramePattern> p = FramePattern::parse(o.output); !p.ok()) return "render: " + p.status().message();
+  }
+  if (o.turntable == 0 && FramePattern::parse(o.output).ok()) {
+    return "render: -o " + o.output + " is a frame pattern: add --turntable N for frames, or name one picture";
+  }
+  if (o.t && !any_timed) {
+    return "render: --t applies to a .odsk or .glb/.gltf input; the inputs are OBJ poses, which have no time";
   }
   return {};
 }

@@ -106,7 +106,16 @@ TEST_F(PointCache, RefusesFramesThatDoNotFit) {
   ASSERT_TRUE(cache.add(std::vector<Vec3>(2, Vec3(1.0))).ok());
   EXPECT_NE(cache.write(dir_ / "x.pc2", PointCacheTiming{0.0, 0.0}).message().find("frames per second must be positive, got 0"),
             std::string::npos);
-  EXPECT_FALSE(cache.write(dir_ / "x.pc2", PointCacheTiming{24.0, std::numeric_limits<double>::infinity()}).ok());
+  EXPECT_NE(cache.write(dir_ / "x.pc2", PointCacheTiming{24.0, std::numeric_limits<double>::infinity()})
+                .message()
+                .find("the first frame inf is not a float32 number"),
+            std::string::npos);
+  // The frame is fine; its time is not (play --fps 1e-320).
+  EXPECT_NE(cache.write(dir_ / "x.pc2", PointCacheTiming{1e-320, 0.0})
+                .message()
+                .find("frame 1 at 9.99988867e-321 frames per second lies at a time past float32's range"),
+            std::string::npos)
+      << cache.write(dir_ / "x.pc2", PointCacheTiming{1e-320, 0.0}).message();
   EXPECT_FALSE(std::filesystem::exists(dir_ / "x.pc2"));
   EXPECT_TRUE(cache.write(dir_ / "x.pc2", {}).ok());
 }

@@ -139,10 +139,15 @@ TEST_F(Cli, PlaySequenceMapsSecondsToKeyTime) {
   ASSERT_EQ(play(atTime(0.5, dir / "mid.obj"), io), kExitOk);
   EXPECT_EQ(readPositions(dir / "mid.obj"), readPositions(report.files[2]));
 
-  // --seconds past the end clamps to the last key.
+  // --seconds past the end clamps to the last key, and says so.
   o.seconds = 1.5;
   o.output = (dir / "long_%d.obj").string();
-  ASSERT_EQ(play(o, io, &report), kExitOk) << io.err.str();
+  Captured held;
+  ASSERT_EQ(play(o, held, &report), kExitOk) << held.err.str();
+  EXPECT_NE(held.err.str().find("note: --seconds 1.5 runs past " + o.asset.string() +
+                                "'s 1 s; the frames after it hold the last key pose"),
+            std::string::npos)
+      << held.err.str();
   ASSERT_EQ(report.files.size(), 7u);
   EXPECT_EQ(report.files.back(), dir / "long_6.obj");
   EXPECT_DOUBLE_EQ(report.times.back(), 1.0);

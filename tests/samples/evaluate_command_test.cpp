@@ -123,17 +123,26 @@ TEST(EvaluateCommand, BadTimesAndMethodsAreUsageErrors) {
     o.methods = methods;
     return o;
   };
+  auto with_rig = [&](const std::string& rig, int bones) {
+    EvaluateCommandOptions o = cylinderOptions(json);
+    o.rig = rig;
+    o.bind.clear();
+    o.weights.clear();
+    o.bones = bones;
+    return o;
+  };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<CommandCase<EvaluateCommandOptions>> cases{
       {with_times({0.0, 1.0, 2.0}), "3 times for 4 frames"},
       {with_times({0.0, 1.0, 2.0, 3.0, 4.0}), "5 times for 4 frames"},
       {with_times({0.0, 1.0, 1.0, 2.0}), "times must be strictly increasing (frame 2)"},
       {with_times({0.0, 2.0, 1.0, 3.0}), "times must be strictly increasing (frame 2)"},
-      {with_times({0.0, nan, 2.0, 3.0}), "time 1 is not finite"},
-      {with_times({0.0, 1.0, 2.0, std::numeric_limits<double>::infinity()}), "time 3 is not finite"},
+      {with_times({0.0, nan, 2.0, 3.0}), "the time of frame 1 is not finite"},
+      {with_times({0.0, 1.0, 2.0, std::numeric_limits<double>::infinity()}), "the time of frame 3 is not finite"},
       {with_methods(",lbs"), "--methods ',lbs' has an empty name (a comma too many)"},
       {with_methods("lbs,,dqs"), "--methods 'lbs,,dqs' has an empty name"},
       {with_methods("lbs,skin"), "unknown method 'skin'"},
+      {with_rig("curves", 3), "--bones applies to the automatic rig (--rig auto)"},
   };
   testing::expectRejected(
       cases, [](const EvaluateCommandOptions& o, Captured& io) { return runEvaluateCommand(o, io.console); },

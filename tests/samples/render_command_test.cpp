@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -309,6 +310,13 @@ TEST_F(RenderCommand, BadOptionsAreUsageErrors) {
   heat_max.heat = obj;
   heat_max.heat_max = -1.0;
   cases.push_back({heat_max, "--heat-max must be positive"});
+  RenderOptions untimed = options({obj}, dir / "x.png");
+  untimed.t = 0.5;
+  cases.push_back({untimed, "--t applies to a .odsk or .glb/.gltf input"});
+  cases.push_back({options({obj}, dir / "t_%03d.png"), "t_%03d.png is a frame pattern: add --turntable N"});
+  RenderOptions azimuth = options({obj}, dir / "x.png");
+  azimuth.azimuth_deg = std::numeric_limits<double>::quiet_NaN();
+  cases.push_back({azimuth, "view: azimuth nan is not a finite number"});
   testing::expectRejected(cases, [](const RenderOptions& o, Captured& io) { return render(o, io); }, kExitUsage,
                           "render");
   EXPECT_TRUE(fs::is_empty(dir)) << "a rejected command wrote something";
