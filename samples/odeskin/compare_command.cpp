@@ -122,6 +122,7 @@ int runCompareCommand(const CompareOptions& o, Console& console, CompareReport* 
   for (const std::filesystem::path& out : {o.ply, o.json}) {
     if (Status s = createParentFolder(out); !s.ok()) return reportFailure(console, s);
   }
+  WrittenOutputs written;
   if (!o.ply.empty()) {
     // A mesh equal to its reference still gets a usable range (every vertex at the bottom colour).
     r.heat_max = o.heat_max.value_or(std::max(r.max_error, 1e-9));
@@ -136,9 +137,12 @@ int runCompareCommand(const CompareOptions& o, Console& console, CompareReport* 
     if (Status s = writePly(o.ply, mesh->positions, mesh->faces, PlyVertexData{colours, quality}, comment); !s.ok()) {
       return reportFailure(console, s);
     }
+    written.add(o.ply);
   }
   if (!o.json.empty()) {
-    if (Status s = writeFileAtomically(o.json, toJson(o, r).dump(2) + "\n"); !s.ok()) return reportFailure(console, s);
+    if (Status s = writeFileAtomically(o.json, toJson(o, r).dump(2) + "\n"); !s.ok()) {
+      return reportFailure(console, written.undo(s));
+    }
   }
   if (!console.quiet) {
     console.out << mesh->label << " against " << reference->label << ": " << r.vertices << " vertices, box "

@@ -101,7 +101,7 @@ std::string frameName(std::uint32_t frame) {
 
 // One picture per in-between frame: a panel per method, heat = distance to the ground truth.
 int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Console& console, const std::string& device,
-                 RenderSession& session) {
+                 RenderSession& session, WrittenOutputs& written) {
   for (const EvaluatedFrame& f : r.frames) {
     RenderOptions render;
     render.output = (o.png_dir / (frameName(f.frame) + ".png")).string();
@@ -115,6 +115,7 @@ int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Con
     render.size = std::to_string(360 * r.methods.size()) + "x400";
     Console quiet{console.out, console.err, true, false};
     if (const int code = runRenderCommand(render, quiet, nullptr, &session); code != kExitOk) return code;
+    written.add(render.output);
     if (!console.quiet) console.out << "wrote " << render.output << "\n";
   }
   return kExitOk;
@@ -184,6 +185,7 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   options.pipeline.auto_bones = o.bones;
   options.skeleton_fit = o.skeleton_fit == "lbs" ? SkeletonFit::kLbsOptimal : SkeletonFit::kPerBoneRigid;
   std::optional<RenderSession> pictures;  // --png: opened once for every heat map
+  WrittenOutputs written;                  // a failure part way removes the files already written
   if (!o.png_dir.empty()) {
     // The heat maps are drawn last; a missing device must fail before the JSON and OBJs are written.
     RenderOptions look;
@@ -197,24 +199,33 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
     std::filesystem::create_directories(o.png_dir / "obj", made);
     if (made) return reportFailure(console, ioError((o.png_dir / "obj").string() + ": cannot create directory: " + made.message()));
     const ExampleSet& topology = *frames;
-    options.on_frame = [&o, &topology](std::uint32_t frame, BaselineMethod method, std::span<const Vec3> deformed) {
+    options.on_frame = [&o, &topology, &written](std::uint32_t frame, BaselineMethod method,
+                                                 std::span<const Vec3> deformed) {
       const std::string name(baselineMethodName(method));
-      return writeObj(o.png_dir / "obj" / (frameName(frame) + "_" + name + ".obj"), deformed, topology.faces,
-                      name + " at " + o.frames[frame].filename().string());
+      const std::filesystem::path file = o.png_dir / "obj" / (frameName(frame) + "_" + name + ".obj");
+      ODESKIN_TRY(writeObj(file, deformed, topology.faces, name + " at " + o.frames[frame].filename().string()));
+      written.add(file);
+      return okStatus();
     };
   }
   Result<EvaluationResult> result = runEvaluation(*frames, keys, methods, source, o.times, options);
-  if (!result.ok()) return reportFailure(console, result.status());
+  if (!result.ok()) return reportFailure(console, written.undo(result.status()));
 
-  if (Status st = createParentFolder(o.json); !st.ok()) return reportFailure(console, st);
+  if (Status st = createParentFolder(o.json); !st.ok()) return reportFailure(console, written.undo(st));
   if (Status st = writeFileAtomically(o.json, toJson(*result).dump(2) + "\n"); !st.ok()) {
-    return reportFailure(console, st);
+    return reportFailure(console, written.undo(st));
   }
+  written.add(o.json);
   if (!console.quiet) {
     printTable(console.out, *result);
     console.out << "wrote " << o.json.string() << "\n";
   }
-  if (pictures) return drawHeatMaps(o, *result, console, device, *pictures);
+  if (pictures) {
+    if (const int code = drawHeatMaps(o, *result, console, device, *pictures, written); code != kExitOk) {
+      written.removeAll();
+      return code;
+    }
+  }
   return kExitOk;
 }
 

@@ -2,13 +2,15 @@
 // Output paths checked before any work. An output must not replace an input (`odeskin fit a.obj
 // b.obj -o a.obj` wrote the asset over the first pose), and a file output must not name a folder
 // (`fit ... -o out/` fitted, then failed to write and left out/ behind). And the folder an output
-// goes in, made when it is written.
+// goes in, made when it is written. And the outputs of a command that fails part way, removed again.
 #pragma once
 
 #include <filesystem>
 #include <span>
 #include <string>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include "engine/core/status.hpp"
 
@@ -66,5 +68,29 @@ inline Status createParentFolder(const std::filesystem::path& file) {
   if (ec) return ioError(parent.string() + ": cannot create directory: " + ec.message());
   return okStatus();
 }
+
+// The files a command has written so far. When a later output fails, undo() removes them, so a
+// failed command leaves none of its outputs (each file is already written atomically; this makes
+// the set of them all or nothing). Only regular files go: an output that is a device or FIFO
+// (written in place) stays.
+class WrittenOutputs {
+ public:
+  void add(std::filesystem::path file) { files_.push_back(std::move(file)); }
+  void removeAll() {
+    std::error_code ec;
+    for (const std::filesystem::path& file : files_) {
+      if (std::filesystem::is_regular_file(std::filesystem::status(file, ec))) std::filesystem::remove(file, ec);
+    }
+    files_.clear();
+  }
+  // removeAll(), handing `failure` back: `return written.undo(s);`.
+  Status undo(Status failure) {
+    removeAll();
+    return failure;
+  }
+
+ private:
+  std::vector<std::filesystem::path> files_;
+};
 
 }  // namespace odeskin

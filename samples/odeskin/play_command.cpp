@@ -344,10 +344,12 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
   std::vector<Vec3> positions;
   std::vector<Vec3> framing;  // --png: vertices the pictures' camera must see (playPictures)
   std::filesystem::path last_directory;
+  WrittenOutputs written;  // a failure part way removes the frames and files already written
   double deform_seconds = 0.0;
   for (std::size_t f = 0; f < times.size(); ++f) {
     const Clock::time_point start = Clock::now();
     if (Status s = playback->positionsAt(times[f], positions); !s.ok()) {
+      written.removeAll();
       return reportError(console, "play: " + s.message(), kExitFailure);
     }
     deform_seconds += std::chrono::duration<double>(Clock::now() - start).count();
@@ -356,7 +358,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       bar.step(f + 1);
       continue;
     }
-    if (Status s = ensureParentDirectory(files[f], last_directory); !s.ok()) return reportFailure(console, s);
+    if (Status s = ensureParentDirectory(files[f], last_directory); !s.ok()) return reportFailure(console, written.undo(s));
     if (point_cache) {
       if (Status s = cache->add(objPositions(asset, positions)); !s.ok()) {
         return reportError(console, "play: " + o.output + ": " + s.message(), kExitFailure);
@@ -372,12 +374,13 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     }
     const std::string comment = "odeskin play " + o.asset.filename().string() + " t = " + numberText(times[f]);
     if (Status s = writeFrameObj(files[f], asset, positions, comment); !s.ok()) {
-      return reportFailure(console, s);
+      return reportFailure(console, written.undo(s));
     }
+    written.add(files[f]);
     bar.step(f + 1);
   }
   bar.finish();
-  if (Status s = playback->checkValidation(); !s.ok()) return reportFailure(console, s);
+  if (Status s = playback->checkValidation(); !s.ok()) return reportFailure(console, written.undo(s));
   QuantizationCost quantization;
   double quantization_box = 0.0;
   if (glb && write_meshes) {
@@ -401,6 +404,7 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
         !s.ok()) {
       return reportFailure(console, s);
     }
+    written.add(o.output);
     quantization_box = longestBoxSide(kept.front());
   }
 
@@ -409,11 +413,14 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
     if (Status s = cache->write(o.output, PointCacheTiming{o.fps.value_or(24.0), 0.0}); !s.ok()) {
       return reportFailure(console, s);
     }
+    written.add(o.output);
   }
 
   std::vector<std::filesystem::path> pictures;
   if (!o.png_dir.empty()) {
     if (Status s = playPictures(o, asset, *playback, *session, times, framing, console, pictures); !s.ok()) {
+      for (const std::filesystem::path& picture : pictures) written.add(picture);
+      written.removeAll();
       return reportError(console, "play: " + s.message(), kExitFailure);
     }
   }

@@ -210,31 +210,24 @@ struct ObjOutput {
 // Every output, atomically each; on a failure the files already written are removed again.
 Status writeOutputs(const ReconstructCommandOptions& o, const MeshNetworkOptions& options, const MeshNetwork& m,
                     const ObjMesh& mesh, const std::vector<ObjOutput>& objs, const ReconstructReport& report) {
-  std::vector<fs::path> written;
-  const auto undo = [&](Status status) {
-    std::error_code ec;
-    // Only files: an output that was a device or FIFO (written in place) must not be deleted.
-    for (const fs::path& p : written) {
-      if (fs::is_regular_file(fs::status(p, ec))) fs::remove(p, ec);
-    }
-    return status;
-  };
+  WrittenOutputs written;
   for (const fs::path& p : {o.output, o.network, o.json}) ODESKIN_TRY(createParentFolder(p));
   for (const ObjOutput& obj : objs) {
     if (Status s = writeObj(obj.path, obj.positions, mesh.faces, "odeskin reconstruct " + o.mesh.filename().string()); !s.ok()) {
-      return undo(s);
+      return written.undo(s);
     }
-    written.push_back(obj.path);
+    written.add(obj.path);
   }
   if (!o.network.empty()) {
     Result<NetworkDescription> description = m.describe(mesh.positions);
-    if (!description.ok()) return undo(Status(description.status().code(), o.mesh.string() + ": " + description.status().message()));
-    if (Status s = writeFileAtomically(o.network, networkJson(*description)); !s.ok()) return undo(s);
-    written.push_back(o.network);
+    if (!description.ok()) {
+      return written.undo(Status(description.status().code(), o.mesh.string() + ": " + description.status().message()));
+    }
+    if (Status s = writeFileAtomically(o.network, networkJson(*description)); !s.ok()) return written.undo(s);
+    written.add(o.network);
   }
   if (!o.json.empty()) {
-    if (Status s = writeFileAtomically(o.json, reportJson(o, options, report).dump(2) + "\n"); !s.ok()) return undo(s);
-    written.push_back(o.json);
+    if (Status s = writeFileAtomically(o.json, reportJson(o, options, report).dump(2) + "\n"); !s.ok()) return written.undo(s);
   }
   return okStatus();
 }

@@ -316,12 +316,16 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
   std::vector<visual::Image> frames;  // kept for --strip
   ProgressBar bar(console.err, "render", files.size(), !console.quiet && console.interactive && files.size() > 1);
   double draw_seconds = 0.0;
+  WrittenOutputs written;  // a turntable that fails part way leaves none of its frames
   for (std::size_t f = 0; f < files.size(); ++f) {
     const Clock::time_point start = Clock::now();
     Result<visual::Image> picture = session->draw(*layout, (*cameras)[f], panels.bounds.diagonal(), contents);
-    if (!picture.ok()) return reportFailure(console, Status(picture.status().code(), "render: " + picture.status().message()));
+    if (!picture.ok()) {
+      return reportFailure(console, written.undo(Status(picture.status().code(), "render: " + picture.status().message())));
+    }
     draw_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-    if (Status s = writePicture(files[f], *picture); !s.ok()) return reportFailure(console, s);
+    if (Status s = writePicture(files[f], *picture); !s.ok()) return reportFailure(console, written.undo(s));
+    written.add(files[f]);
     if (!o.strip.empty()) frames.push_back(std::move(picture).value());
     bar.step(f + 1);
   }
@@ -332,10 +336,11 @@ int runRenderCommand(const RenderOptions& o, Console& console, RenderReport* rep
     const std::uint32_t columns = visual::balancedColumns(frames.size(), kStripColumns);
     const std::uint32_t thumb = std::min(layout->width, kStripWidth / columns);
     const visual::Image sheet = visual::contactSheet(frames, columns, thumb, 4, *parseColour(o.background));
-    if (Status s = writePicture(o.strip, sheet); !s.ok()) return reportFailure(console, s);
+    if (Status s = writePicture(o.strip, sheet); !s.ok()) return reportFailure(console, written.undo(s));
     result.files.emplace_back(o.strip);
+    written.add(o.strip);
   }
-  if (Status s = session->checkValidation(); !s.ok()) return reportFailure(console, s);
+  if (Status s = session->checkValidation(); !s.ok()) return reportFailure(console, written.undo(s));
 
   result.width = layout->width;
   result.height = layout->height;

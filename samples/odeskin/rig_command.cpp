@@ -257,17 +257,21 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     Status s = drawRigPicture(o.png, rest, faces, r.curve_skeleton.curves, r.curve_skeleton.skeleton, r.animation, picture);
     if (!s.ok()) return reportFailure(console, Status(s.code(), "rig: --png: " + s.message()));
   }
-  if (Status s = writeTgf(o.output, r.rig.skeleton); !s.ok()) return reportFailure(console, s);
+  WrittenOutputs written;
+  if (!o.png.empty()) written.add(o.png);
+  if (Status s = writeTgf(o.output, r.rig.skeleton); !s.ok()) return reportFailure(console, written.undo(s));
+  written.add(o.output);
   if (!o.weights.empty()) {
     if (Status s = writeWeightsDmat(o.weights, r.rig.influences, r.rig.skeleton.boneCount()); !s.ok()) {
-      return reportFailure(console, s);
+      return reportFailure(console, written.undo(s));
     }
+    written.add(o.weights);
   }
   if (!o.gltf.empty()) {
     RigGlbLook look;
     look.render = &input->render;
     look.materials = *materials ? &**materials : nullptr;
-    if (Status s = writeRigGlb(o.gltf, rest, faces, r.rig, look); !s.ok()) return reportFailure(console, s);
+    if (Status s = writeRigGlb(o.gltf, rest, faces, r.rig, look); !s.ok()) return reportFailure(console, written.undo(s));
   }
   if (console.quiet) return kExitOk;
 

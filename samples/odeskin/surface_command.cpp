@@ -216,19 +216,17 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
 
   if (Status s = createParentFolder(o.output); !s.ok()) return reportError(console, "surface: " + s.message(), kExitFailure);
   std::filesystem::path obj;
+  WrittenOutputs written;
   if (o.obj) {
     obj = objPath(o);
     if (Status s = writeObj(obj, mesh->positions, mesh->faces, "odeskin surface " + o.network.filename().string()); !s.ok()) {
       return reportError(console, "surface: " + s.message(), kExitFailure);
     }
+    written.add(obj);
   }
   const std::vector<Vec3> normals = vertexNormals(*mesh);
   if (Status s = writeSurfaceGlb(o.output, *mesh, normals); !s.ok()) {
-    // All or nothing; but an OBJ output that is a device or FIFO (written in place) stays.
-    std::error_code ec;
-    if (!obj.empty() && std::filesystem::is_regular_file(std::filesystem::status(obj, ec))) {
-      std::filesystem::remove(obj, ec);
-    }
+    written.removeAll();
     // A mesh the glTF cannot hold (float32's range) is this network's; write errors name the file.
     const bool about_input = s.code() == StatusCode::kInvalidArgument;
     return reportError(console, "surface: " + (about_input ? o.network.string() + ": " : std::string()) + s.message(),

@@ -739,6 +739,42 @@ TEST_F(BadInputCli, AWriteThatFailsPartWayLeavesTheOldFile) {
   }
 }
 
+// A command with several outputs whose later output cannot be written (a link to /dev/full, as a
+// full disk) removes the outputs it already wrote: a failed command leaves none of them.
+TEST_F(BadInputCli, ALaterOutputThatFailsRemovesTheEarlierOnes) {
+  ASSERT_TRUE(fs::exists("/dev/full")) << "the test needs Linux's /dev/full";
+  struct Case {
+    std::string name;
+    std::vector<std::string> args;  // {dir} is the case's folder
+    std::string full;               // the output linked to /dev/full
+  };
+  const std::vector<Case> cases{
+      {"play_frames", {"play", in("cyl.odsk"), "--fps", "4", "-o", "{dir}/f_%02d.obj"}, "f_02.obj"},
+      {"rig_weights", {"rig", in("good1.obj"), "--template", "none", "-o", "{dir}/s.tgf", "--weights", "{dir}/w.dmat"},
+       "w.dmat"},
+      {"rig_gltf", {"rig", in("good1.obj"), "--template", "none", "-o", "{dir}/s.tgf", "--gltf", "{dir}/s.glb"}, "s.glb"},
+      {"compare_json", {"compare", in("good1.obj"), in("good2.obj"), "-o", "{dir}/e.ply", "--json", "{dir}/e.json"},
+       "e.json"},
+      {"evaluate_json", {"evaluate", in("good1.obj"), in("good2.obj"), in("good3.obj"), "--keys", "0,2", "--methods", "lbs",
+                         "--json", "{dir}/r.json"},
+       "r.json"},
+  };
+  for (const Case& c : cases) {
+    const fs::path out_dir = dir() / "later_output" / c.name;
+    fs::create_directories(out_dir);
+    fs::create_symlink("/dev/full", out_dir / c.full);
+    std::vector<std::string> args = c.args;
+    for (std::string& a : args) {
+      if (const std::size_t at = a.find("{dir}"); at != std::string::npos) a.replace(at, 5, out_dir.string());
+    }
+    const Outcome r = runOdeskin(args, dir() / "io" / ("later_" + c.name));
+    expectOneErrorLine(r, 1, {c.full, "write failed"}, commandLine(args));
+    std::vector<std::string> left;
+    for (const fs::directory_entry& e : fs::directory_iterator(out_dir)) left.push_back(e.path().filename().string());
+    EXPECT_EQ(left, std::vector<std::string>{c.full}) << c.name << ": only the link to /dev/full may be left";
+  }
+}
+
 // Sanitizer runtimes reserve terabytes of address space up front, so RLIMIT_AS cannot be used there.
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 constexpr bool kSanitized = true;

@@ -347,6 +347,16 @@ TEST_F(RenderCommand, TurntableFramesTurnAndMakeAStrip) {
   o.strip.clear();
   ASSERT_EQ(render(o, io, &report), kExitOk) << io.err.str();
   EXPECT_TRUE(fs::exists(dir / "f_03.png"));
+  // A frame that cannot be written (a link to /dev/full, as a full disk) takes the frames before it along.
+  const fs::path full = dir / "full";
+  fs::create_directories(full);
+  fs::create_symlink("/dev/full", full / "g_02.png");
+  o.output = (full / "g_%02d.png").string();
+  Captured failed;
+  EXPECT_EQ(render(o, failed), kExitFailure);
+  EXPECT_NE(failed.err.str().find("g_02.png: write failed"), std::string::npos) << failed.err.str();
+  EXPECT_FALSE(fs::exists(full / "g_00.png"));
+  EXPECT_FALSE(fs::exists(full / "g_01.png"));
 }
 
 TEST_F(RenderCommand, AssetsDrawCurvesAndTheirLbsTwin) {
