@@ -24,6 +24,8 @@ constexpr std::uint32_t kMaxSide = 100000;
 constexpr int kMaxSplinePieces = 1000;
 // The constraints hold to rounding (~1e-15 of the data); anything near this bound is a bug.
 constexpr double kConstraintLimit = 1e-9;
+// The thesis's examples stay within a few times their data; a hundred times is a bulge, not a blend.
+constexpr double kFarReach = 100.0;
 
 bool parseCount(std::string_view text, std::uint32_t& value) {
   const char* end = text.data() + text.size();
@@ -89,6 +91,9 @@ void checkConstraints(const BlendingSurface& s, const BlendGrid& g, BlendReport&
   }
   r.position_error = position / std::max(size, 1e-300);
   r.tangent_error = tangent / std::max(tangent_size + size, 1e-300);
+  double reach = 0.0;
+  for (const Vec3& p : g.positions) reach = std::max(reach, glm::length(p));
+  r.reach = reach / std::max(tangent_size + size, 1e-300);
 }
 
 Status withVerb(const Status& s) { return Status(s.code(), "blend: " + s.message()); }
@@ -156,6 +161,11 @@ int runBlendCommand(const BlendCommandOptions& o, Console& console, BlendReport*
                 << grid->positions.size() << " vertices, " << grid->faces.faceCount() << " quads\n";
     console.out << "constraints: position " << scientific(r.position_error) << ", tangent " << scientific(r.tangent_error)
                 << " of the trimline data\n";
+    // Next to a resonance the constraints still hold, but the surface bulges without bound between them.
+    if (r.reach > kFarReach) {
+      console.err << "warning: blend: the surface reaches " << scientific(r.reach)
+                  << " times the size of its trimline data; (alpha, beta, gamma) lies near a resonance\n";
+    }
   }
   if (report) *report = r;
   return kExitOk;

@@ -33,6 +33,7 @@ struct BlendReport {
   std::string regime;                   // empty for --hermite
   double position_error = 0.0;          // max |S - C| on both trimlines, of the data size
   double tangent_error = 0.0;           // max |S_u - Cbar| on both trimlines, of the data size
+  double reach = 0.0;                   // max |S| over the grid, of the data size (positions and tangents)
 };
 
 // Peak memory of the verb per grid vertex (the double grid, the quads, the OBJ text). Measured

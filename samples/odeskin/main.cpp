@@ -126,8 +126,8 @@ CLI::App* addExportCommand(CLI::App& app, odeskin::ExportCommandOptions& o, doub
   cmd->add_option("--interpolation", o.interpolation,
                   "cubic (CUBICSPLINE keys with tangents, the default) or linear (LINEAR keys, more of them, played\n"
                   "as written by importers that drop tangents)");
-  cmd->add_flag("!--no-target-normals", o.target_normals,
-                "Morph targets without NORMAL deltas (about half the bytes; viewers then shade the skinned base shape)");
+  cmd->add_flag_callback("--no-target-normals", [&o] { o.target_normals = false; },
+                         "Morph targets without NORMAL deltas (about half the bytes; viewers then shade the skinned base shape)");
   cmd->add_flag("--quantize", o.quantize,
                 "KHR_mesh_quantization: 16-bit positions and position deltas, 8-bit normals, 16-bit normal deltas\n"
                 "(about two thirds of the bytes; the summary gives the rounding's error)");

@@ -104,7 +104,8 @@ std::string usageProblem(const ReconstructCommandOptions& o, MeshNetworkOptions&
     if (p.empty()) continue;
     if (overwritesInput(p, input_files)) return "reconstruct: " + p.string() + " is an input; it would be overwritten";
     if (!outputs.insert(p.lexically_normal()).second) {
-      return "reconstruct: two outputs would be " + p.string() + " (poses with the same file name?)";
+      return "reconstruct: two outputs would be " + p.string() +
+             (o.poses.empty() ? std::string() : " (poses with the same file name?)");
     }
   }
   return {};

@@ -30,6 +30,7 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxTurntable = 3600;
 constexpr std::uint32_t kStripColumns = 6;
 constexpr std::uint32_t kStripWidth = 1536;  // pixels across a contact sheet row at most
+constexpr double kMinHeatMax = 1e-30;        // well inside float's normal range
 
 bool hasPngExtension(const std::string& name) {
   return lowerExtension(name) == ".png";
@@ -46,6 +47,11 @@ std::string usageProblem(const RenderOptions& o) {
   if (o.t && !std::isfinite(*o.t)) return "render: --t must be a finite number";
   if (o.heat_max && !(std::isfinite(*o.heat_max) && *o.heat_max > 0.0)) {
     return "render: --heat-max must be positive (a fraction of the reference's longest box side, 0.01 = 1%)";
+  }
+  // The renderer scales in float: a denormal would become 0 there.
+  if (o.heat_max && *o.heat_max < kMinHeatMax) {
+    return "render: --heat-max " + numberText(*o.heat_max) + " is below " + numberText(kMinHeatMax) +
+           " (a fraction of the reference's longest box side)";
   }
   if (o.heat_max && !o.heat) return "render: --heat-max needs --heat REF";
   if (o.samples == 0 || o.samples > 64) return "render: --samples must lie in [1, 64]";
@@ -254,10 +260,10 @@ Result<std::vector<visual::Camera>> pictureCameras(const RenderOptions& o, const
 
 void printSummary(const RenderOptions& o, const Panels& panels, const RenderReport& r, std::size_t frames,
                   std::ostream& out) {
-  // A device without the asked count draws with the nearest one below it; say so rather than hide it.
+  // A device without the asked count draws with the largest one below it; say so rather than hide it.
   char lowered[96] = "";
   if (r.samples < o.samples) {
-    std::snprintf(lowered, sizeof lowered, " (%u asked; the nearest the device offers)", o.samples);
+    std::snprintf(lowered, sizeof lowered, " (%u asked; the most the device offers up to that)", o.samples);
   }
   char line[400];
   std::snprintf(line, sizeof line, "%u x %u, %zu panel%s, %u sample%s per pixel%s, %.1f ms per picture on %s\n", r.width,
@@ -270,7 +276,7 @@ void printSummary(const RenderOptions& o, const Panels& panels, const RenderRepo
   if (!o.strip.empty()) out << "strip: " << o.strip << "\n";
   if (panels.heat_max) {
     out << "heat: error / longest box side of " << o.heat->filename().string() << ", colour bar 0 to "
-        << percentText(*panels.heat_max) << ";";
+        << percentText(*panels.heat_max) << (panels.max_errors.empty() ? "" : ";");
     for (double e : panels.max_errors) out << " max " << percentText(e);
     out << "\n";
   }

@@ -310,7 +310,9 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   for (std::size_t k = 0; k < 6; ++k) {
     out << (k > 0 ? ", " : "") << by_reason[k] << " " << reasonName(static_cast<JointReason>(k));
   }
-  out << "); template " << templateKindName(r.animation.used) << ": " << r.animation.template_note << "\n";
+  out << "); template " << templateKindName(r.animation.used);
+  if (!r.animation.template_note.empty()) out << ": " << r.animation.template_note;
+  out << "\n";
   if (o.repeat > 1) {
     std::snprintf(line, sizeof line,
                   "time (median / fastest of %d runs): mesh edges %.3f / %.3f ms, curve (vertex) identification %.3f / "

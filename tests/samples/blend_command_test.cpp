@@ -89,6 +89,8 @@ TEST(BlendCommand, DefaultsAreTheThesisParametersAndProfilesCanChange) {
     EXPECT_EQ(report.u_count, 64u);
     EXPECT_EQ(report.v_count, 128u);
     EXPECT_EQ(readObj(dir / (std::string(id) + ".obj"))->positions.size(), 64u * 128u);
+    EXPECT_LT(report.reach, 10.0) << id;
+    EXPECT_TRUE(io.err.str().empty()) << io.err.str();
   }
   BlendCommandOptions hermite = options("3.18", dir / "hermite.obj");
   hermite.hermite = true;
@@ -151,6 +153,25 @@ TEST(BlendCommand, AGridLargerThanMemoryIsRefusedUpFront) {
             "lower --res");
   EXPECT_TRUE(blendFitsInMemory(50'000'000, 16 * kGiB).ok());
   EXPECT_TRUE(blendFitsInMemory(50'000'000, 0).ok());  // memory unknown
+}
+
+// Just off a resonance the constraints hold to rounding while the surface bulges a hundred million
+// times the data's size: written, since it is what was asked, with a warning.
+TEST(BlendCommand, NearResonanceIsWrittenWithAWarning) {
+  const fs::path dir = scratch("near_resonance");
+  BlendCommandOptions o = options("3.17", dir / "x.obj");
+  o.gamma = 0.0;
+  o.beta = 39.4784176;  // 4 pi^2 is 39.47841760435743
+  o.res = "8,8";
+  Captured io;
+  BlendReport report;
+  ASSERT_EQ(blend(o, io, &report), kExitOk) << io.err.str();
+  EXPECT_GT(report.reach, 1e6);
+  EXPECT_NE(io.err.str().find("warning: blend: the surface reaches "), std::string::npos) << io.err.str();
+  EXPECT_NE(io.err.str().find("times the size of its trimline data; (alpha, beta, gamma) lies near a resonance"),
+            std::string::npos)
+      << io.err.str();
+  fs::remove_all(dir);
 }
 
 TEST(BlendCommand, IllPosedParametersFailWithTheReason) {
