@@ -85,9 +85,9 @@ std::string fitUsageProblem(const FitCommandOptions& o) {
   for (const std::filesystem::path& p : {o.bind, o.weights, o.materials_json}) inputs.push_back(p);
   if (lowerExtension(o.rig) == ".tgf") inputs.emplace_back(o.rig);
   if (overwritesInput(o.output, inputs)) return "fit: " + o.output.string() + " is an input; it would be overwritten";
+  if (const std::string why = folderNotFile(o.output); !why.empty()) return "fit: -o " + o.output.string() + " " + why;
   // A mesh meant as another pose (`fit a.obj b.obj -o c.obj`) would be replaced by the binary asset.
   if (lowerExtension(o.output) != ".odsk") return "fit: -o " + o.output.string() + ": the asset is written as .odsk";
-  if (const std::string why = folderNotFile(o.output); !why.empty()) return "fit: -o " + o.output.string() + " " + why;
   std::string problem;
   fitInputKind(o, &problem);
   return problem;
