@@ -116,13 +116,26 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
     inverse_binds.insert(inverse_binds.end(), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, static_cast<float>(-h.x),
                                                static_cast<float>(-h.y), static_cast<float>(-h.z), 1});
   }
+  // glTF wants a skin's joints under one node (the validator's SKIN_NO_COMMON_ROOT): a skeleton of
+  // several root bones (the cylinder's two arms from one joint) hangs them under a "skeleton" node.
+  std::vector<int> roots;
+  for (std::size_t b = 0; b < bones; ++b) {
+    if (rig.skeleton.parents[b] < 0) roots.push_back(static_cast<int>(b + 1));
+  }
+  int skeleton_root = -1;
+  if (roots.size() > 1) {
+    tinygltf::Node root;
+    root.name = "skeleton";
+    root.children = roots;
+    m.nodes.push_back(root);
+    skeleton_root = static_cast<int>(m.nodes.size() - 1);
+    scene.nodes.push_back(skeleton_root);
+  } else {
+    scene.nodes.insert(scene.nodes.end(), roots.begin(), roots.end());
+  }
   for (std::size_t b = 0; b < bones; ++b) {
     const std::int32_t p = rig.skeleton.parents[b];
-    if (p >= 0) {
-      m.nodes[static_cast<std::size_t>(p) + 1].children.push_back(static_cast<int>(b + 1));
-    } else {
-      scene.nodes.push_back(static_cast<int>(b + 1));
-    }
+    if (p >= 0) m.nodes[static_cast<std::size_t>(p) + 1].children.push_back(static_cast<int>(b + 1));
     if (!has_child[b]) {
       tinygltf::Node end;
       end.name = m.nodes[b + 1].name + "_end";
@@ -133,6 +146,7 @@ Status writeRigGlb(const std::filesystem::path& path, std::span<const Vec3> posi
   }
   tinygltf::Skin skin;
   skin.name = "skin";
+  skin.skeleton = skeleton_root;
   for (std::size_t b = 0; b < bones; ++b) skin.joints.push_back(static_cast<int>(b + 1));
   skin.inverseBindMatrices = gltf::appendAccessor(m, gltf::appendView(m, inverse_binds, 0), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, bones);
   m.skins.push_back(skin);

@@ -3,7 +3,8 @@
 // skin (JOINTS_0 / WEIGHTS_0, at most 4 influences per vertex, the largest kept and renormalised
 // in float32), one joint node per bone at the bone's head (its pivot), children of their parent
 // bone's node, and one extra leaf node per end bone at its tail ("<name>_end", not a skin joint)
-// so viewers can draw the last bones. No animation: the rig, ready for an engine to pose.
+// so viewers can draw the last bones. Several root bones hang under one "skeleton" node (the
+// skin's common root). No animation: the rig, ready for an engine to pose.
 //
 // A mesh read from a glTF keeps its look: its render vertices (split at UV and normal seams) with
 // their NORMAL and TEXCOORD_0, its primitives, and the materials, textures and images they used.

@@ -273,6 +273,35 @@ TEST_F(RigCommand, RiggedGlbRigsAgainToTheSameSkeleton) {
   EXPECT_EQ(a->parents, b->parents);
 }
 
+// glTF asks a skin's joints to share one root node (the Khronos validator's SKIN_NO_COMMON_ROOT).
+// The cylinder's curve rig starts two bones at its middle joint: two root bones, one "skeleton" node.
+TEST_F(RigCommand, RootBonesShareOneNodeInTheGlb) {
+  RigCommandOptions o;
+  o.meshes = {fs::path(kData) / "cylinder" / "cylinder.obj"};
+  o.output = dir_ / "cylinder.tgf";
+  o.gltf = dir_ / "cylinder.glb";
+  testing::Captured io;
+  ASSERT_EQ(runRigCommand(o, io.console), kExitOk) << io.err.str();
+  Result<Skeleton> skeleton = readTgf(o.output);
+  ASSERT_TRUE(skeleton.ok());
+  EXPECT_GT(std::count(skeleton->parents.begin(), skeleton->parents.end(), -1), 1);
+  const tinygltf::Model model = loadGlb(o.gltf);
+  std::vector<int> parent(model.nodes.size(), -1);
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    for (int child : model.nodes[n].children) parent.at(static_cast<std::size_t>(child)) = static_cast<int>(n);
+  }
+  ASSERT_EQ(model.skins.size(), 1u);
+  const int root = model.skins[0].skeleton;
+  ASSERT_GE(root, 0);
+  EXPECT_EQ(model.nodes.at(static_cast<std::size_t>(root)).name, "skeleton");
+  EXPECT_EQ(model.scenes.at(0).nodes, (std::vector<int>{0, root}));
+  for (int joint : model.skins[0].joints) {
+    int n = joint;
+    while (n >= 0 && n != root) n = parent.at(static_cast<std::size_t>(n));
+    EXPECT_EQ(n, root) << "joint node " << joint << " is not under the skeleton node";
+  }
+}
+
 TEST_F(RigCommand, RejectsWhatAGltfInputCannotDo) {
   const SeamedCylinder c = seamedCylinder();
   const fs::path glb = writeSeamedGlb(c, dir_ / "character.glb");
