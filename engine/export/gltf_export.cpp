@@ -82,8 +82,9 @@ Result<GltfExportReport> exportGltf(const DeformAsset& asset, const std::filesys
     // Checked before anything is computed; the writers ask again for the primitives they write.
     ODESKIN_TRY(gltf::primitiveMaterials(*materials, asset.render.primitives, 1).status());
   }
-  const gltf::MaterialLibrary* library = materials ? &*materials : nullptr;
   GltfExportReport report;
+  if (materials && asset.render.uvs.empty()) report.untextured_materials = gltf::dropTextures(*materials);
+  const gltf::MaterialLibrary* library = materials ? &*materials : nullptr;
   if (library != nullptr) {
     report.materials = library->materials.size();
     report.images = library->images.size();

@@ -60,6 +60,9 @@ struct GltfExportReport {
   std::uintmax_t bytes = 0;        // of the written file
   std::size_t materials = 0;       // copied from options.materials (0 without)
   std::size_t images = 0;          // embedded with them
+  // Materials whose textures were left out because the asset has no texture coordinates (an OBJ
+  // fit, or a glTF whose TEXCOORD_0 could not be kept): gltf::dropTextures.
+  std::size_t untextured_materials = 0;
   // Quantized only: the writer's QuantizationCost (gltf_quantized.hpp; at the weight keys, or a
   // bake's frames), its lengths as fractions of the box.
   bool quantized = false;

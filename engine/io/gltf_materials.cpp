@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <string_view>
+#include <tuple>
+#include <utility>
 
 #include "../core/render_primitives.hpp"
 #include "gltf_buffer_builder.hpp"
@@ -30,6 +33,65 @@ std::string sniffMimeType(const std::vector<unsigned char>& b) {
   if (starts({'R', 'I', 'F', 'F'}) && starts({'W', 'E', 'B', 'P'}, 8)) return "image/webp";
   if (starts({'f', 't', 'y', 'p', 'a', 'v', 'i', 'f'}, 4)) return "image/avif";
   return {};
+}
+
+// The encoded bytes hold a whole image of their type, as far as its framing shows: a PNG begins
+// with its IHDR chunk and ends with IEND. (A renamed or cut file would otherwise travel into the
+// output and fail there, in every viewer.)
+bool wholeImage(const std::vector<unsigned char>& b, const std::string& mime_type) {
+  if (mime_type != "image/png") return true;
+  constexpr std::array<unsigned char, 8> kIhdr{0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+  constexpr std::array<unsigned char, 12> kIend{0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  return b.size() >= 8 + 25 + kIend.size() && std::equal(kIhdr.begin(), kIhdr.end(), b.begin() + 8) &&
+         std::equal(kIend.begin(), kIend.end(), b.end() - static_cast<std::ptrdiff_t>(kIend.size()));
+}
+
+// The texture references of a material's core fields, by name, for checks and for stripping.
+std::array<std::pair<const char*, int*>, 5> textureIndices(tinygltf::Material& m) {
+  return {{{"baseColorTexture", &m.pbrMetallicRoughness.baseColorTexture.index},
+           {"metallicRoughnessTexture", &m.pbrMetallicRoughness.metallicRoughnessTexture.index},
+           {"normalTexture", &m.normalTexture.index},
+           {"occlusionTexture", &m.occlusionTexture.index},
+           {"emissiveTexture", &m.emissiveTexture.index}}};
+}
+
+// Whether an extension's JSON names a texture (a key such as "clearcoatTexture").
+bool namesTexture(const tinygltf::Value& v) {
+  if (v.IsObject()) {
+    for (const std::string& key : v.Keys()) {
+      if (key.ends_with("Texture") || namesTexture(v.Get(key))) return true;
+    }
+  } else if (v.IsArray()) {
+    for (std::size_t i = 0; i < v.ArrayLen(); ++i) {
+      if (namesTexture(v.Get(static_cast<int>(i)))) return true;
+    }
+  }
+  return false;
+}
+
+Status checkReferences(MaterialLibrary& library) {
+  const auto count = [](std::size_t n) { return static_cast<int>(n); };
+  for (std::size_t i = 0; i < library.materials.size(); ++i) {
+    tinygltf::Material& m = library.materials[i];
+    for (const auto& [field, index] : textureIndices(m)) {
+      if (*index >= count(library.textures.size())) {
+        return parseError(library.source + ": material " + std::to_string(i) + " '" + m.name + "': " + field +
+                          " names texture " + std::to_string(*index) + ", and the file has " +
+                          std::to_string(library.textures.size()));
+      }
+    }
+  }
+  for (std::size_t i = 0; i < library.textures.size(); ++i) {
+    const tinygltf::Texture& t = library.textures[i];
+    for (const auto& [what, index, have] : {std::tuple{"image", t.source, library.images.size()},
+                                            std::tuple{"sampler", t.sampler, library.samplers.size()}}) {
+      if (index >= count(have)) {
+        return parseError(library.source + ": texture " + std::to_string(i) + " names " + what + " " + std::to_string(index) +
+                          ", and the file has " + std::to_string(have));
+      }
+    }
+  }
+  return okStatus();
 }
 
 std::vector<std::string> materialExtensions(const std::vector<std::string>& names) {
@@ -62,8 +124,40 @@ Result<MaterialLibrary> readMaterialLibrary(const std::filesystem::path& path) {
     if (out.mime_type.empty() || sniffed.empty()) {
       return parseError(what + " is not PNG, JPEG, KTX2, WebP or AVIF");
     }
+    if (!wholeImage(out.bytes, sniffed)) return parseError(what + " is not a whole " + sniffed.substr(6) + " file");
   }
+  ODESKIN_TRY(checkReferences(library));
   return library;
+}
+
+std::size_t dropTextures(MaterialLibrary& library) {
+  std::size_t dropped = 0;
+  for (tinygltf::Material& m : library.materials) {
+    bool textured = false;
+    for (const auto& [field, index] : textureIndices(m)) {
+      textured = textured || *index >= 0;
+      *index = -1;
+    }
+    for (auto it = m.extensions.begin(); it != m.extensions.end();) {
+      const bool drop = namesTexture(it->second);
+      textured = textured || drop;
+      it = drop ? m.extensions.erase(it) : std::next(it);
+    }
+    dropped += textured ? 1 : 0;
+  }
+  library.textures.clear();
+  library.samplers.clear();
+  library.images.clear();
+  // Extensions of textures (KHR_texture_transform, ...) and of the material extensions just dropped.
+  const auto unused = [&](const std::string& name) {
+    if (!name.starts_with("KHR_materials_")) return true;
+    return std::none_of(library.materials.begin(), library.materials.end(),
+                        [&](const tinygltf::Material& m) { return m.extensions.count(name) > 0; });
+  };
+  for (std::vector<std::string>* list : {&library.extensions_used, &library.extensions_required}) {
+    list->erase(std::remove_if(list->begin(), list->end(), unused), list->end());
+  }
+  return dropped;
 }
 
 Result<std::vector<int>> primitiveMaterials(const MaterialLibrary& library, std::span<const RenderPrimitive> primitives,

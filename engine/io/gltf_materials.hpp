@@ -34,10 +34,16 @@ struct MaterialLibrary {
 };
 
 // Every material, texture, sampler and image of `path`, indices unchanged. kIoError or
-// kParseError naming the file (loadModelWithImages), or an image whose bytes cannot be had (an
-// external file missing) or whose type is none of those above; kInvalidArgument for a file with
-// no materials.
+// kParseError naming the file (loadModelWithImages), an image whose bytes cannot be had (an
+// external file missing), whose type is none of those above or whose PNG framing is cut, or a
+// material or texture naming a texture, image or sampler the file lacks; kInvalidArgument for a
+// file with no materials.
 Result<MaterialLibrary> readMaterialLibrary(const std::filesystem::path& path);
+
+// For a mesh without TEXCOORD_0, where no texture can be mapped (glTF then refuses the file):
+// every texture reference goes (the core fields, and material extensions that name a texture),
+// with the textures, samplers and images; factors stay. Returns how many materials had textures.
+std::size_t dropTextures(MaterialLibrary& library);
 
 // The material of each primitive of a mesh odeskin writes: the input's own (RenderPrimitive), or,
 // for an asset that recorded none, the library's only material. kInvalidArgument naming the

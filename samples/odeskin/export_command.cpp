@@ -10,6 +10,7 @@
 #include "engine/core/number_text.hpp"
 #include "engine/io/asset_file.hpp"
 #include "file_extension.hpp"
+#include "material_warning.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
 #include "quantization_summary.hpp"
@@ -139,7 +140,10 @@ int runExportCommand(const ExportCommandOptions& o, Console& console, GltfExport
     const Status& s = result.status();
     return reportFailure(console, s.code() == StatusCode::kIoError ? s : Status(s.code(), o.asset.string() + ": " + s.message()));
   }
-  if (!console.quiet) printSummary(console.out, o, asset, *result, options.bake_fps);
+  if (!console.quiet) {
+    printSummary(console.out, o, asset, *result, options.bake_fps);
+    warnOfDroppedTextures(console.err, o.asset, o.materials, result->untextured_materials);
+  }
   if (report) *report = *result;
   return kExitOk;
 }

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "material_warning.hpp"
 #include "output_paths.hpp"
 #include "play_command.hpp"
 
@@ -316,6 +317,10 @@ int runPlayCommand(const PlayOptions& o, Console& console, PlayReport* report) {
       return reportFailure(console, s);
     }
     materials = std::move(library).value();
+    if (asset.render.uvs.empty()) {
+      const std::size_t untextured = gltf::dropTextures(*materials);
+      if (!console.quiet) warnOfDroppedTextures(console.err, o.asset, o.materials, untextured);
+    }
   }
   std::vector<std::vector<Vec3>> baked, baked_normals;
 

@@ -25,6 +25,7 @@
 #include "engine/rig/curve_rig.hpp"
 #include "engine/rig/skeleton_compare.hpp"
 #include "file_extension.hpp"
+#include "material_warning.hpp"
 #include "output_paths.hpp"
 #include "render_session.hpp"
 #include "rig_picture.hpp"
@@ -166,11 +167,14 @@ Result<RigInput> readRigInput(const RigCommandOptions& o) {
 }
 
 // The materials a glTF input's primitives use, for --gltf; none when they use none.
-Result<std::optional<gltf::MaterialLibrary>> inputMaterials(const RigCommandOptions& o, const RenderLayout& render) {
+Result<std::optional<gltf::MaterialLibrary>> inputMaterials(const RigCommandOptions& o, const RenderLayout& render,
+                                                            std::size_t& untextured) {
   const bool dressed = std::any_of(render.primitives.begin(), render.primitives.end(),
                                    [](const RenderPrimitive& p) { return p.material >= 0; });
   if (!dressed) return std::optional<gltf::MaterialLibrary>();
   ODESKIN_ASSIGN_OR_RETURN(gltf::MaterialLibrary library, gltf::readMaterialLibrary(o.meshes.front()));
+  // A TEXCOORD_0 the reader could not keep (on some primitives only) leaves the textures unmappable.
+  if (render.uvs.empty()) untextured = gltf::dropTextures(library);
   return std::optional<gltf::MaterialLibrary>(std::move(library));
 }
 
@@ -194,10 +198,12 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   }
   // Read before anything is written: a texture --gltf cannot copy fails the command, not its last output.
   Result<std::optional<gltf::MaterialLibrary>> materials = std::optional<gltf::MaterialLibrary>();
-  if (!o.gltf.empty()) materials = inputMaterials(o, input->render);
+  std::size_t untextured = 0;
+  if (!o.gltf.empty()) materials = inputMaterials(o, input->render, untextured);
   if (!materials.ok()) {
     return reportFailure(console, Status(materials.status().code(), "rig: --gltf: " + materials.status().message()));
   }
+  if (!console.quiet) warnOfDroppedTextures(console.err, o.meshes.front(), o.meshes.front(), untextured);
   const std::vector<Vec3>& rest = input->rest;
   const FaceList& faces = input->faces;
   const std::vector<std::vector<Vec3>>& poses = input->poses;

@@ -212,6 +212,7 @@ TEST(GltfPipeline, MaterialsThatDoNotFitAreRefused) {
     GltfExportOptions options;
     options.materials = materials;
     const fs::path out = tempDir() / "refused.glb";
+    fs::remove(out);  // the folder outlives a run
     Result<GltfExportReport> report = exportGltf(asset, out, options);
     ASSERT_FALSE(report.ok());
     EXPECT_NE(report.status().message().find(message), std::string::npos) << report.status().message();
@@ -240,6 +241,47 @@ TEST(GltfPipeline, MaterialsThatDoNotFitAreRefused) {
   refused(fit->asset, write(dressedTube(true), "external-image.gltf", false),
           "external-image.gltf: image 0 (skin-colour.png) cannot be read");
   refused(fit->asset, tempDir() / "absent.glb", "absent.glb");
+  // References the file cannot resolve, and an image cut short: copied, they made invalid outputs.
+  tinygltf::Model dangling = dressedTube();
+  dangling.materials[0].pbrMetallicRoughness.baseColorTexture.index = 9;
+  refused(fit->asset, write(dangling, "dangling-texture.glb", true),
+          "dangling-texture.glb: material 0 'skin': baseColorTexture names texture 9, and the file has 1");
+  tinygltf::Model sourceless = dressedTube();
+  sourceless.textures[0].source = 4;
+  refused(fit->asset, write(sourceless, "dangling-image.glb", true),
+          "dangling-image.glb: texture 0 names image 4, and the file has 1");
+  tinygltf::Model cut = dressedTube();
+  cut.bufferViews.at(static_cast<std::size_t>(cut.images[0].bufferView)).byteLength = 20;
+  refused(fit->asset, write(cut, "cut-image.glb", true), "cut-image.glb: image 0 is not a whole png file");
+}
+
+// A mesh without texture coordinates cannot map a texture, and glTF refuses a textured material on
+// it: the materials come without their textures (and the texture extensions), with their factors.
+TEST(GltfPipeline, MaterialsOnAMeshWithoutTexcoordsLoseTheirTextures) {
+  const fs::path source = write(dressedTube(), "textured-source.glb", true);
+  const auto examples = read(source, {0.5, 1.0});
+  ASSERT_TRUE(examples.ok()) << examples.status().toString();
+  Result<PipelineResult> fit = runFitPipeline(*examples, PipelineOptions{});
+  ASSERT_TRUE(fit.ok()) << fit.status().toString();
+  DeformAsset uv_less = fit->asset;
+  uv_less.render.uvs.clear();
+  GltfExportOptions options;
+  options.materials = source;
+  const fs::path out = tempDir() / "uv-less.glb";
+  Result<GltfExportReport> report = exportGltf(uv_less, out, options);
+  ASSERT_TRUE(report.ok()) << report.status().toString();
+  EXPECT_EQ(report->untextured_materials, 1u);
+  const tinygltf::Model written = loadWritten(out);
+  EXPECT_EQ(written.meshes.at(0).primitives.at(0).attributes.count("TEXCOORD_0"), 0u);
+  ASSERT_EQ(written.materials.size(), 2u);
+  EXPECT_EQ(written.materials[0].pbrMetallicRoughness.baseColorTexture.index, -1);
+  EXPECT_EQ(written.materials[1].extensions.count("KHR_materials_emissive_strength"), 1u);
+  EXPECT_TRUE(written.textures.empty() && written.images.empty() && written.samplers.empty());
+  EXPECT_EQ(written.extensionsUsed, (std::vector<std::string>{"KHR_materials_emissive_strength"}));
+  // With its texture coordinates, nothing is dropped.
+  Result<GltfExportReport> textured = exportGltf(fit->asset, tempDir() / "textured.glb", options);
+  ASSERT_TRUE(textured.ok()) << textured.status().toString();
+  EXPECT_EQ(textured->untextured_materials, 0u);
 }
 
 }  // namespace
