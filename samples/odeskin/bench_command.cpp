@@ -224,7 +224,9 @@ CLI::App* addBenchCommand(CLI::App& app, BenchCommandOptions& o) {
   cmd->add_option("--csv", o.csv, "Also write the records as CSV");
   cmd->add_option("--plot", o.plot, "Also draw vertices/s against vertices (PNG)");
   cmd->add_option("--fit-plot", o.fit_plot, "Also draw the fitting stages' time against vertices (PNG)");
-  cmd->add_option("--data", o.data, "The shared data folder with cat-poses and horse-gallop");
+  cmd->add_option("--data", o.data,
+                  "The shared data folder with cat-poses and horse-gallop (default ../shared/data; none: the procedural "
+                  "arm, no fits)");
   cmd->add_option("--sizes", o.sizes, "Vertex counts (default 1e3,1e4,32185,1e5,1e6,4e6)")->delimiter(',');
   cmd->add_option("--terms", o.terms, "Fourier terms N (default 3,5,9,17)")->delimiter(',');
   cmd->add_option("--backends", o.backends, "auto, or a list of cpu_ref,cpu_fast,vulkan");
@@ -266,10 +268,29 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
     return reportError(console, m.rfind("bench: ", 0) == 0 ? m : "bench: " + m, kExitFailure);
   };
   // Minutes of timing must not end in an unwritable path: check the paths and folders before any work.
-  for (const std::filesystem::path& path : {o.json, o.csv, o.plot, o.fit_plot}) {
+  const std::filesystem::path outputs[] = {o.json, o.csv, o.plot, o.fit_plot};
+  for (const std::filesystem::path& path : outputs) {
     if (const std::string why = folderNotFile(path); !why.empty()) return reportUsage(console, "bench: " + path.string() + " " + why);
   }
-  for (const std::filesystem::path& path : {o.json, o.csv, o.plot, o.fit_plot}) {
+  for (std::size_t a = 0; a < std::size(outputs); ++a) {
+    for (std::size_t b = a + 1; b < std::size(outputs); ++b) {
+      if (sameOutputFile(outputs[a], outputs[b])) {
+        return reportUsage(console, "bench: two outputs would be " + outputs[b].string() + "; give each its own file");
+      }
+    }
+  }
+  // An explicit --data that holds no cat-poses is a mistake, not a wish for the procedural arm.
+  const bool has_data = o.data != "none" && std::filesystem::exists(o.data / "cat-poses");
+  if (!has_data && o.data != "none" && o.data != BenchCommandOptions{}.data) {
+    return reportUsage(console, "bench: --data " + o.data.string() +
+                                    " has no cat-poses folder (give the shared data folder, which holds cat-poses and "
+                                    "horse-gallop, or none for the procedural arm)");
+  }
+  if (!o.fit_plot.empty() && (!o.fit || !has_data)) {
+    return reportUsage(console, std::string("bench: --fit-plot draws the fitting stages, which ") +
+                                    (o.fit ? "need the shared data (--data)" : "--no-fit leaves out"));
+  }
+  for (const std::filesystem::path& path : outputs) {
     const std::filesystem::path parent = path.parent_path();
     if (path.empty() || parent.empty()) continue;
     std::error_code ec;
@@ -356,7 +377,7 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
   if (!status.ok()) return fail(status);
   sources->assets.clear();  // the largest cases are done: free the fitted meshes before the fits
 
-  if (o.fit && std::filesystem::exists(o.data / "cat-poses")) {
+  if (o.fit && has_data) {
     bench::FitStageOptions fit_options;
     fit_options.quick = o.quick;
     fit_options.progress = progress;
@@ -365,15 +386,19 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
     report.fit_stages.insert(report.fit_stages.end(), stages->begin(), stages->end());
   }
 
+  WrittenOutputs written;
   if (Status s = bench::writeJson(o.json, report); !s.ok()) return fail(s);
+  written.add(o.json);
   if (!o.csv.empty()) {
-    if (Status s = bench::writeCsv(o.csv, report); !s.ok()) return fail(s);
+    if (Status s = bench::writeCsv(o.csv, report); !s.ok()) return fail(written.undo(s));
+    written.add(o.csv);
   }
   if (!o.plot.empty()) {
-    if (Status s = bench::writePlot(o.plot, report); !s.ok()) return fail(s);
+    if (Status s = bench::writePlot(o.plot, report); !s.ok()) return fail(written.undo(s));
+    written.add(o.plot);
   }
   if (!o.fit_plot.empty()) {
-    if (Status s = bench::writeFitPlot(o.fit_plot, report); !s.ok()) return fail(s);
+    if (Status s = bench::writeFitPlot(o.fit_plot, report); !s.ok()) return fail(written.undo(s));
   }
   if (!console.quiet) {
     console.out << "device: " << report.device << (report.validation ? " (validation layer on)" : "");
@@ -384,8 +409,10 @@ int runBenchCommand(const BenchCommandOptions& o, Console& console, const std::s
     printFits(report, console.out);
     printTargets(report, console.out);
     printBandwidth(report, console.out);
+    for (const std::filesystem::path& path : outputs) {
+      if (!path.empty()) console.out << "wrote " << path.string() << "\n";
+    }
   }
-  console.out << "wrote " << o.json.string() << "\n";
   return kExitOk;
 }
 

@@ -24,7 +24,7 @@ struct BenchCommandOptions {
   std::filesystem::path csv;              // optional
   std::filesystem::path plot;             // optional PNG
   std::filesystem::path fit_plot;         // optional PNG: fitting stages against vertices
-  std::filesystem::path data = "../shared/data";  // cat-poses, horse-gallop (absent: procedural arm, no fit table)
+  std::filesystem::path data = "../shared/data";  // cat-poses, horse-gallop (absent here, or "none": procedural arm, no fit table)
   std::vector<std::size_t> sizes;         // empty: the default for quick or full
   std::vector<int> terms;                 // empty: the default for quick or full
   std::string backends = "auto";          // auto (vulkan when a device opens), or a list of cpu_ref,cpu_fast,vulkan

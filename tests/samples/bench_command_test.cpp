@@ -42,7 +42,7 @@ TEST(BenchCommand, WithoutDataTilesTheProceduralArmOnCpuBackends) {
   o.json = dir / "out.json";
   o.csv = dir / "out.csv";
   o.plot = dir / "out.png";
-  o.data = dir / "no-data-here";
+  o.data = "none";
   o.sizes = {3000};
   o.terms = {3};
   o.backends = "cpu_ref,cpu_fast";
@@ -114,7 +114,7 @@ TEST(BenchCommand, RejectsBadOptionsAndUnwritableOutputs) {
   const fs::path dir = scratchDir("odeskin_bench_", "bad");
   BenchCommandOptions base;
   base.json = dir / "out.json";
-  base.data = dir / "no-data-here";
+  base.data = "none";
   base.sizes = {100};
   base.terms = {3};
   base.backends = "cpu_fast";
@@ -133,6 +133,13 @@ TEST(BenchCommand, RejectsBadOptionsAndUnwritableOutputs) {
   usage.back().options.sizes = {100, 200, 100};
   usage.push_back({base, "--terms lists 3 twice"});
   usage.back().options.terms = {3, 3};
+  usage.push_back({base, "--data " + (dir / "no-data-here").string() + " has no cat-poses folder"});
+  usage.back().options.data = dir / "no-data-here";
+  usage.push_back({base, "two outputs would be " + (dir / "out.json").string()});
+  usage.back().options.csv = dir / "out.json";
+  usage.push_back({base, "--fit-plot draws the fitting stages, which --no-fit leaves out"});
+  usage.back().options.fit_plot = dir / "fit.png";
+  usage.back().options.fit = false;
   auto run = [](const BenchCommandOptions& o, Captured& io) { return runBenchCommand(o, io.console); };
   testing::expectRejected(usage, run, kExitUsage, "bench");
   std::vector<CommandCase<BenchCommandOptions>> failures;
