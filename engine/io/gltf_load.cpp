@@ -48,6 +48,18 @@ std::string trimmed(std::string s) {
   return s;
 }
 
+// tinygltf quotes a buffer's whole URI in its errors: a data: URI is the buffer itself, megabytes of
+// base64 in one message line. Each is cut to its head and its length.
+std::string withShortDataUris(std::string s) {
+  constexpr std::size_t kKept = 48;
+  for (std::size_t at = s.find("data:"); at != std::string::npos; at = s.find("data:", at + 1)) {
+    std::size_t end = at;
+    while (end < s.size() && s[end] != '\'' && s[end] != '"' && s[end] != ' ' && s[end] != '\n') ++end;
+    if (end - at > kKept) s.replace(at + kKept, end - at - kKept, "... (" + std::to_string(end - at) + " characters)");
+  }
+  return s;
+}
+
 // File callbacks for glTF held in memory: it has no folder, so a buffer URI that is not a data: URI
 // names nothing, and nothing is ever written.
 bool noFile(const std::string&, void*) { return false; }
@@ -275,7 +287,7 @@ Result<tinygltf::Model> runLoader(const std::string& source,
     ok = false;
   }
   if (!ok) {
-    err = trimmed(err);
+    err = withShortDataUris(trimmed(err));
     return parseError(source + ": tinygltf cannot read it: " + (err.empty() ? "no reason given" : err));
   }
   return model;

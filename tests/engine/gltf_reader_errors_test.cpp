@@ -291,6 +291,20 @@ TEST(GltfReaderErrors, MalformedJson) {
   expectError(read(path, {1.0}), StatusCode::kParseError, {path.string(), "tinygltf"});
 }
 
+// tinygltf quotes the failing buffer's URI: a data: URI is the whole buffer in base64, and the
+// message was kilobytes long (megabytes for a real mesh). It keeps the head and says how long it was.
+TEST(GltfReaderErrors, ADataUriInAnErrorIsCutShort) {
+  const fs::path embedded = write(makeTube().model, "embedded.gltf", false);
+  nlohmann::json json = nlohmann::json::parse(fileBytes(embedded));
+  ASSERT_EQ(json["buffers"][0]["uri"].get<std::string>().rfind("data:", 0), 0u);
+  json["buffers"][0]["byteLength"] = json["buffers"][0]["byteLength"].get<std::size_t>() + 40;  // more than the URI holds
+  const fs::path path = tempDir() / "short-data.gltf";
+  std::ofstream(path) << json.dump();
+  const auto examples = read(path, {1.0});
+  expectError(examples, StatusCode::kParseError, {path.string(), "tinygltf cannot read it", " characters)"});
+  EXPECT_LT(examples.status().message().size(), 400u) << examples.status().message();
+}
+
 TEST(GltfReaderErrors, UnknownAnimationListsTheAvailableOnes) {
   const fs::path path = write(makeTube().model, "tube.gltf", false);
   expectError(read(path, {1.0}, {}, "walk"), StatusCode::kInvalidArgument, {path.string(), "walk", "bend", "wiggle", "squash"});
