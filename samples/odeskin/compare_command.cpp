@@ -90,7 +90,7 @@ int runCompareCommand(const CompareOptions& o, Console& console, CompareReport* 
       for (const std::string& warning : input->warnings) console.err << "warning: " << warning << "\n";
     }
   }
-  Result<std::vector<double>> errors = visual::relativeVertexErrors(mesh->positions, reference->positions);
+  Result<std::vector<double>> errors = visual::relativeVertexErrors(mesh->positions, inVertexOrderOf(*mesh, *reference));
   if (!errors.ok()) {
     return reportError(console, "compare: " + o.mesh.string() + " against " + o.reference.string() + ": " +
                                     errors.status().message(), kExitFailure);

@@ -316,7 +316,8 @@ CLI::App* addCompareCommand(CLI::App& app, odeskin::CompareOptions& o, CompareCl
       "          odeskin compare horse.odsk horse-03.obj --t 0.5 -o error.ply --heat-max 0.01 --json error.json");
   cmd->add_option("mesh", o.mesh, "The mesh to score")->required();
   cmd->add_option("reference", o.reference, "The reference with the same vertices (ground truth)")->required();
-  v.t_opt = cmd->add_option("--t", v.t, "MESH's time: global T in [0, K-1] for .odsk, seconds for .glb/.gltf");
+  v.t_opt = cmd->add_option("--t", v.t, "MESH's time: global T in [0, K-1] for .odsk (default 0), animation seconds for .glb/.gltf (default: the bind\n"
+                   "pose, the mesh as its buffers hold it)");
   cmd->add_option("-o,--output", o.ply, "MESH coloured by its error (.ply)");
   v.heat_max_opt = cmd->add_option("--heat-max", v.heat_max, "Top of the colour range, a fraction of the box (default: the MVE)");
   cmd->add_option("--json", o.json, "Write the figures here (.json)");
@@ -344,7 +345,8 @@ CLI::App* addRenderCommand(CLI::App& app, odeskin::RenderOptions& o, RenderCliVa
   render->add_option("inputs", o.inputs, "Meshes: .obj, .gltf/.glb (bind pose or --t seconds), .odsk (at --t)")->required();
   render->add_option("-o,--output", o.output, "OUT.png; with --turntable a pattern OUT_%03d.png (default: OUT_NNN.png)")
       ->required();
-  v.t_opt = render->add_option("--t", v.t, "Asset time T in [0, K-1] (default 0); glTF animation seconds");
+  v.t_opt = render->add_option("--t", v.t, "Asset time T in [0, K-1] (default 0); glTF animation seconds (default: the bind pose, the mesh as its\n"
+                   "buffers hold it)");
   render->add_option("--size", o.size, "Whole picture WIDTHxHEIGHT (default 720x540 per panel, plus the colour bar)");
   v.heat_opt = render->add_option("--heat", v.heat, "Reference mesh with the same vertices: per-vertex error heat map");
   v.heat_max_opt = render->add_option("--heat-max", v.heat_max, "Top of the colour bar as a fraction of REF's longest box side (default: the largest error)");

@@ -198,10 +198,11 @@ Result<Panels> loadPanels(const RenderOptions& o, int& code) {
     if (reference && !skin_only_flags[i] && samePath(input.path, *o.heat)) {
       note = "reference";
     } else if (reference) {
-      Result<std::vector<double>> errors = visual::relativeVertexErrors(input.positions, reference->positions);
+      Result<std::vector<double>> errors =
+          visual::relativeVertexErrors(input.positions, inVertexOrderOf(input, *reference));
       if (!errors.ok()) {
-        return invalidArgument("--heat: " + input.path.string() + ": " + errors.status().message() + " " +
-                               o.heat->string());
+        return invalidArgument("--heat: " + input.path.string() + ": " + errors.status().message() + " (" +
+                               o.heat->string() + ")");
       }
       heat = std::move(errors).value();
       double sum = 0.0;

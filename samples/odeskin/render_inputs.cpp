@@ -35,6 +35,7 @@ Result<RenderInput> loadAssetInput(const std::filesystem::path& path, const Rend
   ODESKIN_TRY(playback->positionsAt(t, input.positions));
   input.faces = asset.faces;
   input.curves = asset.curves;
+  if (!asset.render.obj_order) input.topology_of_render = asset.render.topology_of_render;
   return input;
 }
 
@@ -51,6 +52,7 @@ Result<RenderInput> loadGltfInput(const std::filesystem::path& path, const Rende
   input.positions = std::move(examples.poses.front());
   input.faces = std::move(examples.faces);
   input.warnings = std::move(examples.warnings);
+  input.topology_of_render = std::move(examples.render.topology_of_render);
   return input;
 }
 
@@ -78,6 +80,21 @@ Result<RenderInput> loadRenderInput(const std::filesystem::path& path, const Ren
   input.positions = std::move(mesh.positions);
   input.faces = std::move(mesh.faces);
   return input;
+}
+
+std::vector<Vec3> inVertexOrderOf(const RenderInput& input, const RenderInput& other) {
+  const std::size_t count = input.positions.size();
+  if (other.positions.size() != count && input.topology_of_render.size() == other.positions.size()) {
+    std::vector<Vec3> welded(count);
+    for (std::size_t r = 0; r < other.positions.size(); ++r) welded[input.topology_of_render[r]] = other.positions[r];
+    return welded;
+  }
+  if (other.positions.size() != count && other.topology_of_render.size() == count) {
+    std::vector<Vec3> split(count);
+    for (std::size_t r = 0; r < count; ++r) split[r] = other.positions[other.topology_of_render[r]];
+    return split;
+  }
+  return other.positions;
 }
 
 DeformAsset skinOnlyAsset(const DeformAsset& asset) {

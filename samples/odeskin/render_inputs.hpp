@@ -35,7 +35,17 @@ struct RenderInput {
   FaceList faces;                  // over positions (welded topology for glTF and assets)
   std::vector<IsoCurve> curves;    // assets: the iso-parametric curves, on these vertices
   std::vector<std::string> warnings;  // the reader's (ExampleSet::warnings), naming the file
+  // glTF inputs and assets fitted from glTF: the welded vertex of each render vertex (UV and normal
+  // seams split vertices there); empty when the input has no such layout.
+  std::vector<std::uint32_t> topology_of_render;
 };
+
+// `other`'s positions in `input`'s vertex order, for per-vertex errors between them. They are
+// `other.positions` unless the two differ only by a glTF render layout: an OBJ that `play` wrote
+// from a seamed asset holds a vertex per render vertex, where the asset and its glTF hold one per
+// welded vertex. Then one side is welded (any copy of a vertex: they have one position) or split
+// to the other's order.
+std::vector<Vec3> inVertexOrderOf(const RenderInput& input, const RenderInput& other);
 
 // Errors name the file: readObj's, readGltfExamples' and loadAsset's; kOutOfRange when an asset's t
 // lies outside [0, K-1] (naming the range); kInvalidArgument for skin_only on a non-asset.
