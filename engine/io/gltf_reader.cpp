@@ -212,15 +212,39 @@ Status placeUnskinned(const tinygltf::Model& model, int mesh_node, MeshData& mes
   return okStatus();
 }
 
-// One pose (with its key pose and label) per requested time of the requested animation.
+// An unskinned mesh at `time_s`: morphed with the animated (or default) weights, and moved as its
+// node's world transform moves from the rest pose (`base` and `deltas` are already placed there,
+// placeUnskinned). odeskin's own baked files are such meshes: a weights animation, no skin.
+std::vector<Vec3> unskinnedPose(const Clip& clip, double time_s, int mesh_node, std::span<const NodeTransform> rest,
+                                std::span<const int> parents, const std::vector<Vec3>& base,
+                                const std::vector<std::vector<Vec3>>& deltas, std::vector<double> weights) {
+  std::vector<NodeTransform> nodes(rest.begin(), rest.end());
+  applyClip(clip, time_s, nodes, mesh_node, weights);
+  const auto node = static_cast<std::size_t>(mesh_node);
+  const glm::dmat4 moved = globalMatrices(nodes, parents)[node] * glm::inverse(globalMatrices(rest, parents)[node]);
+  std::vector<Vec3> pose = morph(base, deltas, weights);
+  if (moved != glm::dmat4(1.0)) {
+    for (Vec3& p : pose) p = Vec3(moved * glm::dvec4(p, 1.0));
+  }
+  return pose;
+}
+
+// One pose (with its key pose, for a skinned mesh, and label) per requested time of the requested
+// animation. `skinned`: null for an unskinned mesh.
 Status appendAnimatedPoses(const tinygltf::Model& model, const GltfPoseRequest& request, const std::string& file,
-                           const Skinned& skinned, int mesh_node, const std::vector<Vec3>& base,
+                           const Skinned* skinned, int mesh_node, const std::vector<Vec3>& base,
                            const std::vector<std::vector<Vec3>>& deltas, const std::vector<double>& default_weights,
                            ExampleSet& out, DecodeBudget& budget) {
   ODESKIN_ASSIGN_OR_RETURN(const int animation, chooseAnimation(model, request.animation));
   ODESKIN_ASSIGN_OR_RETURN(const Clip clip, loadClip(model, animation, budget));
   const std::string name = clip.name.empty() ? "animation " + std::to_string(animation) : clip.name;
   const std::optional<std::pair<double, double>> span = keyframeSpan(clip);
+  std::vector<int> parents;
+  std::vector<NodeTransform> rest;
+  if (skinned == nullptr) {
+    ODESKIN_ASSIGN_OR_RETURN(parents, nodeParents(model));
+    ODESKIN_ASSIGN_OR_RETURN(rest, restTransforms(model));
+  }
   if (!span && !request.times.empty()) {
     out.warnings.push_back(name +
                            " animates no node's translation, rotation, scale or weights, so every pose at a "
@@ -237,9 +261,14 @@ Status appendAnimatedPoses(const tinygltf::Model& model, const GltfPoseRequest& 
                              " s");
     }
     const std::string label = file + " " + name + " at " + formatTime(t) + " s";
+    if (skinned == nullptr) {
+      out.poses.push_back(unskinnedPose(clip, t, mesh_node, rest, parents, base, deltas, default_weights));
+      out.pose_labels.push_back(label);
+      continue;
+    }
     std::vector<Vec3> pose;
     std::vector<RigidTransform> key_pose;
-    ODESKIN_TRY(animatedPose(skinned, clip, t, mesh_node, base, deltas, default_weights, out.rig->influences,
+    ODESKIN_TRY(animatedPose(*skinned, clip, t, mesh_node, base, deltas, default_weights, out.rig->influences,
                              label, pose, key_pose));
     out.poses.push_back(std::move(pose));
     out.pose_labels.push_back(label);
@@ -257,9 +286,6 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
   }
   if (node.skin >= static_cast<int>(model.skins.size())) {
     return parseError(nodeLabel(model, mesh_node) + ": skin " + std::to_string(node.skin) + " does not exist");
-  }
-  if (!request.times.empty() && node.skin < 0) {
-    return invalidArgument(nodeLabel(model, mesh_node) + " has no skin, so it has no poses at times");
   }
 
   DecodeBudget budget(model);
@@ -316,8 +342,8 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
     if (out.rig) out.rig->key_poses.push_back(identity);
   }
   if (!request.times.empty()) {
-    ODESKIN_TRY(appendAnimatedPoses(model, request, file, *skinned, mesh_node, welded.positions, deltas,
-                                    default_weights, out, budget));
+    ODESKIN_TRY(appendAnimatedPoses(model, request, file, skinned ? &*skinned : nullptr, mesh_node, welded.positions,
+                                    deltas, default_weights, out, budget));
   }
   for (int k : request.morph_targets) {
     std::vector<double> w = default_weights;

@@ -18,7 +18,7 @@ namespace odeskin {
 struct GltfPoseRequest {
   std::string mesh;                 // mesh node name, or empty: the first skinned mesh node (else the first mesh)
   std::string animation;            // name or index as text; empty: the first animation
-  std::vector<double> times;        // seconds: one example pose per time (skinned with the animated joints)
+  std::vector<double> times;        // seconds: one example pose per time (the animated joints and weights)
   std::vector<int> morph_targets;   // each: the bind mesh with that target's weight set to 1, in bind space
   bool include_bind_pose = true;    // pose 0 is the bind mesh (the mesh with its default morph weights)
   std::size_t min_poses = 2;        // fewest poses accepted: fitting needs 2, drawing one pose 1
@@ -41,8 +41,9 @@ struct GltfPoseRequest {
 //
 // Poses at times are computed as glTF specifies: morph (animated "weights" of the mesh node, else
 // the defaults), then linear blend skinning with S_j = G_j x IBM_j, G_j the joint node's global
-// transform under the animation's translation/rotation/scale channels. Morph-target and bind poses
-// are not skinned.
+// transform under the animation's translation/rotation/scale channels. An unskinned mesh at a time
+// is morphed the same way and moved as its node's world transform moves from the rest pose (a baked
+// file of odeskin's is a weights animation of such a mesh). Morph-target and bind poses are not skinned.
 //
 // Rig (skinned meshes only): skeleton from the skin's joints (gltf_skin.hpp), influences from
 // JOINTS_n/WEIGHTS_n of each topology vertex's first render vertex, normalised per vertex; key
@@ -52,8 +53,8 @@ struct GltfPoseRequest {
 // (glTF holds the end keyframe there, so the pose repeats it), an animation that moves nothing
 // odeskin reads, a zero or non-finite NORMAL (the normals are then dropped).
 //
-// Errors name the file. kInvalidArgument: fewer than max(min_poses, 1) poses, a non-finite time, times without a
-// skin, an unknown animation (the message lists the available ones), a morph target out of range,
+// Errors name the file. kInvalidArgument: fewer than max(min_poses, 1) poses, a non-finite time, an
+// unknown animation (the message lists the available ones), a morph target out of range,
 // an unknown mesh node name, an extensionsRequired entry odeskin does not handle (named; see
 // gltf_load.hpp), a skin matrix that scales or shears by more than 1e-4 (naming joint and pose).
 // kIoError: a missing or unreadable file. kParseError: tinygltf refuses the file (its message

@@ -175,6 +175,18 @@ TEST_F(Cli, PlaySequenceToGlbHoldsEveryFrameAsAMorphTarget) {
   }
   // With NORMALs, so viewers shade it smooth (glTF has them compute flat normals otherwise).
   EXPECT_EQ(read->render.normals.size(), read->render.topology_of_render.size());
+  // At a time, as a viewer plays it: the STEP weights animation shows frame k from k / 4 s on.
+  GltfPoseRequest timed;
+  timed.include_bind_pose = false;
+  timed.min_poses = 1;
+  timed.times = {0.5, 0.6};
+  read = readGltfExamples(dir / "arm.glb", timed);
+  ASSERT_TRUE(read.ok()) << read.status().toString();
+  ASSERT_EQ(read->poses.size(), 2u);
+  EXPECT_FALSE(read->rig.has_value());
+  for (const std::vector<Vec3>& pose : read->poses) {
+    EXPECT_LE(maxDistance(pose, readPositions(frames.files[2])), 1e-6 * box());
+  }
 
   // --quantize: the same frames on a 16-bit grid the mesh node undoes, within the error it prints.
   o.output = (dir / "arm-q.glb").string();
