@@ -50,6 +50,7 @@ struct PipelineResult {
   StageTimings timings;
   std::string rig_summary;           // e.g. "auto: 18 bones from 10 poses (fit error 2.1e-3 of the box)"
   std::size_t part_count = 0;
+  std::vector<std::string> warnings;  // what a user should hear of and the fit went on past
 };
 
 Result<PipelineResult> runFitPipeline(const ExampleSet& examples, const PipelineOptions& options);

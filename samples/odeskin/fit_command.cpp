@@ -167,6 +167,9 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
     return reportError(console, "fit: " + poses + ": " + message, kExitFailure);
   }
 
+  if (!console.quiet) {
+    for (const std::string& w : result->warnings) console.err << "warning: fit: " << w << "\n";
+  }
   if (Status s = createParentFolder(o.output); !s.ok()) return reportFailure(console, s);
   if (Status saved = saveAsset(o.output, result->asset); !saved.ok()) return reportFailure(console, saved);
   std::error_code ec;

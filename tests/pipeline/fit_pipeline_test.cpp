@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "dataset_fixtures.hpp"
+#include "engine/io/obj_reader.hpp"
 #include "engine/offline/deform_player.hpp"
 
 namespace odeskin {
@@ -69,6 +70,25 @@ TEST(FitPipeline, CylinderWithItsGroundTruthRig) {
   ASSERT_EQ(result.asset.segments.size(), 3u);
   expectKeysReproduced(*ex, result, 1e-4);
   expectC1AcrossJoins(result);
+}
+
+// A given rig says how far it skins from the poses; transforms of another take (poses-1's .Tmat
+// files for poses-2's meshes) still fit, the residual carrying the difference, but are warned of.
+TEST(FitPipeline, AGivenRigFarFromThePosesIsWarnedOf) {
+  Result<ExampleSet> ex = testing::cylinderWithRig(true, true);
+  ASSERT_TRUE(ex.ok()) << ex.status().toString();
+  const PipelineResult matched = fitOrFail(*ex, PipelineOptions{});
+  EXPECT_NE(matched.rig_summary.find("given transforms (LBS error mean "), std::string::npos) << matched.rig_summary;
+  EXPECT_TRUE(matched.warnings.empty()) << matched.warnings.front();
+  for (int k = 1; k <= 4; ++k) {
+    Result<ObjMesh> other = readObj(testing::dataDir() / "cylinder" / "poses-2" / ("cylinder-" + std::to_string(k) + ".obj"));
+    ASSERT_TRUE(other.ok()) << other.status().toString();
+    ex->poses[static_cast<std::size_t>(k - 1)] = other->positions;
+  }
+  const PipelineResult mismatched = fitOrFail(*ex, PipelineOptions{});
+  ASSERT_EQ(mismatched.warnings.size(), 1u);
+  EXPECT_NE(mismatched.warnings[0].find("the given rig skins the bind mesh "), std::string::npos) << mismatched.warnings[0];
+  expectKeysReproduced(*ex, mismatched, 1e-4);
 }
 
 TEST(FitPipeline, CylinderKabschTransformsAndDistanceWeights) {
