@@ -92,7 +92,9 @@ CLI::App* addFitCommand(CLI::App& app, odeskin::FitCommandOptions& o, std::strin
       ->check(CLI::IsMember({"bind", "posed"}));
   fit->add_option("--skinning", skinning, "lbs or dqs")->check(CLI::IsMember({"lbs", "dqs"}));
   fit->add_option("--key-tolerance", o.key_tolerance, "Key poses reproduced within this fraction of the box, 1e-12 to 0.1");
-  fit->add_flag("--pure-fourier", o.pure_fourier, "No sparse remainders (the thesis's representation)");
+  fit->add_flag("--pure-fourier", o.pure_fourier,
+                "No sparse remainders (the thesis's representation): keys are met only to the reported key error,\n"
+                "and the shape jumps by it at every inner key");
   fit->add_option("--bones", o.bones, "Automatic rig: bone count (0: chosen from the mesh)");
   fit->add_option("--segment-seconds", o.segment_seconds, "Playback length of one key-to-key segment, 1e-4 to 1e6 seconds");
   fit->add_flag("--timings", o.timings, "Print the stage breakdown of the thesis's Table 6.3");
