@@ -27,6 +27,9 @@ using namespace gltf;
 
 // A key pose must be rigid: skin matrices that scale or shear more than this are refused.
 constexpr double kRigidTolerance = 1e-4;
+// The rest pose may move the mesh this far (of its box) from its buffers unremarked: float32
+// inverse bind matrices round to about 1e-7; fit's default key tolerance is 1e-4.
+constexpr double kRestPoseTolerance = 1e-5;
 // Welded copies of a vertex must move together under each morph target: relative to the bounding
 // box diagonal, looser than float round-off (6e-8) and far below a visible tear.
 constexpr double kWeldedDeltaTolerance = 1e-5;
@@ -128,7 +131,34 @@ struct Skinned {
   SkinData skin;
   std::vector<int> parents;
   std::vector<NodeTransform> rest;
+  std::string rest_warning;  // when the nodes' rest pose skins the mesh away from its buffers
 };
+
+// Viewers show a skinned mesh through its joints, never as its buffers hold it. Where the joints'
+// rest transforms and the inverse bind matrices do not cancel, the bind pose odeskin takes as key 0
+// is not the shape the file shows at rest: say which joint moves the mesh, and by how much.
+std::string restPoseWarning(const Skinned& s, std::span<const Vec3> positions) {
+  if (positions.empty()) return {};
+  const std::vector<glm::dmat4> global = globalMatrices(s.rest, s.parents);
+  Vec3 lo = positions.front(), hi = positions.front();
+  for (const Vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const double box = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  double worst = 0.0;
+  std::size_t worst_joint = 0;
+  for (std::size_t j = 0; j < s.skin.joint_nodes.size(); ++j) {
+    const glm::dmat4 m = global[static_cast<std::size_t>(s.skin.joint_nodes[j])] * s.skin.inverse_bind[j];
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 p((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y, (corner & 4) != 0 ? hi.z : lo.z);
+      const double moved = glm::length(Vec3(m * glm::dvec4(p, 1.0)) - p);
+      if (moved > worst) worst = moved, worst_joint = j;
+    }
+  }
+  if (!(box > 0.0) || !(worst > kRestPoseTolerance * box)) return {};
+  return "the nodes' rest pose moves the mesh by up to " + messageNumber(worst / box) + " of its box (joint " +
+         std::to_string(worst_joint) + " '" + s.skin.skeleton.names[worst_joint] +
+         "': its inverse bind matrix does not undo its rest transform), so key pose 0, the mesh as its buffers hold "
+         "it, is not what viewers show at rest";
+}
 
 // The pose at `time_s`: morph with the animated (or default) weights, then skin with
 // S_j = G_j x IBM_j; `key_pose` gets the rigid part of every S_j.
@@ -185,6 +215,7 @@ Result<Skinned> readSkinned(const tinygltf::Model& model, int mesh_node, MeshDat
     dequantizeInverseBinds(*scale, s.skin.inverse_bind);
     placeJoints(s.skin);
   }
+  s.rest_warning = restPoseWarning(s, mesh.positions);
   return s;
 }
 
@@ -328,6 +359,7 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
     out.warnings.push_back("TEXCOORD_0 is not kept: " + mesh.uv_warning);
   }
 
+  if (skinned && !skinned->rest_warning.empty()) out.warnings.push_back(skinned->rest_warning);
   if (skinned) {
     out.rig.emplace();
     out.rig->skeleton = skinned->skin.skeleton;

@@ -363,6 +363,23 @@ TEST(GltfReaderErrors, TimesOfAnUnskinnedMeshComeWithoutARig) {
   EXPECT_FALSE(examples->rig.has_value());
 }
 
+// Where the joints' rest transforms and the inverse bind matrices do not cancel, viewers show the
+// file at rest otherwise than the bind mesh odeskin takes as key 0: read, with a warning naming the joint.
+TEST(GltfReaderErrors, ARestPoseAwayFromTheBindMeshIsWarnedOf) {
+  tinygltf::Model model = makeTube().model;
+  const auto matched = read(write(model, "rest-matched.gltf", false), {1.0});
+  ASSERT_TRUE(matched.ok()) << matched.status().toString();
+  EXPECT_TRUE(matched->warnings.empty()) << matched->warnings.front();
+  model.nodes[2].translation = {0.0, 1.5, 0.0};  // the tip's rest; its inverse bind matrix still undoes 1
+  const auto moved = read(write(model, "rest-moved.gltf", false), {1.0});
+  ASSERT_TRUE(moved.ok()) << moved.status().toString();
+  ASSERT_EQ(moved->warnings.size(), 1u);
+  EXPECT_NE(moved->warnings[0].find("the nodes' rest pose moves the mesh by up to "), std::string::npos) << moved->warnings[0];
+  EXPECT_NE(moved->warnings[0].find("(joint 1 'tip': its inverse bind matrix does not undo its rest transform)"),
+            std::string::npos)
+      << moved->warnings[0];
+}
+
 TEST(GltfReaderErrors, OnlyTriangles) {
   tinygltf::Model model = makeTube().model;
   model.meshes[0].primitives[0].mode = TINYGLTF_MODE_TRIANGLE_STRIP;
