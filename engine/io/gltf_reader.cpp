@@ -137,21 +137,36 @@ struct Skinned {
 // Viewers show a skinned mesh through its joints, never as its buffers hold it. Where the joints'
 // rest transforms and the inverse bind matrices do not cancel, the bind pose odeskin takes as key 0
 // is not the shape the file shows at rest: say which joint moves the mesh, and by how much.
-std::string restPoseWarning(const Skinned& s, std::span<const Vec3> positions) {
+std::string restPoseWarning(const Skinned& s, const MeshData& mesh) {
+  const std::vector<Vec3>& positions = mesh.positions;
   if (positions.empty()) return {};
   const std::vector<glm::dmat4> global = globalMatrices(s.rest, s.parents);
+  std::vector<glm::dmat4> rest_skin;
+  for (std::size_t j = 0; j < s.skin.joint_nodes.size(); ++j) {
+    rest_skin.push_back(global[static_cast<std::size_t>(s.skin.joint_nodes[j])] * s.skin.inverse_bind[j]);
+  }
   Vec3 lo = positions.front(), hi = positions.front();
   for (const Vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   const double box = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  // Each vertex skinned at rest as a viewer skins it; the joint of its largest weight is named.
+  const std::size_t slots = 4 * mesh.influence_sets;
   double worst = 0.0;
   std::size_t worst_joint = 0;
-  for (std::size_t j = 0; j < s.skin.joint_nodes.size(); ++j) {
-    const glm::dmat4 m = global[static_cast<std::size_t>(s.skin.joint_nodes[j])] * s.skin.inverse_bind[j];
-    for (int corner = 0; corner < 8; ++corner) {
-      const Vec3 p((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y, (corner & 4) != 0 ? hi.z : lo.z);
-      const double moved = glm::length(Vec3(m * glm::dvec4(p, 1.0)) - p);
-      if (moved > worst) worst = moved, worst_joint = j;
+  for (std::size_t r = 0; r < positions.size(); ++r) {
+    glm::dvec4 moved(0.0);
+    double total = 0.0, largest = -1.0;
+    std::size_t dominant = 0;
+    for (std::size_t k = 0; k < slots; ++k) {
+      const double w = mesh.weights[r * slots + k];
+      const std::uint32_t j = mesh.joints[r * slots + k];
+      if (!(w > 0.0) || j >= rest_skin.size()) continue;
+      moved += w * (rest_skin[j] * glm::dvec4(positions[r], 1.0));
+      total += w;
+      if (w > largest) largest = w, dominant = j;
     }
+    if (!(total > 0.0)) continue;
+    const double distance = glm::length(Vec3(moved) / total - positions[r]);
+    if (distance > worst) worst = distance, worst_joint = dominant;
   }
   if (!(box > 0.0) || !(worst > kRestPoseTolerance * box)) return {};
   return "the nodes' rest pose moves the mesh by up to " + messageNumber(worst / box) + " of its box (joint " +
@@ -215,7 +230,7 @@ Result<Skinned> readSkinned(const tinygltf::Model& model, int mesh_node, MeshDat
     dequantizeInverseBinds(*scale, s.skin.inverse_bind);
     placeJoints(s.skin);
   }
-  s.rest_warning = restPoseWarning(s, mesh.positions);
+  s.rest_warning = restPoseWarning(s, mesh);
   return s;
 }
 
