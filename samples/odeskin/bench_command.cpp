@@ -45,6 +45,8 @@ std::optional<Backends> parseBackends(const std::string& text) {
     b.cpu_ref = b.cpu_fast = b.vulkan = true;
     return b;
   }
+  // getline drops an empty last field: "cpu_fast," must fail as ",cpu_fast" does.
+  if (!text.empty() && text.back() == ',') return std::nullopt;
   std::stringstream list(text);
   std::string item;
   while (std::getline(list, item, ',')) {

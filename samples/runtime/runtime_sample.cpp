@@ -25,6 +25,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "engine/core/thread_count.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/io/obj_reader.hpp"
 #include "engine/kernels/packed_deform.hpp"
@@ -367,6 +368,15 @@ int parseAndRun(int argc, char** argv) {
   if (o.bounds != "auto" && o.backend != "vulkan") {
     std::fprintf(stderr, "odeskin_runtime_sample: --bounds needs --backend vulkan\n");
     return 2;
+  }
+  // The CPU backend opens no device: these options would change nothing.
+  if (o.backend != "vulkan" && (o.validation || o.device != "auto")) {
+    std::fprintf(stderr, "odeskin_runtime_sample: %s needs --backend vulkan\n", o.validation ? "--validation" : "--device");
+    return 2;
+  }
+  if (const unsigned usable = odeskin::usableThreads(o.threads); o.threads > usable) {
+    std::fprintf(stderr, "note: --threads %u: this machine runs at most %u, so the sample uses %u\n", o.threads, usable,
+                 usable);
   }
   return odeskin::run(o);
 }

@@ -121,6 +121,8 @@ TEST(BenchCommand, RejectsBadOptionsAndUnwritableOutputs) {
   std::vector<CommandCase<BenchCommandOptions>> usage;
   usage.push_back({base, "--backends must be auto or a list"});
   usage.back().options.backends = "gpu";
+  usage.push_back({base, "--backends must be auto or a list"});
+  usage.back().options.backends = "cpu_fast,";
   usage.push_back({base, "--sizes must be in"});
   usage.back().options.sizes = {0};
   usage.push_back({base, "--terms must be in"});
