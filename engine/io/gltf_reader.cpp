@@ -378,8 +378,11 @@ Result<ExampleSet> buildExamples(const tinygltf::Model& model, const GltfPoseReq
   if (skinned) {
     out.rig.emplace();
     out.rig->skeleton = skinned->skin.skeleton;
-    ODESKIN_ASSIGN_OR_RETURN(out.rig->influences, topologyInfluences(mesh, welded, static_cast<std::uint32_t>(
-                                                                                       skinned->skin.joint_nodes.size())));
+    std::string weights_warning;
+    ODESKIN_ASSIGN_OR_RETURN(out.rig->influences,
+                             topologyInfluences(mesh, welded, static_cast<std::uint32_t>(skinned->skin.joint_nodes.size()),
+                                                &weights_warning));
+    if (!weights_warning.empty()) out.warnings.push_back(weights_warning);
   }
   const std::vector<RigidTransform> identity(skinned ? skinned->skin.joint_nodes.size() : 0);
 

@@ -17,6 +17,8 @@ constexpr std::array kMatrixFormats{kFloat};
 // Welded copies of a vertex must bind to the same joints; 1e-4 lets through 16-bit quantisation
 // (1/65535) and float round-off, and still catches a vertex bound to another joint.
 constexpr double kWeldedWeightTolerance = 1e-4;
+// A weight sum this far from 1 is the file's, not the rounding of 8-bit weights (two steps of 1/255).
+constexpr double kWeightSumTolerance = 1e-2;
 
 using Row = std::vector<std::pair<std::uint32_t, double>>;  // (joint, weight), sorted by joint
 
@@ -144,11 +146,28 @@ void placeJoints(SkinData& skin) {
   }
 }
 
-Result<Influences> topologyInfluences(const MeshData& mesh, const Welded& welded, std::uint32_t bone_count) {
+Result<Influences> topologyInfluences(const MeshData& mesh, const Welded& welded, std::uint32_t bone_count,
+                                      std::string* warning) {
   const std::size_t topology = welded.positions.size();
   std::vector<Row> rows(topology);
   for (std::size_t t = 0; t < topology; ++t) {
     ODESKIN_ASSIGN_OR_RETURN(rows[t], renderRow(mesh, welded.first_render[t], bone_count));
+  }
+  // glTF asks weights to sum to 1; renderers differ on sums that do not (three.js scales them,
+  // others skin as stored), so the ones odeskin scales to 1 are counted aloud.
+  const std::size_t width = 4 * mesh.influence_sets;
+  std::size_t off = 0, first_off = 0;
+  double first_sum = 1.0;
+  for (std::size_t r = 0; r < welded.topology_of_render.size(); ++r) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < width; ++k) sum += std::max(mesh.weights[r * width + k], 0.0);
+    if (std::abs(sum - 1.0) > kWeightSumTolerance) {
+      if (off++ == 0) first_off = r, first_sum = sum;
+    }
+  }
+  if (warning != nullptr && off > 0) {
+    *warning = "the skin weights of " + std::to_string(off) + " render vertices do not sum to 1 (vertex " +
+               std::to_string(first_off) + ": " + messageNumber(first_sum) + "); they are scaled to sum to 1";
   }
   for (std::size_t r = 0; r < welded.topology_of_render.size(); ++r) {
     const std::uint32_t t = welded.topology_of_render[r];

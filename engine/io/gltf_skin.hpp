@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -40,6 +41,8 @@ void placeJoints(SkinData& skin);
 // kParseError naming the render vertex: a joint index >= bone_count, a negative weight, weights
 // summing to 0; naming the topology vertex and both render vertices when two render vertices welded
 // into it have normalised weights differing by more than 1e-4 for some joint.
-Result<Influences> topologyInfluences(const MeshData& mesh, const Welded& welded, std::uint32_t bone_count);
+// `warning` (when not null) is set when some vertices' weights do not sum to 1 (they are scaled to).
+Result<Influences> topologyInfluences(const MeshData& mesh, const Welded& welded, std::uint32_t bone_count,
+                                      std::string* warning = nullptr);
 
 }  // namespace odeskin::gltf

@@ -111,7 +111,7 @@ struct Prim {
 struct TubeOptions {
   double position_scale = 1.0;    // stored = (position - offset) x scale, rounded for integers
   double uv_scale = 1.0;          // TEXCOORD_0 as integers: stored = uv x uv_scale
-  std::array<double, 2> ring1_weights{1.0, 3.0};  // stored weights of joints 0 and 1 on ring 1
+  std::array<double, 2> ring1_weights{0.25, 0.75};  // stored weights of joints 0 and 1 on ring 1
   Vec3 position_offset{0.0};
   std::string interpolation = "LINEAR";
   std::function<Vec3(int ring, int column)> normal;  // NORMAL of each vertex; none when empty
