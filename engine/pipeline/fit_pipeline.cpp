@@ -177,6 +177,15 @@ Result<PipelineResult> runFitPipeline(const ExampleSet& ex, const PipelineOption
     return invalidArgument("fit: segment length must be a positive number of seconds");
   }
   PipelineResult result;
+  // Two equal keys in a row (glTF --times 1,1, or a frame given twice) make a segment that holds still.
+  for (std::size_t k = 1; k < ex.poses.size(); ++k) {
+    if (ex.poses[k] == ex.poses[k - 1]) {
+      const bool labelled = ex.pose_labels.size() == ex.poses.size();
+      result.warnings.push_back("key poses " + std::to_string(k - 1) + " and " + std::to_string(k) +
+                                (labelled ? " (" + ex.pose_labels[k - 1] + ", " + ex.pose_labels[k] + ")" : std::string()) +
+                                " are the same shape, so the segment between them holds still");
+    }
+  }
 
   progress("rig", 0.0);
   Clock::time_point stage = Clock::now();

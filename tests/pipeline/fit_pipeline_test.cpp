@@ -91,6 +91,17 @@ TEST(FitPipeline, AGivenRigFarFromThePosesIsWarnedOf) {
   expectKeysReproduced(*ex, mismatched, 1e-4);
 }
 
+TEST(FitPipeline, EqualKeysInARowAreWarnedOf) {
+  Result<ExampleSet> ex = testing::cylinderWithRig(false, false);
+  ASSERT_TRUE(ex.ok()) << ex.status().toString();
+  ex->poses[2] = ex->poses[1];
+  const PipelineResult result = fitOrFail(*ex, PipelineOptions{});
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_EQ(result.warnings[0], "key poses 1 and 2 (" + ex->pose_labels[1] + ", " + ex->pose_labels[2] +
+                                    ") are the same shape, so the segment between them holds still");
+  expectKeysReproduced(*ex, result, 1e-4);
+}
+
 TEST(FitPipeline, CylinderKabschTransformsAndDistanceWeights) {
   Result<ExampleSet> ex = testing::cylinderWithRig(false, false);
   ASSERT_TRUE(ex.ok()) << ex.status().toString();
