@@ -140,6 +140,8 @@ Result<RigInput> readRigInput(const RigCommandOptions& o) {
     request.morph_targets = o.targets;
     request.min_poses = 1;
     ODESKIN_ASSIGN_OR_RETURN(ExampleSet set, readGltfExamples(o.meshes.front(), request));
+    // The check fit makes of the same file (a mesh drawn twice by two primitives is not manifold).
+    ODESKIN_TRY(buildPolyMesh(set.rest_positions, set.faces, o.meshes.front().string()).status());
     in.rest = std::move(set.rest_positions);
     in.faces = std::move(set.faces);
     in.poses.assign(std::make_move_iterator(set.poses.begin() + 1), std::make_move_iterator(set.poses.end()));

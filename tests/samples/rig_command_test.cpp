@@ -306,6 +306,17 @@ TEST_F(RigCommand, RejectsWhatAGltfInputCannotDo) {
   const SeamedCylinder c = seamedCylinder();
   const fs::path glb = writeSeamedGlb(c, dir_ / "character.glb");
   const std::string obj = kData + "/cylinder/cylinder.obj";
+  // Every face drawn twice, by a second primitive: fit refuses it as non-manifold, and so must rig.
+  SeamedCylinder twice = c;
+  const auto faces = static_cast<std::uint32_t>(c.render.faces.faceCount());
+  for (std::uint32_t f = 0; f < faces; ++f) {
+    for (std::uint32_t k = c.render.faces.face_offsets[f]; k < c.render.faces.face_offsets[f + 1]; ++k) {
+      twice.render.faces.indices.push_back(c.render.faces.indices[k]);
+    }
+    twice.render.faces.face_offsets.push_back(static_cast<std::uint32_t>(twice.render.faces.indices.size()));
+  }
+  twice.render.primitives = {{faces, 0}, {2 * faces, 1}};
+  const fs::path doubled = writeSeamedGlb(twice, dir_ / "doubled.glb");
   // The options for `meshes`, changed by `edit`.
   auto options = [&](std::vector<fs::path> meshes, const std::function<void(RigCommandOptions&)>& edit = {}) {
     RigCommandOptions o;
@@ -325,7 +336,8 @@ TEST_F(RigCommand, RejectsWhatAGltfInputCannotDo) {
   testing::expectRejected<RigCommandOptions>(
       {{options({glb}, [](RigCommandOptions& o) { o.targets = {7}; }), "character.glb: morph target 7 requested; mesh 0 has 2"},
        {options({glb}, [](RigCommandOptions& o) { o.mesh = "body"; }), "no mesh node named 'body'"},
-       {options({dir_ / "absent.glb"}), "absent.glb"}},
+       {options({dir_ / "absent.glb"}), "absent.glb"},
+       {options({doubled}), "doubled.glb: face "}},
       run, kExitFailure, "rig");
   EXPECT_FALSE(fs::exists(dir_ / "x.tgf"));
 }
