@@ -3,7 +3,6 @@
 // GPU) and glTF's positions: one bound for both.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <span>
@@ -20,8 +19,12 @@ inline constexpr double kFloat32CoordinateLimit = 1e38;
 // values.size() when every one fits.
 inline std::size_t firstBeyondFloat32(std::span<const Vec3> values) {
   for (std::size_t i = 0; i < values.size(); ++i) {
+    // Each coordinate on its own: std::max drops a NaN that is not its first argument.
     const Vec3& v = values[i];
-    if (!(std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}) <= kFloat32CoordinateLimit)) return i;
+    if (!(std::abs(v.x) <= kFloat32CoordinateLimit && std::abs(v.y) <= kFloat32CoordinateLimit &&
+          std::abs(v.z) <= kFloat32CoordinateLimit)) {
+      return i;
+    }
   }
   return values.size();
 }

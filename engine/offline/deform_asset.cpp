@@ -133,12 +133,17 @@ Status validateDeformAsset(const DeformAsset& a) {
         return invalidArgument("deform asset: key pose " + std::to_string(k) + " moves bone " + std::to_string(b) +
                                " by a non-finite transform or a rotation that is not unit");
       }
+      // The float32 paths (the runtime, the GPU, glTF) carry the translation: 1e300 was inf there.
+      const Vec3 translation = a.key_poses[k][b].translation;
+      if (firstBeyondFloat32(std::span<const Vec3>(&translation, 1)) == 0) {
+        return invalidArgument("deform asset: key pose " + std::to_string(k) + " moves bone " + std::to_string(b) +
+                               " by a translation beyond float32's range");
+      }
     }
   }
-  for (std::size_t b = 0; b < a.bone_count; ++b) {
-    if (!isFinite(a.bone_pivots[b])) {
-      return invalidArgument("deform asset: the pivot of bone " + std::to_string(b) + " is not finite");
-    }
+  if (const std::size_t b = firstBeyondFloat32(a.bone_pivots); b < a.bone_pivots.size()) {
+    return invalidArgument("deform asset: the pivot of bone " + std::to_string(b) +
+                           " is not finite or beyond float32's range");
   }
   for (std::size_t c = 0; c < c_count; ++c) {
     if (a.curve_materials[c] >= a.materials.size()) {

@@ -424,6 +424,10 @@ TEST_F(AssetFile, KeyPosesPivotsAndBindingsMustBeUsable) {
       {[](DeformAsset& a) { a.key_poses[0][0].translation.y = INFINITY; }, "key pose 0 moves bone 0 by a non-finite"},
       {[](DeformAsset& a) { a.key_poses[1][0].rotation *= 2.0; }, "a rotation that is not unit"},
       {[](DeformAsset& a) { a.bone_pivots[0].x = std::nan(""); }, "the pivot of bone 0 is not finite"},
+      // Finite in double, inf in the float32 key paths: every vertex between keys played inf.
+      {[](DeformAsset& a) { a.bone_pivots[1].y = -1e300; }, "the pivot of bone 1 is not finite or beyond float32's range"},
+      {[](DeformAsset& a) { a.key_poses[1][0].translation.x = 1e300; },
+       "key pose 1 moves bone 0 by a translation beyond float32's range"},
       {[](DeformAsset& a) { a.bindings[0].v = 1e300; }, "vertex 0 has an invalid curve binding"},
       {[](DeformAsset& a) { a.bindings[1].v = -0.25; }, "vertex 1 has an invalid curve binding"},
   };

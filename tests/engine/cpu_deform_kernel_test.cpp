@@ -445,6 +445,15 @@ TEST(CpuDeformKernel, AssetsBeyondFloatRangeAreRefusedWhenPacked) {
   a = *fitted;
   a.segments[0].coefficients[5].y = -1e39;
   refused(a, "deform asset: segment 0 coefficient 5 is outside float32's range");
+  // A NaN in y or z: std::max over the coordinates dropped it, and the asset played NaN frames.
+  for (const int axis : {1, 2}) {
+    a = *fitted;
+    a.rest_positions[4][axis] = std::nan("");
+    refused(a, "deform asset: rest position 4 is outside float32's range");
+    a = *fitted;
+    a.segments[0].coefficients[6][axis] = std::nan("");
+    refused(a, "deform asset: segment 0 coefficient 6 is outside float32's range");
+  }
   a = *fitted;
   a.segments[0].base_residuals[2].z = std::numeric_limits<double>::infinity();
   refused(a, "deform asset: segment 0 base residual 2");
