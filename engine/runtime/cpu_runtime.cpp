@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <mutex>
+#include <new>
 #include <string>
 
 #include "../core/machine_memory.hpp"
@@ -49,28 +50,36 @@ Result<CpuRuntime> CpuRuntime::create(const RuntimeAsset& asset, const RuntimeOp
                                     std::to_string(v) + " vertices" +
                                     (r != 0 ? " (and " + std::to_string(r) + " render vertices)" : std::string()),
                                 "lower the capacity or the frames in flight"));
-  CpuRuntime rt(asset, options);
-  for (std::uint32_t p = 0; p < asset.presetCount(); ++p) {
-    ODESKIN_ASSIGN_OR_RETURN(CpuDeformKernel deformer, CpuDeformKernel::create(asset.packed(p)));
-    rt.deformers_.push_back(std::move(deformer));
-  }
-  rt.records_.resize(options.capacity);
-  rt.bones_.resize(std::size_t{options.capacity} * asset.boneCount());
-  rt.basis_.resize(std::size_t{options.capacity} * asset.basisEntries());
-  rt.slots_.resize(options.frames_in_flight);
-  rt.chunk_bounds_.resize(std::size_t{std::min(options.capacity, rt.arena().threads())} * chunkCount(v));
-  for (Slot& slot : rt.slots_) {
-    slot.positions.resize(std::size_t{options.capacity} * v);
-    // Across hard edges the render vertices' normals are computed directly, from the positions.
-    if (options.normals && !rt.computesRenderNormals()) slot.normals.resize(slot.positions.size());
-    slot.bounds.resize(options.capacity);
-    if (r != 0) {
-      slot.render_positions.resize(std::size_t{options.capacity} * r);
-      if (options.normals) slot.render_normals.resize(slot.render_positions.size());
+  // The machine may have the memory while this process may not (ulimit -v, a container's limit):
+  // the allocations then throw, which is a failure to report, not an abort.
+  try {
+    CpuRuntime rt(asset, options);
+    for (std::uint32_t p = 0; p < asset.presetCount(); ++p) {
+      ODESKIN_ASSIGN_OR_RETURN(CpuDeformKernel deformer, CpuDeformKernel::create(asset.packed(p)));
+      rt.deformers_.push_back(std::move(deformer));
     }
-    if (options.tangents) slot.tangents.resize(std::size_t{options.capacity} * asset.renderVertexCount());
+    rt.records_.resize(options.capacity);
+    rt.bones_.resize(std::size_t{options.capacity} * asset.boneCount());
+    rt.basis_.resize(std::size_t{options.capacity} * asset.basisEntries());
+    rt.slots_.resize(options.frames_in_flight);
+    rt.chunk_bounds_.resize(std::size_t{std::min(options.capacity, rt.arena().threads())} * chunkCount(v));
+    for (Slot& slot : rt.slots_) {
+      slot.positions.resize(std::size_t{options.capacity} * v);
+      // Across hard edges the render vertices' normals are computed directly, from the positions.
+      if (options.normals && !rt.computesRenderNormals()) slot.normals.resize(slot.positions.size());
+      slot.bounds.resize(options.capacity);
+      if (r != 0) {
+        slot.render_positions.resize(std::size_t{options.capacity} * r);
+        if (options.normals) slot.render_normals.resize(slot.render_positions.size());
+      }
+      if (options.tangents) slot.tangents.resize(std::size_t{options.capacity} * asset.renderVertexCount());
+    }
+    return rt;
+  } catch (const std::bad_alloc&) {
+    return outOfRange("cpu runtime: " + std::to_string(options.capacity) + " instances x " + std::to_string(v) +
+                      " vertices in " + std::to_string(options.frames_in_flight) +
+                      " frames do not fit in this process's memory; lower the capacity or the frames in flight");
   }
-  return rt;
 }
 
 Status CpuRuntime::submitSlot(std::uint32_t slot_index, std::uint32_t instance_count, FrameTimes& times) {

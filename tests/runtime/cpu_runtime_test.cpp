@@ -3,6 +3,9 @@
 // assets: instances at different times, segments and material presets, engine-supplied bones
 // against interpolated ones, bounds, normals, instance counts 0, 1 and many, held frames, and bad
 // input. Tolerance 1e-5 of the bounding box's longest side (float32 against float64).
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -310,6 +313,46 @@ TEST(CpuRuntime, RejectsBadInputNamingTheProblem) {
   ASSERT_TRUE(plain_frame.ok());
   std::vector<gpu::Float4> normals(asset.vertexCount());
   expectStatus(plain->readNormals(*plain_frame, 0, normals), StatusCode::kInvalidArgument, "normals off");
+}
+
+// Sanitizer runtimes reserve terabytes of address space up front, so RLIMIT_AS cannot be used there.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+// Buffers the machine could hold but this process may not (ulimit -v, a container): std::bad_alloc
+// from the allocations became std::terminate; it is a Status now. The limit is the process's
+// address space now plus 512 MiB, and the runtime asks for about 2 GiB more.
+TEST(CpuRuntime, BuffersBeyondTheProcesssMemoryAreAnError) {
+  if (kSanitized) GTEST_SKIP() << "RLIMIT_AS does not work under a sanitizer";
+  const RuntimeAsset asset = makeAsset(cylinderAsset());
+  RuntimeOptions options;
+  const std::size_t per_instance = asset.vertexCount() * sizeof(gpu::Float4) * 2 * options.frames_in_flight;
+  options.capacity = static_cast<std::uint32_t>((std::size_t{2} << 30) / per_instance);
+  long pages = 0;
+  if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(statm, "%ld", &pages) != 1) pages = 0;
+    std::fclose(statm);
+  }
+  ASSERT_GT(pages, 0) << "/proc/self/statm";
+  rlimit old{};
+  ASSERT_EQ(::getrlimit(RLIMIT_AS, &old), 0);
+  rlimit limited = old;
+  limited.rlim_cur = static_cast<rlim_t>(pages) * static_cast<rlim_t>(::sysconf(_SC_PAGESIZE)) + (rlim_t{512} << 20);
+  ASSERT_EQ(::setrlimit(RLIMIT_AS, &limited), 0);
+  Result<CpuRuntime> rt = CpuRuntime::create(asset, options);
+  ASSERT_EQ(::setrlimit(RLIMIT_AS, &old), 0);
+  ASSERT_FALSE(rt.ok());
+  EXPECT_EQ(rt.status().code(), StatusCode::kOutOfRange);
+  EXPECT_NE(rt.status().message().find("do not fit in this process's memory"), std::string::npos) << rt.status().message();
 }
 
 TEST(CpuRuntime, ThreadCountDoesNotChangeTheResult) {
