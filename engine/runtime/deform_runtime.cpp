@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include "../core/number_text.hpp"
 
@@ -58,7 +59,38 @@ DeformRuntime::DeformRuntime(const RuntimeAsset& asset, const RuntimeOptions& op
   slots_.resize(options.frames_in_flight);
 }
 
+DeformRuntime::DeformRuntime(DeformRuntime&& other) noexcept : arena_(std::move(other.arena_)) { takeFrom(other); }
+
+DeformRuntime& DeformRuntime::operator=(DeformRuntime&& other) noexcept {
+  if (this != &other) {
+    arena_ = std::move(other.arena_);
+    takeFrom(other);
+  }
+  return *this;
+}
+
+// Everything but the arena, which the move constructor must initialise itself.
+void DeformRuntime::takeFrom(DeformRuntime& other) noexcept {
+  asset_ = std::exchange(other.asset_, nullptr);
+  options_ = other.options_;  // plain values: the copy cannot throw
+  other.options_.capacity = 0;
+  instance_count_ = std::exchange(other.instance_count_, 0);
+  last_frame_ = std::exchange(other.last_frame_, 0);
+  instances_ = std::move(other.instances_);
+  engine_bones_ = std::move(other.engine_bones_);
+  slots_ = std::move(other.slots_);
+  other.instances_.clear();
+  other.engine_bones_.clear();
+  other.slots_.clear();
+}
+
+Status DeformRuntime::checkNotMovedFrom(const char* what) const {
+  if (asset_ != nullptr) return okStatus();
+  return invalidArgument(std::string("runtime: ") + what + ": this runtime was moved from; use the one it was moved to");
+}
+
 Status DeformRuntime::setInstanceCount(std::uint32_t count) {
+  ODESKIN_TRY(checkNotMovedFrom("setInstanceCount"));
   if (count > options_.capacity) {
     return invalidArgument("runtime: instance count " + std::to_string(count) + " exceeds the capacity " +
                            std::to_string(options_.capacity));
@@ -69,6 +101,7 @@ Status DeformRuntime::setInstanceCount(std::uint32_t count) {
 }
 
 Status DeformRuntime::setInstance(std::uint32_t index, const InstanceState& state) {
+  ODESKIN_TRY(checkNotMovedFrom("setInstance"));
   if (index >= instance_count_) {
     return invalidArgument(instanceName(index) + " is out of range: the runtime has " +
                            std::to_string(instance_count_) + " instances (setInstanceCount)");
@@ -141,6 +174,7 @@ void DeformRuntime::prepareInputs(std::span<gpu::InstanceRecord> records, std::s
 }
 
 Result<std::uint64_t> DeformRuntime::submitFrame() {
+  ODESKIN_TRY(checkNotMovedFrom("submitFrame"));
   const auto start = std::chrono::steady_clock::now();
   const std::uint32_t slot = static_cast<std::uint32_t>(last_frame_ % options_.frames_in_flight);
   FrameTimes times;
@@ -154,6 +188,7 @@ Result<std::uint64_t> DeformRuntime::submitFrame() {
 }
 
 Result<std::uint32_t> DeformRuntime::slotOf(std::uint64_t frame, const char* what) const {
+  ODESKIN_TRY(checkNotMovedFrom(what));
   const std::uint64_t held = std::min<std::uint64_t>(last_frame_, options_.frames_in_flight);
   if (frame == 0 || frame > last_frame_ || frame + held <= last_frame_) {
     const std::string frames = held == 0 ? std::string("none submitted yet")

@@ -137,6 +137,7 @@ class DeformRuntime {
   DeformRuntime(const DeformRuntime&) = delete;
   DeformRuntime& operator=(const DeformRuntime&) = delete;
 
+  // Not of a runtime moved from (it has no asset); the counts below are 0 there.
   const RuntimeAsset& asset() const { return *asset_; }
   const RuntimeOptions& options() const { return options_; }
   std::uint32_t capacity() const { return options_.capacity; }
@@ -145,10 +146,11 @@ class DeformRuntime {
   // Vertices per instance in the outputs (readPositions, frame buffers): the asset's render
   // vertices with options().render_layout, else its topology vertices.
   std::uint32_t outputVertexCount() const {
+    if (asset_ == nullptr) return 0;
     return options_.render_layout ? asset_->renderVertexCount() : asset_->vertexCount();
   }
   // Whether the outputs are gathered from the topology's (a render layout that differs from it).
-  bool gathersRenderVertices() const { return odeskin::gathersRenderVertices(*asset_, options_); }
+  bool gathersRenderVertices() const { return asset_ != nullptr && odeskin::gathersRenderVertices(*asset_, options_); }
   // Whether the normals are computed per render vertex (hard edges: RuntimeAsset::hasHardEdges)
   // rather than per topology vertex and gathered.
   bool computesRenderNormals() const { return gathersRenderVertices() && options_.normals && asset_->hasHardEdges(); }
@@ -191,8 +193,10 @@ class DeformRuntime {
   // above kMaxFramesInFlight (other limits are the backends').
   static Status checkOptions(const RuntimeAsset& asset, const RuntimeOptions& options);
   DeformRuntime(const RuntimeAsset& asset, const RuntimeOptions& options);
-  DeformRuntime(DeformRuntime&&) noexcept = default;
-  DeformRuntime& operator=(DeformRuntime&&) noexcept = default;
+  // A runtime moved from is empty (capacity 0, no instances, no frames): calls on it return
+  // kInvalidArgument saying so, where the counts it kept used to index arrays it no longer had.
+  DeformRuntime(DeformRuntime&& other) noexcept;
+  DeformRuntime& operator=(DeformRuntime&& other) noexcept;
 
   // Writes what instances [0, instanceCount()) play this frame: `records` (instanceCount()),
   // `bones` (instanceCount() x B), `basis` (instanceCount() x basisEntries()), on the arena.
@@ -235,6 +239,8 @@ class DeformRuntime {
     FrameTimes times;
   };
   Result<std::uint32_t> checkRead(std::uint64_t frame, std::uint32_t instance, std::size_t out_size, const char* what);
+  Status checkNotMovedFrom(const char* what) const;
+  void takeFrom(DeformRuntime& other) noexcept;
 
   const RuntimeAsset* asset_ = nullptr;
   RuntimeOptions options_;

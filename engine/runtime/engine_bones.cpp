@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "engine_bones.hpp"
 
+#include <functional>
+
 #include <string_view>
 #include <unordered_map>
 
@@ -67,6 +69,12 @@ Status gatherBones(std::span<const std::uint32_t> joint_of_bone, std::span<const
       return invalidArgument("engine bones: bone " + std::to_string(b) + " takes joint " +
                              std::to_string(joint_of_bone[b]) + " of " + std::to_string(joints.size()));
     }
+  }
+  // Gathering in place reads joints already overwritten: the bones came out wrong, with ok.
+  const std::less<const gpu::BoneMatrix*> before;
+  if (!out.empty() && !joints.empty() && before(out.data(), joints.data() + joints.size()) &&
+      before(joints.data(), out.data() + out.size())) {
+    return invalidArgument("engine bones: the joints and the output bones overlap; gather into another array");
   }
   for (std::size_t b = 0; b < out.size(); ++b) out[b] = joints[joint_of_bone[b]];
   return okStatus();

@@ -36,7 +36,8 @@ Result<std::vector<std::uint32_t>> engineJointOfEachBone(const RuntimeAsset& ass
                                                          std::span<const std::string> engine_joints);
 
 // The engine's joint matrices in the asset's bone order: out[b] = joints[joint_of_bone[b]].
-// kInvalidArgument when out and joint_of_bone differ in size or an index is past joints.
+// kInvalidArgument when out and joint_of_bone differ in size, an index is past joints, or out
+// overlaps joints (a reordering cannot be done in place).
 Status gatherBones(std::span<const std::uint32_t> joint_of_bone, std::span<const gpu::BoneMatrix> joints,
                    std::span<gpu::BoneMatrix> out);
 

@@ -82,7 +82,11 @@ class RuntimeAsset {
 
   // Index of the preset named `name`; kInvalidArgument listing the names when there is none.
   Result<std::uint32_t> presetIndex(std::string_view name) const;
-  const std::string& presetName(std::uint32_t preset) const { return preset_names_[preset]; }
+  // Empty for a preset past presetCount().
+  const std::string& presetName(std::uint32_t preset) const {
+    static const std::string kNone;
+    return preset < preset_names_.size() ? preset_names_[preset] : kNone;
+  }
 
   // The packed deformer of `preset` (< presetCount()): every array equals preset 0's except rates.
   const PackedDeformData& packed(std::uint32_t preset = 0) const { return packed_[preset]; }

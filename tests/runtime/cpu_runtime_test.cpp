@@ -355,6 +355,31 @@ TEST(CpuRuntime, BuffersBeyondTheProcesssMemoryAreAnError) {
   EXPECT_NE(rt.status().message().find("do not fit in this process's memory"), std::string::npos) << rt.status().message();
 }
 
+// A runtime moved from is empty; setInstance on it wrote through an empty array (SEGV).
+TEST(CpuRuntime, AMovedFromRuntimeRefusesItsCalls) {
+  const RuntimeAsset asset = makeAsset(cylinderAsset());
+  RuntimeOptions options;
+  options.capacity = 2;
+  Result<CpuRuntime> rt = CpuRuntime::create(asset, options);
+  ASSERT_TRUE(rt.ok()) << rt.status().toString();
+  ASSERT_TRUE(rt->setInstanceCount(2).ok());
+  CpuRuntime owner = std::move(*rt);
+  EXPECT_EQ(rt->instanceCount(), 0u);
+  EXPECT_EQ(rt->capacity(), 0u);
+  const Status set = rt->setInstance(1, InstanceState::atTime(0.5));
+  EXPECT_EQ(set.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(set.message().find("setInstance: this runtime was moved from"), std::string::npos) << set.message();
+  EXPECT_EQ(rt->setInstanceCount(1).code(), StatusCode::kInvalidArgument);
+  EXPECT_FALSE(rt->submitFrame().ok());
+  // The runtime it went to works, and taking it back by assignment empties the other again.
+  ASSERT_TRUE(owner.setInstance(1, InstanceState::atTime(0.5)).ok());
+  ASSERT_TRUE(owner.submitFrame().ok());
+  *rt = std::move(owner);
+  EXPECT_EQ(rt->instanceCount(), 2u);
+  EXPECT_TRUE(rt->submitFrame().ok());
+  EXPECT_EQ(owner.instanceCount(), 0u);
+}
+
 TEST(CpuRuntime, ThreadCountDoesNotChangeTheResult) {
   const RuntimeAsset asset = makeAsset(cylinderAsset());
   CpuRuntime one = makeRuntime(asset, 8, 1);
@@ -470,6 +495,8 @@ TEST(RuntimeAsset, PresetsByNameAndTheirErrors) {
   EXPECT_EQ(*asset.presetIndex("asset"), 0u);
   EXPECT_EQ(*asset.presetIndex("springy"), 2u);
   expectStatus(asset.presetIndex("rubber").status(), StatusCode::kInvalidArgument, "presets: asset, static, springy");
+  EXPECT_EQ(asset.presetName(2), "springy");
+  EXPECT_EQ(asset.presetName(3), "");  // past the end: read out of bounds before
   // Presets share every array but the rates.
   EXPECT_EQ(asset.packed(2).coefficients.size(), asset.packed(0).coefficients.size());
   EXPECT_NE(asset.ratesOffset(2), asset.ratesOffset(0));

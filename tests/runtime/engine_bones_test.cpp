@@ -111,6 +111,10 @@ TEST(EngineBones, JointsAreFoundByName) {
   EXPECT_EQ(gatherBones(*map, engine, short_out).code(), StatusCode::kInvalidArgument);
   const std::vector<gpu::BoneMatrix> too_few(1);
   EXPECT_EQ(gatherBones(*map, too_few, out).code(), StatusCode::kInvalidArgument);
+  // In place, the reordering read joints it had already overwritten, and returned ok.
+  const Status in_place = gatherBones(*map, engine, std::span(engine).first(bones));
+  EXPECT_EQ(in_place.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(in_place.message().find("overlap"), std::string::npos) << in_place.message();
 }
 
 // An engine's frame: its joints in its own order, as column-major matrices, remapped and converted

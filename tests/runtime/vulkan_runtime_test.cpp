@@ -176,6 +176,29 @@ TEST_F(GpuTest, RuntimeMatchesTheCpuRuntimeWithDualQuaternions) {
   expectSameFrame(*cpu, *cpu_frame, *gpu, *gpu_frame, 5, "cylinder dqs");
 }
 
+// A runtime moved from (into a container, say) is empty: its calls say so, where its counts once
+// sent them through arrays it no longer had.
+TEST_F(GpuTest, AMovedFromRuntimeRefusesItsCalls) {
+  const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
+  Result<VulkanRuntime> gpu = VulkanRuntime::create(device(), asset, withCapacity(2));
+  ASSERT_TRUE(gpu.ok()) << gpu.status().toString();
+  ASSERT_TRUE(gpu->setInstanceCount(2).ok());
+  Result<std::uint64_t> first = gpu->submitFrame();
+  ASSERT_TRUE(first.ok()) << first.status().toString();
+  VulkanRuntime owner = std::move(*gpu);
+  EXPECT_EQ(gpu->instanceCount(), 0u);
+  EXPECT_EQ(gpu->capacity(), 0u);
+  EXPECT_EQ(gpu->outputVertexCount(), 0u);
+  const Result<std::uint64_t> moved_frame = gpu->submitFrame();
+  ASSERT_FALSE(moved_frame.ok());
+  EXPECT_NE(moved_frame.status().message().find("submitFrame: this runtime was moved from"), std::string::npos)
+      << moved_frame.status().message();
+  std::vector<InstanceBounds> bounds(2);
+  EXPECT_EQ(gpu->readBounds(*first, bounds).code(), StatusCode::kInvalidArgument);
+  EXPECT_TRUE(owner.readBounds(*first, bounds).ok());
+  EXPECT_TRUE(owner.submitFrame().ok());
+}
+
 // Two frames submitted before any wait: each keeps its own inputs and outputs.
 TEST_F(GpuTest, RuntimeDoubleBuffersItsFrames) {
   const RuntimeAsset asset = makeAsset(testing::cylinderAsset());
