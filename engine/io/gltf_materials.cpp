@@ -74,7 +74,7 @@ Status checkReferences(MaterialLibrary& library) {
   for (std::size_t i = 0; i < library.materials.size(); ++i) {
     tinygltf::Material& m = library.materials[i];
     for (const auto& [field, index] : textureIndices(m)) {
-      if (*index >= count(library.textures.size())) {
+      if (*index < -1 || *index >= count(library.textures.size())) {
         return parseError(library.source + ": material " + std::to_string(i) + " '" + m.name + "': " + field +
                           " names texture " + std::to_string(*index) + ", and the file has " +
                           std::to_string(library.textures.size()));
@@ -85,7 +85,7 @@ Status checkReferences(MaterialLibrary& library) {
     const tinygltf::Texture& t = library.textures[i];
     for (const auto& [what, index, have] : {std::tuple{"image", t.source, library.images.size()},
                                             std::tuple{"sampler", t.sampler, library.samplers.size()}}) {
-      if (index >= count(have)) {
+      if (index < -1 || index >= count(have)) {
         return parseError(library.source + ": texture " + std::to_string(i) + " names " + what + " " + std::to_string(index) +
                           ", and the file has " + std::to_string(have));
       }
