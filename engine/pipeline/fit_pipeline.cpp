@@ -7,10 +7,8 @@
 #include <set>
 
 #include "../core/number_text.hpp"
-#include "../core/parallel.hpp"
 #include "../core/position_box.hpp"
 #include "../curves/iso_curves.hpp"
-#include "../kernels/lbs_job.hpp"
 #include "../rig/auto_rig.hpp"
 #include "../rig/curve_rig.hpp"
 #include "../rig/distance_weights.hpp"
@@ -47,34 +45,6 @@ Status checkExamples(const ExampleSet& ex) {
 // Automatic rigs of the data's meshes skin to within 1-3% of the box on average; a given rig ten
 // times further off has most likely been given with another take's transforms.
 constexpr double kFarRigError = 0.1;
-
-struct LbsError {
-  double mean = 0.0, max = 0.0;  // over every vertex of every pose, fractions of the poses' box
-};
-
-// How far linear blend skinning of the bind mesh with `rig` lands from each example pose.
-LbsError lbsError(const ExampleSet& ex, const Rig& rig) {
-  const std::size_t poses = ex.poses.size(), v_count = ex.rest_positions.size();
-  std::vector<double> worst(poses, 0.0), sum(poses, 0.0);
-  parallelFor(std::size_t{0}, poses, [&](std::size_t k) {
-    std::vector<BoneTransform> bones;
-    for (const RigidTransform& t : rig.key_poses[k]) bones.push_back(t.matrix());
-    for (std::size_t i = 0; i < v_count; ++i) {
-      const double e = glm::length(skinPoint(rig.influences, bones, i, ex.rest_positions[i]) - ex.poses[k][i]);
-      worst[k] = std::max(worst[k], e);
-      sum[k] += e;
-    }
-  });
-  double box = 0.0;
-  for (const std::vector<Vec3>& pose : ex.poses) box = std::max(box, longestBoxSide(pose));
-  const double scale = box > 0.0 ? box : 1.0;
-  LbsError out;
-  for (std::size_t k = 0; k < poses; ++k) {
-    out.max = std::max(out.max, worst[k] / scale);
-    out.mean += sum[k] / scale / static_cast<double>(poses * std::max<std::size_t>(v_count, 1));
-  }
-  return out;
-}
 
 // The rig the fit uses: the input's, completed (weights by distance, transforms by Kabsch), or automatic.
 Result<Rig> resolveRig(const ExampleSet& ex, const PipelineOptions& opt, std::string* summary,
@@ -122,10 +92,14 @@ Result<Rig> resolveRig(const ExampleSet& ex, const PipelineOptions& opt, std::st
   *summary = "given skeleton: " + std::to_string(rig.skeleton.boneCount()) + " bones, " + weights + ", " + transforms;
   // As the automatic rig reports it: transforms of other poses than these (.Tmat files of another
   // take) fit anyway, the residual and remainders absorbing up to a quarter of the box unseen.
-  const LbsError lbs = lbsError(ex, rig);
-  *summary += " (LBS error mean " + scientific(lbs.mean) + ", max " + scientific(lbs.max) + " of the box)";
-  if (lbs.mean > kFarRigError) {
-    warnings->push_back("the given rig skins the bind mesh " + percentText(lbs.mean) +
+  double box = 0.0;
+  for (const std::vector<Vec3>& pose : ex.poses) box = std::max(box, longestBoxSide(pose));
+  const double scale = box > 0.0 ? box : 1.0;
+  const SkinningError lbs = skinningError(ex.rest_positions, ex.poses, rig);
+  const double mean = lbs.sum / static_cast<double>(std::max<std::size_t>(lbs.samples, 1)) / scale;
+  *summary += " (LBS error mean " + scientific(mean) + ", max " + scientific(lbs.max / scale) + " of the box)";
+  if (mean > kFarRigError) {
+    warnings->push_back("the given rig skins the bind mesh " + percentText(mean) +
                         " of the box from the poses on average: do its weights and transforms belong to these poses?");
   }
   return rig;

@@ -16,7 +16,6 @@
 #include <string>
 
 
-#include "../kernels/lbs_job.hpp"
 #include "../offline/residual_fit.hpp"
 #include "bone_fit.hpp"
 #include "cluster_skeleton.hpp"
@@ -75,32 +74,12 @@ Status checkInput(std::span<const Vec3> rest, const FaceList& faces, const std::
 }
 
 void measure(const MotionData& m, const Rig& rig, AutoRigReport& report) {
-  const std::size_t poses = m.poseCount();
-  std::vector<double> worst(poses, 0.0);
-  std::vector<double> error_sum(poses, 0.0);
-  std::vector<double> motion_sum(poses, 0.0);
-  parallelFor(std::size_t{0}, poses, [&](std::size_t k) {
-    std::vector<BoneTransform> bones;
-    for (const RigidTransform& t : rig.key_poses[k]) bones.push_back(t.matrix());
-    for (std::size_t i = 0; i < m.vertexCount(); ++i) {
-      const Vec3& target = (*m.poses)[k][i];
-      const double e = glm::length(skinPoint(rig.influences, bones, i, m.rest[i]) - target);
-      worst[k] = std::max(worst[k], e);
-      error_sum[k] += e;
-      motion_sum[k] += glm::length(target - m.rest[i]);
-    }
-  });
-  const double samples = static_cast<double>(poses * m.vertexCount());
+  const SkinningError e = skinningError(m.rest, *m.poses, rig);
+  const double samples = static_cast<double>(e.samples);
   report.bones = static_cast<int>(rig.skeleton.boneCount());
-  report.max_error = *std::max_element(worst.begin(), worst.end()) / m.box;
-  double total = 0.0;
-  double motion = 0.0;
-  for (std::size_t k = 0; k < poses; ++k) {
-    total += error_sum[k];
-    motion += motion_sum[k];
-  }
-  report.mean_error = total / samples / m.box;
-  report.mean_motion = motion / samples / m.box;
+  report.max_error = e.max / m.box;
+  report.mean_error = e.sum / samples / m.box;
+  report.mean_motion = e.motion_sum / samples / m.box;
 }
 
 }  // namespace

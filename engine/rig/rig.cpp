@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "rig.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "../core/finite_vector.hpp"
+#include "../core/parallel.hpp"
+#include "../kernels/lbs_job.hpp"
 
 namespace odeskin {
 
@@ -51,6 +56,30 @@ Status validateRig(const Rig& rig, std::size_t vertex_count, std::size_t pose_co
     }
   }
   return okStatus();
+}
+
+SkinningError skinningError(std::span<const Vec3> rest, std::span<const std::vector<Vec3>> poses, const Rig& rig) {
+  const std::size_t k_count = poses.size();
+  std::vector<double> worst(k_count, 0.0), error_sum(k_count, 0.0), motion_sum(k_count, 0.0);
+  parallelFor(std::size_t{0}, k_count, [&](std::size_t k) {
+    std::vector<BoneTransform> bones;
+    for (const RigidTransform& t : rig.key_poses[k]) bones.push_back(t.matrix());
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      const Vec3& target = poses[k][i];
+      const double e = glm::length(skinPoint(rig.influences, bones, i, rest[i]) - target);
+      worst[k] = std::max(worst[k], e);
+      error_sum[k] += e;
+      motion_sum[k] += glm::length(target - rest[i]);
+    }
+  });
+  SkinningError out;
+  out.samples = k_count * rest.size();
+  for (std::size_t k = 0; k < k_count; ++k) {  // in pose order, so the sums are the same numbers every run
+    out.max = std::max(out.max, worst[k]);
+    out.sum += error_sum[k];
+    out.motion_sum += motion_sum[k];
+  }
+  return out;
 }
 
 }  // namespace odeskin

@@ -4,7 +4,9 @@
 // automatic rig from the poses themselves).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,5 +35,16 @@ struct Rig {
 // non-finite joint. With `vertex_count` > 0 and influences present, checks them too
 // (validateInfluences); with `pose_count` > 0 and key poses present, checks K x B and unit rotations.
 Status validateRig(const Rig& rig, std::size_t vertex_count, std::size_t pose_count);
+
+// How far linear blend skinning of `rest` with `rig`'s key poses lands from each of `poses`, and how
+// far the poses move from `rest`, over every vertex of every pose; absolute lengths, which callers
+// divide by the box they measure against. `rig` has a key pose per pose and influences for `rest`.
+struct SkinningError {
+  double max = 0.0;         // the largest distance
+  double sum = 0.0;         // of every distance
+  double motion_sum = 0.0;  // of every |pose - rest|
+  std::size_t samples = 0;  // poses x vertices
+};
+SkinningError skinningError(std::span<const Vec3> rest, std::span<const std::vector<Vec3>> poses, const Rig& rig);
 
 }  // namespace odeskin
