@@ -11,6 +11,7 @@
 #include "../core/number_text.hpp"
 #include "../core/smoothing_groups.hpp"
 #include "../kernels/lbs_job.hpp"
+#include "../offline/residual_fit.hpp"
 #include "gltf_animation.hpp"
 #include "gltf_dequantize.hpp"
 #include "gltf_load.hpp"
@@ -145,9 +146,7 @@ std::string restPoseWarning(const Skinned& s, const MeshData& mesh) {
   for (std::size_t j = 0; j < s.skin.joint_nodes.size(); ++j) {
     rest_skin.push_back(global[static_cast<std::size_t>(s.skin.joint_nodes[j])] * s.skin.inverse_bind[j]);
   }
-  Vec3 lo = positions.front(), hi = positions.front();
-  for (const Vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const double box = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  const double box = longestBoxSide(positions);
   // Each vertex skinned at rest as a viewer skins it; the joint of its largest weight is named.
   const std::size_t slots = 4 * mesh.influence_sets;
   double worst = 0.0;
