@@ -6,12 +6,14 @@
 // gives printf's "C" output whatever the locale.
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 namespace odeskin {
 
@@ -70,6 +72,21 @@ inline std::optional<double> finiteNumberIn(std::string_view text) {
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
   if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+// Exactly `count` comma-separated numbers, each as finiteNumberIn reads it ("1,3,0.5").
+inline std::optional<std::vector<double>> finiteNumbersIn(std::string_view text, std::size_t count) {
+  std::vector<double> values;
+  for (std::size_t start = 0;;) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    const std::optional<double> value = finiteNumberIn(text.substr(start, end - start));
+    if (!value) return std::nullopt;
+    values.push_back(*value);
+    if (end == text.size()) break;
+    start = end + 1;
+  }
+  if (values.size() != count) return std::nullopt;
+  return values;
 }
 
 }  // namespace odeskin

@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <optional>
 #include <set>
-#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -30,21 +29,6 @@ using Json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-// Comma-separated finite numbers, exactly `count` of them.
-bool parseNumbers(const std::string& text, std::size_t count, std::vector<double>& out) {
-  out.clear();
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t end = std::min(text.find(',', start), text.size());
-    const std::optional<double> value = finiteNumberIn(std::string_view(text).substr(start, end - start));
-    if (!value) return false;
-    out.push_back(*value);
-    if (end == text.size()) break;
-    start = end + 1;
-  }
-  return out.size() == count;
-}
 
 fs::path poseOutput(const fs::path& output, const fs::path& pose, const char* suffix) {
   return output.parent_path() / (output.stem().string() + "-" + pose.stem().string() + suffix + ".obj");
@@ -69,10 +53,11 @@ std::string usageProblem(const ReconstructCommandOptions& o, MeshNetworkOptions&
   m.rows = o.rows;
   m.columns = o.columns;
   m.points_per_column = o.points;
-  std::vector<double> values;
-  if (!parseNumbers(o.shape, 3, values)) return "reconstruct: --shape '" + o.shape + "': expected RHO,ETA,LAMBDA, three finite numbers";
-  m.shape = {values[0], values[1], values[2]};
-  if (!parseNumbers(o.derivative_fit, 3, values) || values[0] != std::floor(values[0]) || values[1] != std::floor(values[1]) ||
+  const std::optional<std::vector<double>> shape = finiteNumbersIn(o.shape, 3);
+  if (!shape) return "reconstruct: --shape '" + o.shape + "': expected RHO,ETA,LAMBDA, three finite numbers";
+  m.shape = {(*shape)[0], (*shape)[1], (*shape)[2]};
+  const std::vector<double> values = finiteNumbersIn(o.derivative_fit, 3).value_or(std::vector<double>{});
+  if (values.empty() || values[0] != std::floor(values[0]) || values[1] != std::floor(values[1]) ||
       values[0] < 1 || values[0] > 1000 || values[1] < 2 || values[1] > 8 || values[0] < values[1] || !(values[2] > 0.0) ||
       values[2] > 1.0) {
     return "reconstruct: --derivative-fit '" + o.derivative_fit +
@@ -279,7 +264,7 @@ void warnOfLargeDeviations(std::ostream& err, const MeshNetworkOptions& n, const
     if (!(p.max > kFarDeviation)) continue;
     err << "warning: " << p.file.string() << ": the rebuilt surface misses vertex " << p.worst_vertex + 1 << " by "
         << percentText(p.max) << " of the box";
-    if (n.derivative_window < kDefaultDerivativeWindow) {
+    if (n.derivative_window < finiteNumbersIn(kDefaultDerivativeFit, 3)->back()) {
       err << "; a --derivative-fit window of " << numberText(n.derivative_window)
           << " row heights turns the mesh's facets into large S_uu (the default is " << kDefaultDerivativeFit << ")\n";
     } else {

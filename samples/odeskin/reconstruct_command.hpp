@@ -16,7 +16,6 @@
 namespace odeskin {
 
 inline constexpr const char* kDefaultDerivativeFit = "6,3,0.5";
-constexpr double kDefaultDerivativeWindow = 0.5;  // its WINDOW
 
 struct ReconstructCommandOptions {
   std::filesystem::path mesh;                 // .obj: one open surface, a disk once its holes are filled

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <optional>
 #include <set>
-#include <string_view>
+#include <vector>
 
 #include "engine/core/finite_vector.hpp"
 #include "engine/core/machine_memory.hpp"
@@ -48,17 +48,9 @@ bool parseResolution(const std::string& text, TessellationResolution& r) {
 
 // "RHO,ETA,LAMBDA" with three finite numbers.
 bool parseShape(const std::string& text, Ode6Shape& shape) {
-  double values[3] = {0.0, 0.0, 0.0};
-  std::size_t start = 0;
-  for (int i = 0; i < 3; ++i) {
-    const std::size_t end = i < 2 ? text.find(',', start) : text.size();
-    if (end == std::string::npos || end == start) return false;
-    const std::optional<double> value = finiteNumberIn(std::string_view(text).substr(start, end - start));
-    if (!value) return false;
-    values[i] = *value;
-    start = end + 1;
-  }
-  shape = {values[0], values[1], values[2]};
+  const std::optional<std::vector<double>> values = finiteNumbersIn(text, 3);
+  if (!values) return false;
+  shape = {(*values)[0], (*values)[1], (*values)[2]};
   return true;
 }
 

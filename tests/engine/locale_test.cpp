@@ -93,6 +93,10 @@ TEST(FiniteNumberIn, ReadsWhatAnOptionsValueSpells) {
                           "1.5.2", "e5", "3x"}) {
     EXPECT_EQ(finiteNumberIn(bad), std::nullopt) << "'" << bad << "'";
   }
+  EXPECT_EQ(finiteNumbersIn("1,3,0.5", 3), (std::vector<double>{1.0, 3.0, 0.5}));
+  for (const char* bad : {"1,3", "1,3,0.5,2", "1,,3", "1,3,", ",1,3", "1,3,x", ""}) {
+    EXPECT_EQ(finiteNumbersIn(bad, 3), std::nullopt) << "'" << bad << "'";
+  }
 }
 
 }  // namespace
