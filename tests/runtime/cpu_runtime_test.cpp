@@ -20,6 +20,7 @@
 #include "engine/core/thread_count.hpp"
 #include "engine/io/asset_file.hpp"
 #include "engine/runtime/cpu_runtime.hpp"
+#include "engine/sanitized_build.hpp"  // tests/engine
 #include "runtime_fixtures.hpp"
 
 namespace odeskin {
@@ -315,24 +316,11 @@ TEST(CpuRuntime, RejectsBadInputNamingTheProblem) {
   expectStatus(plain->readNormals(*plain_frame, 0, normals), StatusCode::kInvalidArgument, "normals off");
 }
 
-// Sanitizer runtimes reserve terabytes of address space up front, so RLIMIT_AS cannot be used there.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
-
 // Buffers the machine could hold but this process may not (ulimit -v, a container): std::bad_alloc
 // from the allocations became std::terminate; it is a Status now. The limit is the process's
 // address space now plus 512 MiB, and the runtime asks for about 2 GiB more.
 TEST(CpuRuntime, BuffersBeyondTheProcesssMemoryAreAnError) {
-  if (kSanitized) GTEST_SKIP() << "RLIMIT_AS does not work under a sanitizer";
+  if (testing::kSanitized) GTEST_SKIP() << "RLIMIT_AS does not work under a sanitizer";
   const RuntimeAsset asset = makeAsset(cylinderAsset());
   RuntimeOptions options;
   const std::size_t per_instance = asset.vertexCount() * sizeof(gpu::Float4) * 2 * options.frames_in_flight;

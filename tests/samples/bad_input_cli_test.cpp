@@ -32,6 +32,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/asset_file.hpp"
+#include "engine/sanitized_build.hpp"  // tests/engine
 #include "host/gpu_test_support.hpp"
 #include "samples/command_test_support.hpp"
 
@@ -775,23 +776,10 @@ TEST_F(BadInputCli, ALaterOutputThatFailsRemovesTheEarlierOnes) {
   }
 }
 
-// Sanitizer runtimes reserve terabytes of address space up front, so RLIMIT_AS cannot be used there.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
-
 // An input the limits accept but this machine (here: 1 GiB of address space) cannot hold ends
 // with std::bad_alloc caught in main: exit 1, one line, no output; never an abort.
 TEST_F(BadInputCli, RunningOutOfMemoryIsAnErrorNotACrash) {
-  if (kSanitized) GTEST_SKIP() << "RLIMIT_AS does not work under a sanitizer";
+  if (testing::kSanitized) GTEST_SKIP() << "RLIMIT_AS does not work under a sanitizer";
   const fs::path out_dir = dir() / "out_of_memory";
   RunOptions limited;
   limited.address_space_limit = 1L << 30;
