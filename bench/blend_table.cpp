@@ -21,6 +21,7 @@
 #include "engine/surfaces/blend_examples.hpp"
 #include "engine/surfaces/blending_surface.hpp"
 #include "engine/surfaces/cardinal_spline.hpp"
+#include "samples/decimal_integers.hpp"
 #include "samples/main_guard.hpp"
 
 namespace {
@@ -69,6 +70,7 @@ static int run(int argc, char** argv) {
                "(docs/surfaces.md)");
   app.add_option("--repeat", repeat, "Runs per timing; the median is printed (default 21)")
       ->check(CLI::Range(1, 100000));
+  odeskin::requireDecimalIntegers(app);
   CLI11_PARSE(app, argc, argv);
   const BlendExample example = orDie(blendExample("3.18"), "example 3.18");
   std::printf("Eq 3.18 blend; relative error of Eq 3.44: profile v = 0, I = 100 samples; surface %u x %u grid.\n",

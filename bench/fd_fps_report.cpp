@@ -36,6 +36,7 @@
 #include "engine/io/obj_reader.hpp"
 #include "engine/pipeline/fit_pipeline.hpp"
 #include "bench/harness/numbered_paths.hpp"
+#include "samples/decimal_integers.hpp"
 #include "samples/main_guard.hpp"
 
 namespace {
@@ -177,6 +178,7 @@ static int run(int argc, char** argv) {
   app.add_option("--frames", frames, "Frames per pass over the animation (default 120)")->check(CLI::Range(2, 1000000));
   app.add_option("--repeats", repeats, "Passes; the fastest is printed (default 3)")->check(CLI::Range(1, 1000));
   app.add_flag("--quick", quick, "The horse only");
+  odeskin::requireDecimalIntegers(app);
   CLI11_PARSE(app, argc, argv);
   const fs::path data = data_text;
   std::vector<Dataset> sets;

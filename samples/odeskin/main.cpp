@@ -27,6 +27,7 @@
 #include "render_command.hpp"
 #include "surface_command.hpp"
 #include "rig_command.hpp"
+#include "samples/decimal_integers.hpp"
 #include "samples/standard_output.hpp"
 #include "signal_cleanup.hpp"
 
@@ -482,6 +483,7 @@ int run(int argc, char** argv, std::string& verb) {
   CompareCliValues compare_values;
   CLI::App* compare_cmd = addCompareCommand(app, compare_options, compare_values);
 
+  odeskin::requireDecimalIntegers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

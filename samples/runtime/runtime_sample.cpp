@@ -35,6 +35,7 @@
 #include "host/device.hpp"
 #include "host/runtime/vulkan_runtime.hpp"
 #include "samples/runtime/engine_submissions.hpp"
+#include "samples/decimal_integers.hpp"
 #include "samples/standard_output.hpp"
 
 namespace odeskin {
@@ -353,6 +354,7 @@ int parseAndRun(int argc, char** argv) {
                  "Vulkan: how the host reads each frame's boxes: auto (mapped where that memory is cached for the "
                  "host, else staged), mapped (the GPU's buffer itself), staged (copied into cached host memory)")
       ->check(CLI::IsMember({"auto", "mapped", "staged"}));
+  odeskin::requireDecimalIntegers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
