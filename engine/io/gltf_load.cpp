@@ -302,6 +302,9 @@ Result<tinygltf::Model> loadBytes(const std::string& bytes, const std::string& s
     return ioError(source + ": " + std::to_string(bytes.size()) + " bytes, over the 2 GiB tinygltf 2.7 can read");
   }
   const bool glb = isGlb(bytes);
+  // tinygltf's own words for these are "JSON string too short".
+  if (bytes.empty()) return parseError(source + ": the file is empty");
+  if (!glb && bytes.size() < 4) return parseError(source + ": " + std::to_string(bytes.size()) + " bytes, too short to be glTF");
   const std::optional<std::string> replaced = withMeshoptPlaceholdersReplaced(bytes, glb);
   const std::string& input = replaced ? *replaced : bytes;
   ODESKIN_TRY(glb ? checkGlb(input, source) : checkJson(input, false, source));

@@ -52,6 +52,17 @@ TEST(GltfReaderErrors, BytesInMemoryCannotReferToFiles) {
   EXPECT_TRUE(readGltfExamples(path, request).ok());  // the same file on disk finds its .bin
 }
 
+// tinygltf calls both "JSON string too short".
+TEST(GltfReaderErrors, EmptyAndTinyFilesSaySo) {
+  GltfPoseRequest request;
+  request.min_poses = 1;
+  expectError(parseGltfExamples("", "empty.gltf", request), StatusCode::kParseError, {"empty.gltf: the file is empty"});
+  expectError(parseGltfExamples("{}", "braces.gltf", request), StatusCode::kParseError,
+              {"braces.gltf: 2 bytes, too short to be glTF"});
+  expectError(parseGltfExamples("{}  ", "spaced.gltf", request), StatusCode::kParseError,
+              {"spaced.gltf: tinygltf cannot read it", "\"asset\""});
+}
+
 // Found with the fuzz target (tests/fuzz/regressions/gltf/unbacked-position-count.gltf): an
 // accessor without a bufferView is zeros, and 300 bytes of JSON declared 44.7M of them (over 2 GB
 // with the copies behind it). Its count may not exceed one element per byte of the file's buffers.
