@@ -107,6 +107,7 @@ Status FourierDeformJob::validate() const {
                              std::to_string(remainder_indices[i]) + " of " + std::to_string(remainders.size()));
     }
   }
+  ODESKIN_TRY(validateBones(bones, "fourier deform"));
   return validateInfluences(influences, vertex_count, static_cast<std::uint32_t>(bones.size()));
 }
 

@@ -51,7 +51,7 @@ struct FourierDeformJob {
   std::span<Vec3> out_positions;                 // V, required
 
   // kInvalidArgument naming the first field that breaks its contract (sizes, curve or material or
-  // bone or remainder index out of range, w outside [0, 1], non-finite basis value, unknown
+  // bone or remainder index out of range, w outside [0, 1], non-finite basis value or bone, unknown
   // skinning mode);
   // kOutOfRange for N outside 1..64.
   Status validate() const;

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <string>
 
+#include "../core/finite_vector.hpp"
 #include "../core/number_text.hpp"
 #include "lbs_job.hpp"
 
@@ -15,6 +16,15 @@ std::uint32_t Influences::maxInfluences() const {
   std::uint32_t most = 0;
   for (std::size_t i = 0; i + 1 < offsets.size(); ++i) most = std::max(most, offsets[i + 1] - offsets[i]);
   return most;
+}
+
+Status validateBones(std::span<const BoneTransform> bones, const char* who) {
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    for (glm::length_t c = 0; c < 4; ++c) {
+      if (!isFinite(bones[b][c])) return invalidArgument(std::string(who) + ": bone " + std::to_string(b) + " has a non-finite entry");
+    }
+  }
+  return okStatus();
 }
 
 Status validateInfluences(const InfluencesView& influences, std::size_t vertex_count, std::uint32_t bone_count,

@@ -37,6 +37,10 @@ struct InfluencesView {
 Status validateInfluences(const InfluencesView& influences, std::size_t vertex_count,
                           std::uint32_t bone_count, double sum_tolerance = 1e-6);
 
+// kInvalidArgument "<who>: bone B has a non-finite entry": LBS would spread the NaN, and dual
+// quaternions would take the bone for the identity (nearestRotation's fallback) without a word.
+Status validateBones(std::span<const BoneTransform> bones, const char* who);
+
 // Builds rows from dense per-vertex (bone, weight) lists, dropping zero weights.
 Influences influencesFromDense(std::span<const double> weights_vertex_major, std::size_t vertex_count,
                                std::uint32_t bone_count);

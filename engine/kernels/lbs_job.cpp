@@ -18,6 +18,7 @@ Status LbsJob::validate() const {
   if (skinning != SkinningMode::kLinear && skinning != SkinningMode::kDualQuaternion) {
     return invalidArgument("lbs: unknown skinning mode " + std::to_string(static_cast<std::uint32_t>(skinning)));
   }
+  ODESKIN_TRY(validateBones(bones, "lbs"));
   return validateInfluences(influences, vertex_count, static_cast<std::uint32_t>(bones.size()));
 }
 

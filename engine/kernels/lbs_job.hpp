@@ -19,7 +19,8 @@ struct LbsJob {
   std::span<Vec3> out_positions;         // V, required
   SkinningMode skinning = SkinningMode::kLinear;  // kDualQuaternion: bones are taken as rigid
 
-  // kInvalidArgument naming the field: sizes, bone index out of range, unknown skinning mode.
+  // kInvalidArgument naming the field: sizes, bone index out of range, a non-finite bone, unknown
+  // skinning mode.
   Status validate() const;
   Status run() const;
 };

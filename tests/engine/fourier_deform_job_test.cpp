@@ -134,6 +134,14 @@ TEST(FourierDeformJob, ZeroBasisAndIdentityBonesGiveRestPlusBase) {
   }
 }
 
+TEST(FourierDeformJob, NonFiniteBoneIsInvalid) {
+  Tiny t;
+  t.bones[0][2][1] = std::nan("");
+  const Status s = t.job().validate();
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(s.message(), "fourier deform: bone 0 has a non-finite entry");
+}
+
 TEST(FourierDeformJob, UnknownSkinningModeIsInvalid) {
   Tiny t;
   auto j = t.job();

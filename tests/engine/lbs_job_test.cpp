@@ -2,6 +2,7 @@
 #include "engine/kernels/lbs_job.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -26,6 +27,29 @@ TEST(LbsJob, SizesAndIndicesAreChecked) {
   EXPECT_EQ((LbsJob{rest, in, std::span(bones).first(1), out}).validate().code(), StatusCode::kInvalidArgument);
   in.weights[1] = 0.9;
   EXPECT_EQ((LbsJob{rest, in, bones, out}).validate().code(), StatusCode::kInvalidArgument);
+}
+
+// Dual quaternions took a NaN bone for the identity (nearestRotation's fallback): a finite, wrong
+// vertex where LBS gave NaN. Both refuse it now.
+TEST(LbsJob, NonFiniteBonesAreRefusedInBothModes) {
+  std::vector<Vec3> rest{Vec3(0.3, -0.7, 1.1)};
+  Influences in;
+  in.offsets = {0, 2};
+  in.bones = {0, 1};
+  in.weights = {0.5, 0.5};
+  for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    for (const glm::length_t column : {0, 3}) {
+      std::vector<BoneTransform> bones(2, BoneTransform(1.0));
+      bones[1][column][column == 3 ? 2 : 0] = bad;
+      std::vector<Vec3> out(1, Vec3(7.0));
+      for (const SkinningMode mode : {SkinningMode::kLinear, SkinningMode::kDualQuaternion}) {
+        const Status s = (LbsJob{rest, in, bones, out, mode}).run();
+        EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+        EXPECT_EQ(s.message(), "lbs: bone 1 has a non-finite entry");
+        EXPECT_EQ(out[0], Vec3(7.0));  // nothing written
+      }
+    }
+  }
 }
 
 TEST(LbsJob, HandComputedBlend) {
