@@ -292,9 +292,18 @@ Result<Ode6Cardinal> Ode6Cardinal::create(const Ode6Shape& shape) {
         << "solution (Hadamard ratio " << g.hadamard_ratio_ << " < " << kOde6ResonanceRatio << ", MATH.md 3.5)";
     return illPosed(out.str());
   }
+  // Inverted with unit columns, which the Hadamard test has just shown to be well conditioned.
+  // FullPivLU's inverse drops what falls below its rank threshold (3 eps of the largest pivot), and
+  // the real branch's St(s1) column, of entries near p^-3, went that way from p ~ 1.5e5: the
+  // functions then missed their curvature conditions by 50% with no error.
+  const auto inverse = [](const Eigen::Matrix3d& m) {
+    const Eigen::Vector3d norms(m.col(0).norm(), m.col(1).norm(), m.col(2).norm());
+    const Eigen::Matrix3d unit = m * norms.cwiseInverse().asDiagonal();
+    return Eigen::Matrix3d(norms.cwiseInverse().asDiagonal() * unit.inverse());
+  };
   const Eigen::Vector3d row_scale(1.0, 1.0 / basis.w, 1.0 / (basis.w * basis.w));
-  const Eigen::Matrix3d even_inverse = even.fullPivLu().inverse() * row_scale.asDiagonal();
-  const Eigen::Matrix3d odd_inverse = odd.fullPivLu().inverse() * row_scale.asDiagonal();
+  const Eigen::Matrix3d even_inverse = inverse(even) * row_scale.asDiagonal();
+  const Eigen::Matrix3d odd_inverse = inverse(odd) * row_scale.asDiagonal();
   for (std::size_t l = 0; l < 3; ++l) {
     for (std::size_t i = 0; i < 3; ++i) {
       basis.even[l][i] = even_inverse(static_cast<Eigen::Index>(l), static_cast<Eigen::Index>(i));

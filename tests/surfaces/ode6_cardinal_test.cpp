@@ -125,6 +125,29 @@ TEST(Ode6Cardinal, UnitConditionsAtBothEndsInEveryRegime) {
   for (std::size_t r = 0; r < seen.size(); ++r) EXPECT_TRUE(seen[r]) << "no shape in regime " << r;
 }
 
+// Found probing against MATH.md with mpmath: from p ~ 1.5e5 in the real branch, FullPivLU's
+// inverse dropped a column as below its rank threshold, and g''(0) came out as
+// (-6, -3, 0.5, 6, -3, 0.5) for (1, -3e10, 0) with no error.
+TEST(Ode6Cardinal, LargeRealRootsKeepTheirCurvatureConditions) {
+  for (const Ode6Shape& shape : {Ode6Shape{1, -1e10, 0}, Ode6Shape{1, -3e10, 0}, Ode6Shape{1, -3e10, 1},
+                                 Ode6Shape{1, -1e12, 1e22}, Ode6Shape{1, 1e11, -1e21}}) {
+    Result<Ode6Cardinal> g = Ode6Cardinal::create(shape);
+    ASSERT_TRUE(g.ok()) << g.status().toString();
+    for (int end = 0; end < 2; ++end) {
+      std::array<Ode6Values, 3> d{};
+      g->evaluate(end, d);
+      for (std::size_t order = 0; order < 3; ++order) {
+        for (std::size_t k = 0; k < 6; ++k) {
+          const double expected = (k == 3 * static_cast<std::size_t>(end) + order) ? 1.0 : 0.0;
+          EXPECT_NEAR(d[order][k], expected, 1e-9 * std::pow(g->basis().w, static_cast<double>(order)))
+              << "eta " << shape.eta << " lambda " << shape.lambda << ": g" << (k + 1) << " derivative " << order
+              << " at u = " << end;
+        }
+      }
+    }
+  }
+}
+
 TEST(Ode6Cardinal, UsesEveryBranch) {
   std::array<int, 3> branches{};
   for (const Ode6Shape& shape : regimeShapes()) {
