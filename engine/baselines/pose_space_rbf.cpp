@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -56,17 +57,17 @@ Result<RbfInterpolator> RbfInterpolator::create(std::span<const double> examples
   rbf.kernel_ = options.kernel;
   rbf.dimension_ = dimension;
   rbf.example_count_ = examples.size() / dimension;
-  rbf.examples_.assign(examples.begin(), examples.end());
-  const std::size_t k_count = rbf.example_count_;
-  const double* p = rbf.examples_.data();
+  rbf.groupExamples(examples);
+  const std::size_t g_count = rbf.group_sizes_.size();  // the interpolation runs over the groups' centres
+  const double* p = rbf.centres_.data();
 
   // Affine hull: principal directions of the centred examples.
-  Eigen::MatrixXd centred(k_count, dimension);
+  Eigen::MatrixXd centred(g_count, dimension);
   rbf.mean_.assign(dimension, 0.0);
-  for (std::size_t k = 0; k < k_count; ++k) {
-    for (std::size_t j = 0; j < dimension; ++j) rbf.mean_[j] += p[k * dimension + j] / static_cast<double>(k_count);
+  for (std::size_t k = 0; k < g_count; ++k) {
+    for (std::size_t j = 0; j < dimension; ++j) rbf.mean_[j] += p[k * dimension + j] / static_cast<double>(g_count);
   }
-  for (std::size_t k = 0; k < k_count; ++k) {
+  for (std::size_t k = 0; k < g_count; ++k) {
     for (std::size_t j = 0; j < dimension; ++j) {
       centred(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = p[k * dimension + j] - rbf.mean_[j];
     }
@@ -87,75 +88,121 @@ Result<RbfInterpolator> RbfInterpolator::create(std::span<const double> examples
   // Gaussian radius from the examples' spacing (1 when they all coincide).
   if (rbf.kernel_ == RbfKernel::kGaussian) {
     double sum = 0.0;
-    for (std::size_t k = 0; k < k_count; ++k) {
+    for (std::size_t k = 0; k < g_count; ++k) {
       double nearest = std::numeric_limits<double>::infinity();
-      for (std::size_t l = 0; l < k_count; ++l) {
+      for (std::size_t l = 0; l < g_count; ++l) {
         if (l != k) nearest = std::min(nearest, distance(p + k * dimension, p + l * dimension, dimension));
       }
       if (std::isfinite(nearest)) sum += nearest;
     }
-    const double mean_nearest = k_count > 1 ? sum / static_cast<double>(k_count) : 0.0;
+    const double mean_nearest = g_count > 1 ? sum / static_cast<double>(g_count) : 0.0;
     rbf.radius_ = options.radius_scale * (mean_nearest > 0.0 ? mean_nearest : 1.0);
   }
 
-  const std::size_t n = k_count + 1 + m;
+  const std::size_t n = g_count + 1 + m;
   Eigen::MatrixXd system = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   double largest = 1.0;
-  for (std::size_t k = 0; k < k_count; ++k) {
-    for (std::size_t l = 0; l < k_count; ++l) {
+  for (std::size_t k = 0; k < g_count; ++k) {
+    for (std::size_t l = 0; l < g_count; ++l) {
       const double phi = rbf.kernel(distance(p + k * dimension, p + l * dimension, dimension));
       system(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) = phi;
       largest = std::max(largest, std::abs(phi));
     }
   }
   const double ridge = options.regularization * largest;
-  for (std::size_t k = 0; k < k_count; ++k) {
+  for (std::size_t k = 0; k < g_count; ++k) {
     const auto row = static_cast<Eigen::Index>(k);
     system(row, row) += ridge;
-    system(row, static_cast<Eigen::Index>(k_count)) = 1.0;
-    system(static_cast<Eigen::Index>(k_count), row) = 1.0;
+    system(row, static_cast<Eigen::Index>(g_count)) = 1.0;
+    system(static_cast<Eigen::Index>(g_count), row) = 1.0;
     for (std::size_t i = 0; i < m; ++i) {
       double yi = 0.0;
       for (std::size_t j = 0; j < dimension; ++j) yi += rbf.hull_[i * dimension + j] * (p[k * dimension + j] - rbf.mean_[j]);
-      const auto col = static_cast<Eigen::Index>(k_count + 1 + i);
+      const auto col = static_cast<Eigen::Index>(g_count + 1 + i);
       system(row, col) = yi;
       system(col, row) = yi;
     }
   }
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(system);
   if (!lu.isInvertible()) {
-    return illPosed("rbf: the pose-space system is singular (" + std::to_string(k_count) +
-                    " examples, several coincide; use a positive regularization)");
+    return illPosed("rbf: the pose-space system is singular (" + std::to_string(g_count) +
+                    " distinct examples; use a positive regularization)");
   }
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(k_count));
-  for (std::size_t k = 0; k < k_count; ++k) rhs(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)) = 1.0;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(g_count));
+  for (std::size_t k = 0; k < g_count; ++k) rhs(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)) = 1.0;
   const Eigen::MatrixXd solution = lu.solve(rhs);
   if (!solution.allFinite()) return illPosed("rbf: the pose-space system gave non-finite weights");
-  rbf.cardinal_.resize(n * k_count);
+  rbf.cardinal_.resize(n * g_count);
   for (std::size_t r = 0; r < n; ++r) {
-    for (std::size_t k = 0; k < k_count; ++k) {
-      rbf.cardinal_[r * k_count + k] = solution(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k));
+    for (std::size_t k = 0; k < g_count; ++k) {
+      rbf.cardinal_[r * g_count + k] = solution(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k));
     }
   }
   return rbf;
 }
 
+// Interpolating two examples closer than kMergeRelative would take weights of order (spread /
+// their distance): with horse keys whose skeletons were 1e-5 apart, psd_lbs was 144% of the box off.
+void RbfInterpolator::groupExamples(std::span<const double> examples) {
+  const std::size_t k_count = example_count_;
+  const std::size_t d = dimension_;
+  std::vector<double> between(k_count * k_count, 0.0);
+  double diameter = 0.0;
+  for (std::size_t k = 0; k < k_count; ++k) {
+    for (std::size_t l = k + 1; l < k_count; ++l) {
+      between[k * k_count + l] = distance(&examples[k * d], &examples[l * d], d);
+      diameter = std::max(diameter, between[k * k_count + l]);
+    }
+  }
+  // Single linkage: a chain of close examples is one group, numbered by its first example.
+  std::vector<std::size_t> root(k_count);
+  for (std::size_t k = 0; k < k_count; ++k) root[k] = k;
+  const auto find = [&](std::size_t k) {
+    while (root[k] != k) k = root[k] = root[root[k]];
+    return k;
+  };
+  for (std::size_t k = 0; k < k_count; ++k) {
+    for (std::size_t l = k + 1; l < k_count; ++l) {
+      if (between[k * k_count + l] > kMergeRelative * diameter) continue;
+      const std::size_t a = find(k), b = find(l);
+      root[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  group_of_.assign(k_count, 0);
+  std::vector<std::uint32_t> group_of_root(k_count, std::numeric_limits<std::uint32_t>::max());
+  for (std::size_t k = 0; k < k_count; ++k) {
+    std::uint32_t& g = group_of_root[find(k)];
+    if (g == std::numeric_limits<std::uint32_t>::max()) {
+      g = static_cast<std::uint32_t>(group_sizes_.size());
+      group_sizes_.push_back(0);
+      centres_.resize(centres_.size() + d, 0.0);
+    }
+    group_of_[k] = g;
+    ++group_sizes_[g];
+    for (std::size_t j = 0; j < d; ++j) centres_[g * d + j] += examples[k * d + j];
+  }
+  for (std::size_t g = 0; g < group_sizes_.size(); ++g) {
+    for (std::size_t j = 0; j < d; ++j) centres_[g * d + j] /= static_cast<double>(group_sizes_[g]);
+  }
+}
+
 void RbfInterpolator::weights(std::span<const double> query, std::span<double> out) const {
   assert(query.size() >= dimension_ && out.size() >= example_count_);
-  const std::size_t k_count = example_count_;
+  const std::size_t g_count = group_sizes_.size();
   const std::size_t m = hull_dimension_;
-  std::vector<double> basis(k_count + 1 + m);
-  for (std::size_t k = 0; k < k_count; ++k) basis[k] = kernel(distance(query.data(), examples_.data() + k * dimension_, dimension_));
-  basis[k_count] = 1.0;
+  std::vector<double> basis(g_count + 1 + m);
+  for (std::size_t g = 0; g < g_count; ++g) basis[g] = kernel(distance(query.data(), centres_.data() + g * dimension_, dimension_));
+  basis[g_count] = 1.0;
   for (std::size_t i = 0; i < m; ++i) {
     double yi = 0.0;
     for (std::size_t j = 0; j < dimension_; ++j) yi += hull_[i * dimension_ + j] * (query[j] - mean_[j]);
-    basis[k_count + 1 + i] = yi;
+    basis[g_count + 1 + i] = yi;
   }
-  for (std::size_t k = 0; k < k_count; ++k) {
+  for (std::size_t k = 0; k < example_count_; ++k) {
+    const std::uint32_t g = group_of_[k];
     double a = 0.0;
-    for (std::size_t r = 0; r < basis.size(); ++r) a += cardinal_[r * k_count + k] * basis[r];
-    out[k] = a;
+    for (std::size_t r = 0; r < basis.size(); ++r) a += cardinal_[r * g_count + g] * basis[r];
+    out[k] = a / static_cast<double>(group_sizes_[g]);
   }
 }
 

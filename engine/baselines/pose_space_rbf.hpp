@@ -15,14 +15,19 @@
 //                    radius follows the examples' spacing so the weights neither spike nor flatten).
 //   kPolyharmonic1   phi = r       (conditionally positive definite of order 1; scale free)
 //   kPolyharmonic3   phi = r^3     (order 2, the 3-D thin-plate analogue; C2 and scale free; default)
-// Solve: the (K + 1 + m) saddle system [Phi + lambda I, P; P^T, 0] by Eigen's full-pivot LU, with
-// the ridge lambda = regularization x max(1, max|Phi|) so near-duplicate poses (which make Phi
-// singular) get averaged correctives instead of a blow-up; keys are then hit to about that relative
-// accuracy. Hull directions with a singular value below 1e-6 of the largest are dropped for the same
-// reason.
+// Near-duplicate examples: examples within 1e-3 of the largest distance between two examples
+// (chains of them included) are one group, interpolated at their mean and sharing its weight
+// equally, so their correctives are averaged: interpolating each would take weights of order
+// (spread / their distance), a blow-up wherever their correctives differ. Such keys are then hit
+// only as well as their average hits them.
+// Solve: the (G + 1 + m) saddle system over the G groups, [Phi + lambda I, P; P^T, 0], by Eigen's
+// full-pivot LU, with the ridge lambda = regularization x max(1, max|Phi|); keys are hit to about
+// that relative accuracy. Hull directions with a singular value below 1e-6 of the largest come from
+// near-collinear examples and are dropped.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -40,13 +45,18 @@ struct RbfOptions {
 
 class RbfInterpolator {
  public:
+  // Examples closer than this fraction of the largest distance between two examples are one group.
+  static constexpr double kMergeRelative = 1e-3;
+
   // `examples`: K >= 1 points of the same dimension D >= 1, row-major (K x D). Errors:
   // kInvalidArgument (sizes, non-finite values, negative regularization or radius scale),
-  // kIllPosed when the saddle system is singular (all examples coincide and the ridge is 0).
+  // kIllPosed when the saddle system is singular (not seen with distinct groups; a guard).
   static Result<RbfInterpolator> create(std::span<const double> examples, std::size_t dimension,
                                         const RbfOptions& options = {});
 
   std::size_t exampleCount() const { return example_count_; }
+  std::size_t groupCount() const { return group_sizes_.size(); }
+  std::uint32_t groupOf(std::size_t example) const { return group_of_[example]; }  // numbered by first example
   std::size_t dimension() const { return dimension_; }
   std::size_t hullDimension() const { return hull_dimension_; }  // m, the affine hull's dimension
   double radius() const { return radius_; }                        // sigma (kGaussian), else 0
@@ -57,16 +67,20 @@ class RbfInterpolator {
 
  private:
   double kernel(double r) const;
+  // group_of_, group_sizes_ and centres_ from the K examples (see kMergeRelative).
+  void groupExamples(std::span<const double> examples);
 
   RbfKernel kernel_ = RbfKernel::kPolyharmonic3;
   std::size_t example_count_ = 0;
   std::size_t dimension_ = 0;
   std::size_t hull_dimension_ = 0;
   double radius_ = 0.0;
-  std::vector<double> examples_;   // K x D
-  std::vector<double> mean_;       // D
-  std::vector<double> hull_;       // m x D, orthonormal rows
-  std::vector<double> cardinal_;   // (K + 1 + m) x K, row-major: M^-1 [I_K; 0]
+  std::vector<std::uint32_t> group_of_;     // K
+  std::vector<std::uint32_t> group_sizes_;  // G
+  std::vector<double> centres_;             // G x D, each group's mean
+  std::vector<double> mean_;                // D
+  std::vector<double> hull_;                // m x D, orthonormal rows
+  std::vector<double> cardinal_;            // (G + 1 + m) x G, row-major: M^-1 [I_G; 0]
 };
 
 }  // namespace odeskin

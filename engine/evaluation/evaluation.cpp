@@ -5,9 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "../baselines/baseline_rig.hpp"
+#include "../baselines/pose_space_deformation.hpp"
 #include "../baselines/vertex_error.hpp"
+#include "../core/number_text.hpp"
 #include "../rig/kabsch.hpp"
 
 namespace odeskin {
@@ -20,6 +23,23 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 std::string frameLabel(const ExampleSet& frames, std::size_t f) {
   if (f < frames.pose_labels.size() && !frames.pose_labels[f].empty()) return frames.pose_labels[f];
   return "frame " + std::to_string(f);
+}
+
+// PSD averages the correctives of keys whose skeletons nearly coincide (pose_space_rbf.hpp); which
+// keys, or "" when none.
+std::string groupedKeys(const RbfInterpolator& rbf, std::span<const std::uint32_t> keys) {
+  std::string text;
+  for (std::uint32_t g = 0; g < rbf.groupCount(); ++g) {
+    std::string members;
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < rbf.exampleCount(); ++k) {
+      if (rbf.groupOf(k) == g) members += (count++ > 0 ? ", " : "") + std::to_string(keys[k]);
+    }
+    if (count > 1) text += (text.empty() ? "" : "; ") + std::string("key frames ") + members;
+  }
+  if (text.empty()) return text;
+  return text + ": skeletons within " + messageNumber(RbfInterpolator::kMergeRelative) +
+         " of the keys' spread in pose space, so their correctives are averaged";
 }
 
 }  // namespace
@@ -177,6 +197,10 @@ Result<EvaluationResult> runEvaluation(const ExampleSet& frames, std::span<const
       return Status(built.status().code(), std::string(baselineMethodName(methods[m])) + ": " + built.status().message());
     }
     result.summary[m].setup_ms = 1e3 * secondsSince(start);
+    if (const auto* psd = dynamic_cast<const PoseSpaceDeformation*>(built->get())) {
+      const std::string grouped = groupedKeys(psd->interpolator(), keys);
+      if (!grouped.empty()) result.notes.push_back(std::string(baselineMethodName(methods[m])) + ": " + grouped);
+    }
     deformers.push_back(std::move(*built));
   }
   ODESKIN_ASSIGN_OR_RETURN(BaselineRig rig, BaselineRig::fromAsset(fit.asset));

@@ -77,6 +77,7 @@ struct EvaluationResult {
   std::size_t curve_count = 0;
   int modes = 0;
   double fit_seconds = 0.0;
+  std::vector<std::string> notes;       // what a method did that its numbers do not say
 };
 
 // The in-between frames of `keys` and their (segment, tau): every frame strictly between the first

@@ -73,7 +73,7 @@ Json toJson(const EvaluationResult& r) {
                                                               {"mean_mean", r.summary[m].mean_mean}};
   }
   return {{"pose_source", std::string(poseSourceName(r.pose_source))}, {"rig", r.rig_summary}, {"bones", r.bone_count},
-          {"frames", std::move(frames)}, {"summary", std::move(summary)}};
+          {"frames", std::move(frames)}, {"summary", std::move(summary)}, {"notes", r.notes}};
 }
 
 void printTable(std::ostream& out, const EvaluationResult& r) {
@@ -91,6 +91,7 @@ void printTable(std::ostream& out, const EvaluationResult& r) {
                   s.ms_per_frame, s.setup_ms);
     out << line;
   }
+  for (const std::string& note : r.notes) out << "note: " << note << "\n";
 }
 
 std::string frameName(std::uint32_t frame) {
