@@ -50,7 +50,8 @@ class FdCurveSystem {
 
   // target: J values Delta(v_j); rate: J values u_t(v_j, 0), or empty for zero (ignored when
   // rateIgnored()); out: (T + 1) x J values u(v_j, t_n), time-major (out[n J + j]); force: J
-  // values Ftilde(v_j), or empty. Errors: kInvalidArgument for wrong sizes or non-finite input.
+  // values Ftilde(v_j), or empty. Errors: kInvalidArgument for wrong sizes or non-finite input, and
+  // for a non-zero rate when eta dt > 2 rho > 0 (the start would reverse it; see the .cpp).
   Status solve(std::span<const Vec3> target, std::span<const Vec3> rate, std::span<Vec3> out,
                std::span<Vec3> force = {}) const;
 

@@ -145,6 +145,24 @@ TEST(FdCurveSystem, StaticMaterialBlendsLinearlyInTime) {
   for (std::uint32_t j = 0; j < 10; ++j) EXPECT_LT(glm::length(force[j] - target[j]), 1e-12);  // F = zeta Delta
 }
 
+// Found probing against the closed form: with eta dt > 2 rho the start reversed the rate, and the
+// solution stayed 0.15 off at t = 1/2 through T = 1024. A start at rest is still solved (and right).
+TEST(FdCurveSystem, RefusesAStartRateItsStepsCannotResolve) {
+  Material stiff = skinMaterial();
+  stiff.rho = 1e-3;
+  stiff.eta = 1e3;
+  Result<FdCurveSystem> sys = FdCurveSystem::create(stiff, 8, 64);
+  ASSERT_TRUE(sys.ok()) << sys.status().toString();
+  std::vector<Vec3> target(8, Vec3(1.0, 0.0, 0.0)), rate(8, Vec3(0.0)), out(std::size_t{65} * 8);
+  EXPECT_TRUE(sys->solve(target, rate, out).ok());  // all zero: nothing to reverse
+  EXPECT_TRUE(sys->solve(target, {}, out).ok());
+  rate[2] = Vec3(0.0, 0.7, 0.0);
+  const Status s = sys->solve(target, rate, out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("eta dt / (2 rho) = 7812.5 > 1"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("use at least 500000 steps"), std::string::npos) << s.message();
+}
+
 TEST(FdCurveSystem, RejectsBadInput) {
   EXPECT_EQ(FdCurveSystem::create(skinMaterial(), 0, 8).status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(FdCurveSystem::create(skinMaterial(), 8, 1).status().code(), StatusCode::kInvalidArgument);
