@@ -60,9 +60,7 @@ Result<std::vector<VkPhysicalDevice>> physicalDevices(const Instance& instance) 
   devices.resize(count);
   if (injectedFault() == VkFault::kNoDevice) devices.clear();
   if (devices.empty()) {
-    return unavailable(
-        "no Vulkan device: install mesa-vulkan-drivers for lavapipe (a CPU implementation), or a GPU "
-        "driver; VK_DRIVER_FILES can point the loader at an ICD json");
+    return unavailable(std::string("no Vulkan device: ") + kInstallDriverHint);
   }
   return devices;
 }

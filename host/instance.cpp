@@ -138,7 +138,13 @@ Result<Instance> Instance::create(const InstanceOptions& options) {
   info.ppEnabledLayerNames = layers.data();
   info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
   info.ppEnabledExtensionNames = extensions.data();
-  ODESKIN_VK_TRY(vkCreateInstance(&info, nullptr, &instance.instance_));
+  const VkResult created = vkCreateInstance(&info, nullptr, &instance.instance_);
+  // The loader's answer when it finds no driver at all: the device check's hint never runs then.
+  if (created == VK_ERROR_INCOMPATIBLE_DRIVER) {
+    return unavailable(std::string("no Vulkan driver (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER): ") +
+                       kInstallDriverHint);
+  }
+  ODESKIN_TRY(vk::vkStatus(created, "vkCreateInstance"));
 
   if (debug_utils) {
     // Extension entry points are not exported by the loader; fetch them through the instance.

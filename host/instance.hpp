@@ -30,6 +30,11 @@ class DebugLog {
   std::vector<std::string> messages_;
 };
 
+// What to do when the loader finds no driver or no device (both errors end with it).
+inline constexpr const char* kInstallDriverHint =
+    "install mesa-vulkan-drivers for lavapipe (a CPU implementation), or a GPU driver; VK_DRIVER_FILES can "
+    "point the loader at an ICD json";
+
 struct InstanceOptions {
   // Enable VK_LAYER_KHRONOS_validation if it is installed (silently off otherwise; see
   // Instance::validationEnabled). The environment variable ODESKIN_VALIDATION=1 also turns it on.

@@ -924,6 +924,22 @@ TEST_F(BadInputCli, AnInterruptedWriteLeavesNoTemporaryFile) {
   }
 }
 
+// With no driver at all the loader fails vkCreateInstance, before the device check's hint: the line
+// used to be "vkCreateInstance(&info, nullptr, &instance.instance_) failed: VK_ERROR_INCOMPATIBLE_DRIVER".
+TEST_F(BadInputCli, NoVulkanDriverSaysWhatToInstall) {
+  const fs::path empty = dir() / "no_drivers";
+  fs::create_directories(empty);
+  RunOptions env;
+  env.env["VK_DRIVER_FILES"] = empty.string();
+  env.env["VK_ICD_FILENAMES"] = empty.string();
+  const std::vector<std::string> args{"play", in("cyl.odsk"), "--t", "0.5", "--backend", "vulkan", "-o",
+                                      (dir() / "no_driver.obj").string()};
+  const Outcome r = runOdeskin(args, dir() / "io" / "no_driver", env);
+  expectOneErrorLine(r, 1, {"play: no Vulkan driver (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER): install "
+                            "mesa-vulkan-drivers"}, commandLine(args));
+  EXPECT_FALSE(fs::exists(dir() / "no_driver.obj"));
+}
+
 // ---- Vulkan faults -----------------------------------------------------------------------------------
 
 struct Fault {
