@@ -10,6 +10,36 @@
 
 namespace odeskin::vk {
 
+namespace {
+
+Status checkRange(const char* who, VkDeviceSize size, std::size_t bytes, VkDeviceSize offset) {
+  if (offset > size || bytes > size - offset) {
+    return invalidArgument(std::string(who) + ": " + std::to_string(bytes) + " bytes at offset " +
+                           std::to_string(offset) + " exceed the buffer size " + std::to_string(size));
+  }
+  return okStatus();
+}
+
+// The copy of `region` from `src` into a host-read buffer, ordered after earlier shader and transfer
+// writes and made visible to the host once the submission's fence is waited on.
+void recordCopyToHost(VkCommandBuffer cmd, VkBuffer src, VkBuffer dst, const VkBufferCopy& region) {
+  VkMemoryBarrier before{};
+  before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+  before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  before.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
+  vkCmdCopyBuffer(cmd, src, dst, 1, &region);
+  VkMemoryBarrier after{};
+  after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+  after.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  after.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0, nullptr, 0,
+                       nullptr);
+}
+
+}  // namespace
+
 Result<Buffer> Buffer::create(const Device& device, VkDeviceSize size_bytes, VkBufferUsageFlags usage,
                               MemoryUse use) {
   if (size_bytes == 0) return invalidArgument("Buffer::create: size_bytes must be > 0");
@@ -96,10 +126,7 @@ void Buffer::destroy() {
 }
 
 Status Buffer::upload(const Device& device, std::span<const std::byte> bytes, VkDeviceSize offset) {
-  if (offset > size_ || bytes.size() > size_ - offset) {
-    return invalidArgument("Buffer::upload: " + std::to_string(bytes.size()) + " bytes at offset " +
-                           std::to_string(offset) + " exceed the buffer size " + std::to_string(size_));
-  }
+  ODESKIN_TRY(checkRange("Buffer::upload", size_, bytes.size(), offset));
   if (bytes.empty()) return okStatus();
   if (mapped_ != nullptr) {
     std::memcpy(mapped_ + offset, bytes.data(), bytes.size());
@@ -111,24 +138,28 @@ Status Buffer::upload(const Device& device, std::span<const std::byte> bytes, Vk
   std::memcpy(staging.mapped(), bytes.data(), bytes.size());
   VkBufferCopy region{0, offset, bytes.size()};
   VkBuffer dst = handle();
+  // Vertex input is a stage of graphics queues only (a compute-only family refuses the barrier).
+  const bool graphics = (device.queueFlags() & VK_QUEUE_GRAPHICS_BIT) != 0;
   return device.submitAndWait([&](VkCommandBuffer cmd) {
     vkCmdCopyBuffer(cmd, staging.handle(), dst, 1, &region);
-    // Make the copy visible to every later shader read or copy on this queue.
+    // Make the copy visible to every later shader read, copy, or vertex and index fetch (the
+    // renderer's buffers come this way) on this queue: the fence wait orders later submissions but
+    // makes no write visible to them.
     VkMemoryBarrier barrier{};
     barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
     barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1,
-                         &barrier, 0, nullptr, 0, nullptr);
+    VkPipelineStageFlags stages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    if (graphics) {
+      barrier.dstAccessMask |= VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT;
+      stages |= VK_PIPELINE_STAGE_VERTEX_INPUT_BIT;
+    }
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, stages, 0, 1, &barrier, 0, nullptr, 0, nullptr);
   });
 }
 
 Status Buffer::download(const Device& device, std::span<std::byte> out, VkDeviceSize offset) const {
-  if (offset > size_ || out.size() > size_ - offset) {
-    return invalidArgument("Buffer::download: " + std::to_string(out.size()) + " bytes at offset " +
-                           std::to_string(offset) + " exceed the buffer size " + std::to_string(size_));
-  }
+  ODESKIN_TRY(checkRange("Buffer::download", size_, out.size(), offset));
   if (out.empty()) return okStatus();
   if (mapped_ != nullptr && hostReadsDirectly(memory_flags_)) {
     std::memcpy(out.data(), mapped_ + offset, out.size());
@@ -136,26 +167,60 @@ Status Buffer::download(const Device& device, std::span<std::byte> out, VkDevice
   }
   ODESKIN_ASSIGN_OR_RETURN(Buffer staging, create(device, out.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                   MemoryUse::kHostReadback));
-  VkBufferCopy region{offset, 0, out.size()};
-  VkBuffer src = handle();
-  ODESKIN_TRY(device.submitAndWait([&](VkCommandBuffer cmd) {
-    // Earlier shader writes must land before the copy reads them.
-    VkMemoryBarrier before{};
-    before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-    before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-    before.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
-    vkCmdCopyBuffer(cmd, src, staging.handle(), 1, &region);
-    // The host reads the staging copy after the fence: make the transfer write host-visible.
-    VkMemoryBarrier after{};
-    after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-    after.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    after.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0,
-                         nullptr, 0, nullptr);
-  }));
+  const VkBufferCopy region{offset, 0, out.size()};
+  ODESKIN_TRY(device.submitAndWait(
+      [&](VkCommandBuffer cmd) { recordCopyToHost(cmd, handle(), staging.handle(), region); }));
   std::memcpy(out.data(), staging.mapped(), out.size());
+  return okStatus();
+}
+
+Result<ReadbackStage> ReadbackStage::create(const Device& device, VkDeviceSize capacity) {
+  ReadbackStage stage;
+  ODESKIN_ASSIGN_OR_RETURN(stage.staging_, Buffer::create(device, capacity, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                          MemoryUse::kHostReadback));
+  ODESKIN_ASSIGN_OR_RETURN(stage.pool_, device.createCommandPool(VK_COMMAND_POOL_CREATE_TRANSIENT_BIT));
+  VkCommandBufferAllocateInfo alloc{};
+  alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+  alloc.commandPool = stage.pool_.get();
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  ODESKIN_VK_TRY(vkAllocateCommandBuffers(device.handle(), &alloc, &stage.cmd_));
+  VkFenceCreateInfo fence_info{};
+  fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+  VkFence fence = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateFence(device.handle(), &fence_info, nullptr, &fence));
+  stage.fence_ = UniqueFence(device.handle(), fence);
+  return stage;
+}
+
+Status ReadbackStage::download(const Device& device, const Buffer& buffer, std::span<std::byte> out,
+                               VkDeviceSize offset) {
+  ODESKIN_TRY(checkRange("ReadbackStage::download", buffer.size(), out.size(), offset));
+  if (out.empty()) return okStatus();
+  if (buffer.mapped() != nullptr && hostReadsDirectly(buffer.memoryFlags())) {
+    std::memcpy(out.data(), buffer.mapped() + offset, out.size());
+    return okStatus();
+  }
+  if (out.size() > capacity()) {
+    return invalidArgument("ReadbackStage::download: " + std::to_string(out.size()) + " bytes exceed its capacity of " +
+                           std::to_string(capacity()));
+  }
+  ODESKIN_VK_TRY(vkResetCommandPool(device.handle(), pool_.get(), 0));
+  VkCommandBufferBeginInfo begin{};
+  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  ODESKIN_VK_TRY(vkBeginCommandBuffer(cmd_, &begin));
+  recordCopyToHost(cmd_, buffer.handle(), staging_.handle(), VkBufferCopy{offset, 0, out.size()});
+  ODESKIN_VK_TRY(vkEndCommandBuffer(cmd_));
+  VkSubmitInfo submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd_;
+  VkFence fence = fence_.get();
+  ODESKIN_VK_TRY(vkResetFences(device.handle(), 1, &fence));
+  ODESKIN_TRY(device.submit(submit, fence));
+  ODESKIN_VK_TRY(vkWaitForFences(device.handle(), 1, &fence, VK_TRUE, UINT64_MAX));
+  std::memcpy(out.data(), staging_.mapped(), out.size());
   return okStatus();
 }
 

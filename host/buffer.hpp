@@ -87,6 +87,26 @@ class Buffer {
   VkMemoryPropertyFlags memory_flags_ = 0;
 };
 
+// What Buffer::download makes on every call that stages (a kHostReadback buffer, a command buffer
+// and a fence), made once, for a caller that reads back every frame: VulkanRuntime's copy calls on a
+// GPU whose output buffers the host cannot read in place. One thread at a time.
+class ReadbackStage {
+ public:
+  // Room for reads of up to `capacity` bytes (> 0).
+  static Result<ReadbackStage> create(const Device& device, VkDeviceSize capacity);
+
+  // As buffer.download(device, out, offset), reusing this stage's objects: nothing is allocated.
+  // kInvalidArgument for a range past the buffer or more than capacity() bytes.
+  Status download(const Device& device, const Buffer& buffer, std::span<std::byte> out, VkDeviceSize offset);
+  VkDeviceSize capacity() const { return staging_.size(); }
+
+ private:
+  Buffer staging_;
+  UniqueCommandPool pool_;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;  // freed with the pool
+  UniqueFence fence_;
+};
+
 // Memory of a set of buffers, for reports (RuntimeMemory): their allocations' bytes, and how many
 // of them are device-local.
 struct BufferTally {

@@ -207,6 +207,13 @@ Status VulkanRuntime::createSlots(BoundsReadback bounds) {
     }
     slots_.push_back(std::move(slot));
   }
+  // Where the host cannot read the outputs in place (a discrete GPU), copy calls stage one
+  // instance's output through buffers made now, not per call.
+  const vk::Buffer& out = outPositions(0);
+  if (out.mapped() == nullptr || !vk::hostReadsDirectly(out.memoryFlags())) {
+    const VkDeviceSize instance_bytes = std::max<VkDeviceSize>(VkDeviceSize{outputVertexCount()} * sizeof(gpu::Float4), 16);
+    ODESKIN_ASSIGN_OR_RETURN(readback_, vk::ReadbackStage::create(*device_, instance_bytes));
+  }
   return okStatus();
 }
 
@@ -562,19 +569,22 @@ const vk::Buffer& VulkanRuntime::outNormals(std::uint32_t slot) const {
   return gathersRenderVertices() ? slots_[slot].render_normals : slots_[slot].normals;
 }
 
-Status VulkanRuntime::copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
+Status VulkanRuntime::copyInstance(const vk::Buffer& buffer, std::uint32_t instance, std::span<gpu::Float4> out) {
   const VkDeviceSize offset = VkDeviceSize{instance} * outputVertexCount() * sizeof(gpu::Float4);
-  return vk::downloadSpan(*device_, outPositions(slot), out, offset);
+  if (readback_) return readback_->download(*device_, buffer, std::as_writable_bytes(out), offset);
+  return vk::downloadSpan(*device_, buffer, out, offset);
+}
+
+Status VulkanRuntime::copyPositions(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
+  return copyInstance(outPositions(slot), instance, out);
 }
 
 Status VulkanRuntime::copyNormals(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
-  const VkDeviceSize offset = VkDeviceSize{instance} * outputVertexCount() * sizeof(gpu::Float4);
-  return vk::downloadSpan(*device_, outNormals(slot), out, offset);
+  return copyInstance(outNormals(slot), instance, out);
 }
 
 Status VulkanRuntime::copyTangents(std::uint32_t slot, std::uint32_t instance, std::span<gpu::Float4> out) {
-  const VkDeviceSize offset = VkDeviceSize{instance} * outputVertexCount() * sizeof(gpu::Float4);
-  return vk::downloadSpan(*device_, slots_[slot].tangents, out, offset);
+  return copyInstance(slots_[slot].tangents, instance, out);
 }
 
 Status VulkanRuntime::copyBounds(std::uint32_t slot, std::span<InstanceBounds> out) {

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -138,6 +139,8 @@ class VulkanRuntime final : public DeformRuntime {
   VulkanRuntime(const RuntimeAsset& asset, const RuntimeOptions& options) : DeformRuntime(asset, options) {}
   Status uploadAsset();
   Status createSlots(BoundsReadback bounds);
+  // One instance's Float4 output from `buffer`: through readback_ where it exists, else download().
+  Status copyInstance(const vk::Buffer& buffer, std::uint32_t instance, std::span<gpu::Float4> out);
   Status createPipelines(const vk::FrameInputLayout& layout);
   // `statics`: the buffers every slot shares (createPipelines' list).
   Status createFoldPipeline(std::span<const vk::StaticBinding> statics, const vk::FrameInputLayout& layout);
@@ -187,6 +190,7 @@ class VulkanRuntime final : public DeformRuntime {
   std::vector<std::uint64_t> recorded_frames_;
   VkCommandBuffer target_ = VK_NULL_HANDLE;
   vk::Buffer folded_;  // capacity x C x (2N + 2) Float4: fold_series.comp's output, shared by the slots
+  std::optional<vk::ReadbackStage> readback_;  // the copy calls' staging, where outputs are not read in place
   vk::ComputePipeline fold_;
   vk::ComputePipeline deform_;
   vk::ComputePipeline normals_;         // over the topology, when normals are on and not computesRenderNormals()

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
+#include <algorithm>
 #include <cstdint>
+#include <string>
 #include <numeric>
 #include <vector>
 
@@ -35,6 +37,44 @@ TEST_F(GpuTest, BufferRoundTripMappedAndStaged) {
     EXPECT_EQ(back[10], 1u);
     EXPECT_EQ(back[12], 3u);
     EXPECT_EQ(back[13], data[13]);
+  }
+}
+
+// The runtime's copy calls on a discrete GPU: one stage, many reads, nothing allocated per read
+// (Buffer::download makes a staging buffer, a command pool and a fence every time).
+TEST_F(GpuTest, ReadbackStageReadsStagedBuffersAgainAndAgain) {
+  std::vector<std::uint32_t> data(1000);
+  std::iota(data.begin(), data.end(), 11u);
+  Result<vk::Buffer> staged = vk::Buffer::create(device(), data.size() * 4, vk::kOutputBufferUsage,
+                                                 vk::MemoryUse::kDeviceLocalStaged);
+  ASSERT_TRUE(staged.ok()) << staged.status().toString();
+  ASSERT_EQ(staged->mapped(), nullptr);
+  ASSERT_TRUE(vk::uploadSpan<std::uint32_t>(device(), *staged, data).ok());
+  Result<vk::ReadbackStage> stage = vk::ReadbackStage::create(device(), 400);
+  ASSERT_TRUE(stage.ok()) << stage.status().toString();
+  EXPECT_EQ(stage->capacity(), 400u);
+  std::vector<std::uint32_t> back(100);
+  for (std::uint32_t round = 0; round < 3; ++round) {
+    for (std::uint32_t part = 0; part < 10; ++part) {
+      std::fill(back.begin(), back.end(), 0u);
+      ASSERT_TRUE(stage->download(device(), *staged, std::as_writable_bytes(std::span(back)), part * 400).ok());
+      EXPECT_TRUE(std::equal(back.begin(), back.end(), data.begin() + part * 100)) << round << " " << part;
+    }
+  }
+  std::vector<std::uint32_t> too_many(101);
+  const Status over = stage->download(device(), *staged, std::as_writable_bytes(std::span(too_many)), 0);
+  EXPECT_EQ(over.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(over.message().find("exceed its capacity of 400"), std::string::npos) << over.message();
+  EXPECT_EQ(stage->download(device(), *staged, std::as_writable_bytes(std::span(back)), 3700).code(),
+            StatusCode::kInvalidArgument);  // past the buffer's end
+  // A mapped, cached buffer is read in place, whatever its size.
+  Result<vk::Buffer> mapped = vk::Buffer::create(device(), data.size() * 4, vk::kOutputBufferUsage, vk::MemoryUse::kHostReadback);
+  ASSERT_TRUE(mapped.ok());
+  ASSERT_TRUE(vk::uploadSpan<std::uint32_t>(device(), *mapped, data).ok());
+  if (vk::hostReadsDirectly(mapped->memoryFlags())) {
+    std::vector<std::uint32_t> all(data.size());
+    ASSERT_TRUE(stage->download(device(), *mapped, std::as_writable_bytes(std::span(all)), 0).ok());
+    EXPECT_EQ(all, data);
   }
 }
 
