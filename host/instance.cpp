@@ -22,11 +22,12 @@ namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
-bool instanceExtensionAvailable(const char* name) {
+// `layer`: null for the loader's and drivers' extensions, else that layer's.
+bool instanceExtensionAvailable(const char* name, const char* layer = nullptr) {
   std::uint32_t count = 0;
-  if (vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr) != VK_SUCCESS) return false;
+  if (vkEnumerateInstanceExtensionProperties(layer, &count, nullptr) != VK_SUCCESS) return false;
   std::vector<VkExtensionProperties> extensions(count);
-  if (vkEnumerateInstanceExtensionProperties(nullptr, &count, extensions.data()) < 0) return false;
+  if (vkEnumerateInstanceExtensionProperties(layer, &count, extensions.data()) < 0) return false;
   for (const VkExtensionProperties& e : extensions) {
     if (std::strcmp(e.extensionName, name) == 0) return true;
   }
@@ -130,9 +131,20 @@ Result<Instance> Instance::create(const InstanceOptions& options) {
 
   // Chaining the messenger info also reports problems inside vkCreateInstance/vkDestroyInstance.
   VkDebugUtilsMessengerCreateInfoEXT messenger_info = messengerInfo(instance.log_);
+  // The layer's synchronization checks (hazards between commands without a barrier), off by default.
+  const VkValidationFeatureEnableEXT sync_check = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT features{};
+  features.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
+  features.pNext = debug_utils ? &messenger_info : nullptr;
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = &sync_check;
+  instance.sync_validation_ = instance.validation_enabled_ && options.sync_validation &&
+                              instanceExtensionAvailable(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME, kValidationLayer);
+  if (instance.sync_validation_) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   VkInstanceCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
-  info.pNext = debug_utils ? &messenger_info : nullptr;
+  info.pNext = instance.sync_validation_ ? static_cast<const void*>(&features)
+                                         : debug_utils ? static_cast<const void*>(&messenger_info) : nullptr;
   info.pApplicationInfo = &app;
   info.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
   info.ppEnabledLayerNames = layers.data();
@@ -168,6 +180,7 @@ Instance& Instance::operator=(Instance&& other) noexcept {
     messenger_ = std::exchange(other.messenger_, VK_NULL_HANDLE);
     loader_api_version_ = other.loader_api_version_;
     validation_enabled_ = other.validation_enabled_;
+    sync_validation_ = other.sync_validation_;
   }
   return *this;
 }

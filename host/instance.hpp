@@ -39,6 +39,9 @@ struct InstanceOptions {
   // Enable VK_LAYER_KHRONOS_validation if it is installed (silently off otherwise; see
   // Instance::validationEnabled). The environment variable ODESKIN_VALIDATION=1 also turns it on.
   bool validation = false;
+  // With validation, also its synchronization checks (hazards between commands that lack a
+  // barrier), which the layer leaves off unless asked.
+  bool sync_validation = true;
   // Optional caller-owned log that must outlive the Instance; lets a test read messages emitted
   // while the instance itself is being destroyed. Null: the Instance owns its log.
   DebugLog* debug_log = nullptr;
@@ -66,6 +69,7 @@ class Instance {
   // Instance-level API version the loader supports (vkEnumerateInstanceVersion).
   std::uint32_t loaderApiVersion() const { return loader_api_version_; }
   bool validationEnabled() const { return validation_enabled_; }
+  bool syncValidationEnabled() const { return sync_validation_; }
   // Warnings and errors seen so far (validation on or not: the loader reports through it too).
   const DebugLog& debugLog() const { return *log_; }
   DebugLog& debugLog() { return *log_; }
@@ -80,6 +84,7 @@ class Instance {
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   std::uint32_t loader_api_version_ = VK_API_VERSION_1_0;
   bool validation_enabled_ = false;
+  bool sync_validation_ = false;
 };
 
 }  // namespace odeskin::vk

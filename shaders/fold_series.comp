@@ -18,7 +18,7 @@ layout(set = 0, binding = ODESKIN_BINDING_COEFFICIENTS) uniform samplerBuffer co
 layout(set = 0, binding = ODESKIN_BINDING_RATES) uniform samplerBuffer rates;                       // Float4
 layout(set = 0, binding = ODESKIN_BINDING_MODE_BASIS) uniform samplerBuffer basis;                  // ModeBasis
 layout(set = 0, binding = ODESKIN_RT_BINDING_INSTANCES) uniform usamplerBuffer records;             // InstanceRecord
-layout(std430, set = 0, binding = ODESKIN_BINDING_FOLDED_SERIES) writeonly buffer Folded { Float4 folded[]; };
+layout(std430, set = 0, binding = ODESKIN_BINDING_FOLDED_SERIES) writeonly buffer Folded { vec4 folded[]; };
 
 layout(push_constant) uniform Push { FoldPushConstants pc; };
 
@@ -39,5 +39,5 @@ void main() {
   uint k = r.segment * entries + x;
   vec3 d = texelFetch(coefficients, int(k)).xyz;
   vec3 a = r.rates_offset == ODESKIN_RT_NO_RATES ? b.x * d : b.x * d + b.y * texelFetch(rates, int(r.rates_offset + k)).xyz;
-  folded[y * entries + x] = Float4(a.x, a.y, a.z, 0.0);
+  folded[y * entries + x] = vec4(a.x, a.y, a.z, 0.0);
 }

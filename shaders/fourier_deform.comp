@@ -15,7 +15,7 @@
 layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
 
 #include "deform_inputs.glsl"
-layout(std430, set = 0, binding = ODESKIN_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { Float4 out_positions[]; };
+layout(std430, set = 0, binding = ODESKIN_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { vec4 out_positions[]; };
 
 layout(push_constant) uniform Push { DeformPushConstants pc; };
 
@@ -28,5 +28,5 @@ void main() {
   // One mesh: the frame's segment from the push constants, the whole folded, basis and bone buffers.
   DeformSource src = DeformSource(pc.segment, pc.remainder_base, 0u, 0u, 0u);
   vec3 p = deformVertex(src, i);
-  out_positions[i] = Float4(p.x, p.y, p.z, 1.0);
+  out_positions[i] = vec4(p.x, p.y, p.z, 1.0);
 }

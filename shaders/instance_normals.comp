@@ -18,7 +18,7 @@ layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_POSITIONS) uniform samplerB
 layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNER_OFFSETS) uniform usamplerBuffer corner_offsets; // uint
 layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_CORNERS) uniform usamplerBuffer corners;         // Corner
 layout(set = 0, binding = ODESKIN_RT_NORMALS_BINDING_TOPOLOGY) uniform usamplerBuffer topology;       // uint
-layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS) writeonly buffer OutNormals { Float4 out_normals[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_NORMALS_BINDING_OUT_NORMALS) writeonly buffer OutNormals { vec4 out_normals[]; };
 
 layout(push_constant) uniform Push { NormalsPushConstants pc; };
 
@@ -38,5 +38,5 @@ void main() {
   }
   float len = length(n);
   n = len > 0.0 ? n / len : vec3(0.0);
-  out_normals[gl_WorkGroupID.y * pc.vertex_count + i] = Float4(n.x, n.y, n.z, 0.0);
+  out_normals[gl_WorkGroupID.y * pc.vertex_count + i] = vec4(n.x, n.y, n.z, 0.0);
 }

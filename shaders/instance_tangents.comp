@@ -20,7 +20,7 @@ layout(std430, set = 0, binding = ODESKIN_RT_TANGENTS_BINDING_CORNERS) readonly 
 layout(std430, set = 0, binding = ODESKIN_RT_TANGENTS_BINDING_TOPOLOGY) readonly buffer Topology { uint topology[]; };
 layout(std430, set = 0, binding = ODESKIN_RT_TANGENTS_BINDING_FRAMES) readonly buffer Frames { TangentFrame frames[]; };
 layout(std430, set = 0, binding = ODESKIN_RT_TANGENTS_BINDING_WEIGHTS) readonly buffer Weights { TangentWeights weights[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_TANGENTS_BINDING_OUT_TANGENTS) writeonly buffer OutTangents { Float4 out_tangents[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_TANGENTS_BINDING_OUT_TANGENTS) writeonly buffer OutTangents { vec4 out_tangents[]; };
 
 layout(push_constant) uniform Push { TangentsPushConstants pc; };
 
@@ -46,5 +46,5 @@ void main() {
   t -= n * dot(n, t);
   float len = length(t);
   t = len > 0.0 ? t / len : vec3(0.0);
-  out_tangents[out_index] = Float4(t.x, t.y, t.z, frame.handedness);
+  out_tangents[out_index] = vec4(t.x, t.y, t.z, frame.handedness);
 }

@@ -9,9 +9,9 @@
 layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
 
 #include "deform_inputs.glsl"
-layout(std430, set = 0, binding = ODESKIN_RT_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { Float4 out_positions[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { vec4 out_positions[]; };
 ODESKIN_INPUT(ODESKIN_RT_BINDING_INSTANCES, Instances, uvec4, instances)  // InstanceRecord
-layout(std430, set = 0, binding = ODESKIN_RT_BINDING_BOUNDS) buffer Bounds { BoundsKeys bounds[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_BINDING_BOUNDS) buffer Bounds { uint bounds[]; };  // BoundsKeys[instances], 8 uints each
 
 layout(push_constant) uniform Push { InstancedPushConstants pc; };
 
@@ -44,7 +44,7 @@ void main() {
     DeformSource src = DeformSource(r.segment, r.remainder_base, instance * pc.curve_count * (2u * pc.modes + 2u),
                                     instance * pc.basis_entries, instance * pc.bone_count);
     vec3 p = deformVertex(src, i);
-    out_positions[instance * pc.vertex_count + i] = Float4(p.x, p.y, p.z, 1.0);
+    out_positions[instance * pc.vertex_count + i] = vec4(p.x, p.y, p.z, 1.0);
     lo = p;
     hi = p;
   }
@@ -71,11 +71,11 @@ void main() {
   vec3 box_hi = hi_shared[0];
   if (lane == 0u) {
 #endif
-    atomicMin(bounds[instance].keys[0], orderedKey(box_lo.x));
-    atomicMin(bounds[instance].keys[1], orderedKey(box_lo.y));
-    atomicMin(bounds[instance].keys[2], orderedKey(box_lo.z));
-    atomicMin(bounds[instance].keys[4], orderedKey(-box_hi.x));
-    atomicMin(bounds[instance].keys[5], orderedKey(-box_hi.y));
-    atomicMin(bounds[instance].keys[6], orderedKey(-box_hi.z));
+    atomicMin(bounds[instance * 8u + 0u], orderedKey(box_lo.x));
+    atomicMin(bounds[instance * 8u + 1u], orderedKey(box_lo.y));
+    atomicMin(bounds[instance * 8u + 2u], orderedKey(box_lo.z));
+    atomicMin(bounds[instance * 8u + 4u], orderedKey(-box_hi.x));
+    atomicMin(bounds[instance * 8u + 5u], orderedKey(-box_hi.y));
+    atomicMin(bounds[instance * 8u + 6u], orderedKey(-box_hi.z));
   }
 }

@@ -10,7 +10,7 @@
 layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
 
 #include "deform_inputs.glsl"
-layout(std430, set = 0, binding = ODESKIN_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { Float4 out_positions[]; };
+layout(std430, set = 0, binding = ODESKIN_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { vec4 out_positions[]; };
 
 layout(push_constant) uniform Push { DeformPushConstants pc; };
 
@@ -20,5 +20,5 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.vertex_count) return;
   vec3 p = skinPoint(0u, i, restPosition(i));
-  out_positions[i] = Float4(p.x, p.y, p.z, 1.0);
+  out_positions[i] = vec4(p.x, p.y, p.z, 1.0);
 }

@@ -10,11 +10,11 @@
 
 layout(local_size_x = ODESKIN_WORKGROUP_SIZE) in;
 
-layout(std430, set = 0, binding = ODESKIN_RT_GATHER_BINDING_POSITIONS) readonly buffer Positions { Float4 positions[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_GATHER_BINDING_NORMALS) readonly buffer Normals { Float4 normals[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_GATHER_BINDING_POSITIONS) readonly buffer Positions { vec4 positions[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_GATHER_BINDING_NORMALS) readonly buffer Normals { vec4 normals[]; };
 layout(std430, set = 0, binding = ODESKIN_RT_GATHER_BINDING_TOPOLOGY) readonly buffer Topology { uint topology[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_GATHER_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { Float4 out_positions[]; };
-layout(std430, set = 0, binding = ODESKIN_RT_GATHER_BINDING_OUT_NORMALS) writeonly buffer OutNormals { Float4 out_normals[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_GATHER_BINDING_OUT_POSITIONS) writeonly buffer OutPositions { vec4 out_positions[]; };
+layout(std430, set = 0, binding = ODESKIN_RT_GATHER_BINDING_OUT_NORMALS) writeonly buffer OutNormals { vec4 out_normals[]; };
 
 layout(push_constant) uniform Push { GatherPushConstants pc; };
 

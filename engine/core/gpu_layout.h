@@ -58,6 +58,9 @@ using uint = std::uint32_t;
 // Written by the fold pass, read by the deformation shaders. (13 and 14 are runtime_layout.h's.)
 #define ODESKIN_BINDING_FOLDED_SERIES 15
 
+// Shaders declare the Float4 arrays they write as vec4 (the same std430 layout): a store to a struct
+// element is a store per member through nested access chains, which the Khronos layer's
+// synchronization validation (1.3.239) does not count as a write, so a missing barrier went unseen.
 struct Float4 {
   float x;
   float y;
