@@ -40,7 +40,8 @@ void TimestampQueries::recordEnd(VkCommandBuffer cmd, std::uint32_t pair) const 
 Result<double> TimestampQueries::seconds(std::uint32_t pair) const {
   if (!pool_) return 0.0;
   std::uint64_t ticks[2] = {0, 0};
-  // WAIT: the caller has waited on the fence already, so this returns at once.
+  // WAIT: the caller has waited on the fence (returns at once), or, for a frame an engine submitted,
+  // seen its completion word, which the frame writes just before its end timestamp (may block briefly).
   ODESKIN_VK_TRY(vkGetQueryPoolResults(device_, pool_.get(), 2 * pair, 2, sizeof(ticks), ticks,
                                        sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   std::uint64_t delta = ((ticks[1] & mask_) - (ticks[0] & mask_)) & mask_;

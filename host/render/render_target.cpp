@@ -119,15 +119,17 @@ Result<UniqueRenderPass> createRenderPass(VkDevice device, VkFormat depth_format
   subpass.pResolveAttachments = resolve ? &resolve_ref : nullptr;
   subpass.pDepthStencilAttachment = &depth_ref;
 
-  // Before: the previous frame's copy out of the image must finish before this frame writes it.
+  // Before: the previous picture's copy out of the image, and its colour and depth writes, must
+  // finish before this one writes them (render() also waits on its fence; the pass does not rely on it).
   // After: colour writes and the resolve must land before the copy to the readback buffer.
   std::array<VkSubpassDependency, 2> dependencies{};
   dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   dependencies[0].dstSubpass = 0;
-  dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                 VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
   dependencies[0].dstStageMask =
       VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
-  dependencies[0].srcAccessMask = 0;
+  dependencies[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   dependencies[0].dstAccessMask =
       VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   dependencies[1].srcSubpass = 0;
