@@ -179,17 +179,8 @@ Result<ReadbackStage> ReadbackStage::create(const Device& device, VkDeviceSize c
   ODESKIN_ASSIGN_OR_RETURN(stage.staging_, Buffer::create(device, capacity, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                           MemoryUse::kHostReadback));
   ODESKIN_ASSIGN_OR_RETURN(stage.pool_, device.createCommandPool(VK_COMMAND_POOL_CREATE_TRANSIENT_BIT));
-  VkCommandBufferAllocateInfo alloc{};
-  alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-  alloc.commandPool = stage.pool_.get();
-  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  alloc.commandBufferCount = 1;
-  ODESKIN_VK_TRY(vkAllocateCommandBuffers(device.handle(), &alloc, &stage.cmd_));
-  VkFenceCreateInfo fence_info{};
-  fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-  VkFence fence = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkCreateFence(device.handle(), &fence_info, nullptr, &fence));
-  stage.fence_ = UniqueFence(device.handle(), fence);
+  ODESKIN_ASSIGN_OR_RETURN(stage.cmd_, device.allocateCommandBuffer(stage.pool_.get()));
+  ODESKIN_ASSIGN_OR_RETURN(stage.fence_, device.createFence());
   return stage;
 }
 

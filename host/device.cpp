@@ -269,16 +269,29 @@ Result<UniqueCommandPool> Device::createCommandPool(VkCommandPoolCreateFlags fla
   return UniqueCommandPool(device_, pool);
 }
 
-Status Device::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
-  // A pool per call: two threads uploading on one device must not share one (uploads are rare).
-  ODESKIN_ASSIGN_OR_RETURN(const UniqueCommandPool pool, createCommandPool(VK_COMMAND_POOL_CREATE_TRANSIENT_BIT));
+Result<VkCommandBuffer> Device::allocateCommandBuffer(VkCommandPool pool) const {
   VkCommandBufferAllocateInfo alloc{};
   alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-  alloc.commandPool = pool.get();
+  alloc.commandPool = pool;
   alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   alloc.commandBufferCount = 1;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkAllocateCommandBuffers(device_, &alloc, &cmd));  // freed with the pool
+  ODESKIN_VK_TRY(vkAllocateCommandBuffers(device_, &alloc, &cmd));
+  return cmd;
+}
+
+Result<UniqueFence> Device::createFence() const {
+  VkFenceCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+  VkFence fence = VK_NULL_HANDLE;
+  ODESKIN_VK_TRY(vkCreateFence(device_, &info, nullptr, &fence));
+  return UniqueFence(device_, fence);
+}
+
+Status Device::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+  // A pool per call: two threads uploading on one device must not share one (uploads are rare).
+  ODESKIN_ASSIGN_OR_RETURN(const UniqueCommandPool pool, createCommandPool(VK_COMMAND_POOL_CREATE_TRANSIENT_BIT));
+  ODESKIN_ASSIGN_OR_RETURN(VkCommandBuffer cmd, allocateCommandBuffer(pool.get()));
 
   VkCommandBufferBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
@@ -288,11 +301,8 @@ Status Device::submitAndWait(const std::function<void(VkCommandBuffer)>& record)
   ODESKIN_VK_TRY(vkEndCommandBuffer(cmd));
 
   // A fence, not vkQueueWaitIdle, so per-frame work already on the queue is not waited for twice.
-  VkFenceCreateInfo fence_info{};
-  fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-  VkFence fence_handle = VK_NULL_HANDLE;
-  ODESKIN_VK_TRY(vkCreateFence(device_, &fence_info, nullptr, &fence_handle));
-  UniqueFence fence(device_, fence_handle);
+  ODESKIN_ASSIGN_OR_RETURN(const UniqueFence fence, createFence());
+  VkFence fence_handle = fence.get();
   VkSubmitInfo submit{};
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit.commandBufferCount = 1;

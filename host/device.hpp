@@ -98,6 +98,9 @@ class Device {
 
   // A command pool on queue()'s family, for one user at a time (a FrameRing, one submitAndWait).
   Result<UniqueCommandPool> createCommandPool(VkCommandPoolCreateFlags flags) const;
+  // A primary command buffer from `pool` (freed with the pool), and an unsignalled fence.
+  Result<VkCommandBuffer> allocateCommandBuffer(VkCommandPool pool) const;
+  Result<UniqueFence> createFence() const;
 
   // Records `record` into a one-off command buffer (from a pool of its own), submits it and waits
   // for it (uploads, readbacks, tests). Not for the per-frame path.

@@ -28,19 +28,9 @@ Result<FrameRing> FrameRing::create(const Device& device, const FrameRingDesc& d
       ODESKIN_ASSIGN_OR_RETURN(slot.inputs, Buffer::create(device, desc.input_bytes, kShaderInputUsage,
                                                            MemoryUse::kHostVisible));
     }
-    VkCommandBufferAllocateInfo alloc{};
-    alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-    alloc.commandPool = ring.pool_.get();
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    ODESKIN_VK_TRY(vkAllocateCommandBuffers(device.handle(), &alloc, &cmd));
+    ODESKIN_ASSIGN_OR_RETURN(VkCommandBuffer cmd, device.allocateCommandBuffer(ring.pool_.get()));
     slot.cmd = UniqueCommandBuffer(device.handle(), ring.pool_.get(), cmd);
-    VkFenceCreateInfo fence_info{};
-    fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-    VkFence fence = VK_NULL_HANDLE;
-    ODESKIN_VK_TRY(vkCreateFence(device.handle(), &fence_info, nullptr, &fence));
-    slot.fence = UniqueFence(device.handle(), fence);
+    ODESKIN_ASSIGN_OR_RETURN(slot.fence, device.createFence());
   }
   return ring;
 }
