@@ -73,6 +73,10 @@ void printSummary(std::ostream& out, const FitCommandOptions& o, const ExampleSe
   out << "remainders: " << result.report.remainder_count << " (series error before them: max "
       << scientific(result.report.max_series_error) << ", rms " << scientific(result.report.rms_series_error)
       << " of the box)\n";
+  if (result.report.ill_conditioned > 0) {
+    out << "rigid: " << result.report.ill_conditioned << " vertices whose skinning is near singular at a key "
+        << "(nearly opposed bones) follow their dominant bone\n";
+  }
   out << "wrote " << o.output.string() << " (" << bytes << " bytes)\n";
 }
 

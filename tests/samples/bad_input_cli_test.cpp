@@ -839,6 +839,19 @@ TEST_F(BadInputCli, GoodInputsSucceed) {
   }
 }
 
+// Vertices the geometric transform binds rigidly (their LBS map near singular at a key) change the
+// fit; the summary counts them, as docs/pipeline.md says.
+TEST_F(BadInputCli, FitSaysHowManyVerticesFollowTheirBoneRigidly) {
+  const std::string cats = std::string(ODESKIN_DATA_DIR) + "/cat-poses/";
+  const fs::path out = dir() / "rigid_count";
+  const Outcome r = runOdeskin({"fit", cats + "cat-00.obj", cats + "cat-01.obj", "-o", (out / "c.odsk").string()}, out);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\nrigid: 22 vertices whose skinning is near singular at a key (nearly opposed bones) follow "
+                       "their dominant bone\n"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST_F(BadInputCli, GltfTimesOutsideTheAnimationAreFittedWithAWarning) {
   const fs::path out = dir() / "gltf_times";
   const std::string glb = (out / "cyl.glb").string();
