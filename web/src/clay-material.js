@@ -1,8 +1,8 @@
-import { MeshStandardMaterial } from 'three';
+import { DoubleSide, MeshStandardMaterial } from 'three';
 
 // glTF's default material, used by primitives that name none (odeskin's baked files), is fully
 // metallic; without an environment map it renders nearly black. Those meshes get a matte clay
-// instead, keeping the loader's flat shading for files without normals. Materials a file defines
+// instead, keeping the loader's flat shading for files without normals, drawn on both sides. Materials a file defines
 // are left alone.
 export function useClayForDefaultMaterials(gltf) {
   gltf.scene.traverse((object) => {
@@ -15,6 +15,8 @@ export function useClayForDefaultMaterials(gltf) {
       roughness: 0.8,
       metalness: 0,
       flatShading: object.material.flatShading,
+      // Open surfaces (odeskin surface's patches, a tube's inside) are seen from both sides.
+      side: DoubleSide,
     });
   });
 }

@@ -1,6 +1,7 @@
 // The page's wiring: where files come from, what the bar's buttons do, and the draw loop.
 import './style.css';
 import { useClayForDefaultMaterials } from './clay-material.js';
+import { deformedPositions } from './deformed-positions.js';
 import { FrameTimer } from './frame-timer.js';
 import { watchGlbSources } from './glb-sources.js';
 import { loadGlbFromFile, loadGlbFromUrl } from './load-glb.js';
@@ -85,15 +86,49 @@ async function load(name, read) {
   }
 }
 
+// Checked before anything of the shown file is let go: a file that fails here leaves the last one
+// playing as it was.
+function checkShowable(gltf) {
+  if (!gltf.scene) throw new Error('the file has no scene to show');
+  let meshes = 0;
+  const layers = app.viewer.maxMorphTargets();
+  gltf.scene.traverse((object) => {
+    if (!object.isMesh) return;
+    meshes += 1;
+    const targets = object.geometry.morphAttributes.position?.length ?? 0;
+    if (targets > layers) {
+      throw new Error(
+        `${targets} morph targets, more than the ${layers} this browser's WebGL draws ` +
+          '(MAX_ARRAY_TEXTURE_LAYERS); bake fewer frames (a lower --fps) or use odeskin export',
+      );
+    }
+  });
+  if (meshes === 0) throw new Error('the file has no mesh');
+}
+
+// The model's poses at a few times over its animation, one flat array: the camera frames them all.
+function posesOverTime(playback, root) {
+  const samples = playback.animated ? 8 : 0;
+  const positions = [];
+  for (let k = 0; k <= samples; k++) {
+    playback.seek((playback.duration * k) / Math.max(samples, 1));
+    for (const p of deformedPositions(root)) positions.push(p);
+  }
+  playback.seek(0);
+  return positions;
+}
+
 function show(gltf, name) {
+  checkShowable(gltf);
   app.playback?.dispose();
   useClayForDefaultMaterials(gltf);
-  // Pose the model at time 0 before the viewer frames it.
   app.playback = new Playback(gltf.scene, gltf.animations);
-  app.viewer.show(gltf.scene);
+  app.viewer.show(gltf.scene, posesOverTime(app.playback, gltf.scene));
   bar.setDuration(app.playback.duration);
   bar.setPlaying(false);
   bar.setTime(0);
+  app.frameTimer = new FrameTimer();
+  bar.setFrameTime(null);
   bar.setStatus(`${name}: ${describe(gltf.scene)}`);
   document.body.classList.add('loaded');
   app.state = 'ready';
@@ -120,5 +155,5 @@ function describe(root) {
 
 watchGlbSources({
   onFile: (file) => load(file.name, () => loadGlbFromFile(file)),
-  onUrl: (url) => load(url.split('/').pop(), () => loadGlbFromUrl(url)),
+  onUrl: (url) => load(url.split('/').filter(Boolean).pop() ?? url, () => loadGlbFromUrl(url)),
 });

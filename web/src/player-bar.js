@@ -11,12 +11,21 @@ export class PlayerBar {
 
     this.button.addEventListener('click', onTogglePlay);
     this.slider.addEventListener('input', () => onSeek(Number(this.slider.value)));
-    // Space plays and pauses, unless a control that uses the key itself has the focus.
+    // Space plays and pauses, unless a control that uses the key itself has the focus: a button
+    // (Play clicks itself), a text field. The slider has no use for it, and the hidden file input
+    // keeps the focus after Open, where Space would open the file dialog again. A held key toggles
+    // once.
     window.addEventListener('keydown', (event) => {
       if (event.code !== 'Space' || this.button.disabled) return;
-      if (event.target instanceof HTMLButtonElement || event.target instanceof HTMLInputElement) return;
+      const target = event.target;
+      if (target instanceof HTMLButtonElement) return;
+      if (target instanceof HTMLInputElement && target.type !== 'range' && target.type !== 'file') return;
       event.preventDefault();
-      onTogglePlay();
+      if (!event.repeat) onTogglePlay();
+    });
+    // The file input activates on the key's release, which the keydown above cannot stop.
+    document.getElementById('file').addEventListener('keyup', (event) => {
+      if (event.code === 'Space') event.preventDefault();
     });
   }
 
@@ -39,13 +48,18 @@ export class PlayerBar {
   }
 
   setFrameTime(ms) {
-    if (ms === null) return;
+    if (ms === null) {
+      this.frameTime.textContent = '– ms/frame';
+      this.frameTime.title = 'Time between drawn frames, averaged';
+      return;
+    }
     this.frameTime.textContent = `${ms.toFixed(1)} ms/frame`;
     this.frameTime.title = `Time between drawn frames, averaged: ${(1000 / ms).toFixed(0)} fps`;
   }
 
   setStatus(text, isError = false) {
     this.status.textContent = text;
+    this.status.title = text; // the bar shows the start; the whole message on hover
     this.status.classList.toggle('error', isError);
   }
 }

@@ -32,12 +32,18 @@ export class Viewer {
     this.camera = new PerspectiveCamera(35, 1, 0.01, 100);
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.addEventListener('change', onChange);
+    // Until the user moves the camera, a resized window is framed again.
+    this.controls.addEventListener('start', () => {
+      this.userMoved = true;
+    });
     this.model = null;
     this.grid = null;
+    this.userMoved = false;
 
     // The canvas fills whatever room the layout gives it.
     new ResizeObserver(() => {
       this.resize();
+      if (this.model !== null && !this.userMoved) this.frame();
       onChange();
     }).observe(canvas.parentElement);
     this.resize();
@@ -51,8 +57,15 @@ export class Viewer {
     this.camera.updateProjectionMatrix();
   }
 
-  // Replaces the shown model (a glTF scene) and frames the camera on its current pose.
-  show(root) {
+  // Morph targets three.js can draw on one mesh: it keeps them as the layers of one array texture.
+  maxMorphTargets() {
+    const gl = this.renderer.getContext();
+    return gl.getParameter(gl.MAX_ARRAY_TEXTURE_LAYERS);
+  }
+
+  // Replaces the shown model (a glTF scene) and frames the camera on `positions` (flat xyz, the
+  // poses it will take; default: its current pose).
+  show(root, positions = deformedPositions(root)) {
     this.clear();
     this.model = root;
     // Morph targets and skinning move vertices outside the bind pose's bounds, which three would
@@ -61,25 +74,27 @@ export class Viewer {
       if (object.isMesh) object.frustumCulled = false;
     });
     this.scene.add(root);
+    this.positions = positions;
+    this.userMoved = false;
     this.frame();
   }
 
   clear() {
     if (this.model === null) return;
-    this.scene.remove(this.model, this.grid);
+    this.scene.remove(this.model);
     this.model.traverse((object) => {
       if (!object.isMesh) return;
       object.geometry.dispose();
       for (const material of [object.material].flat()) material.dispose();
+      object.skeleton?.dispose(); // its bone texture
     });
-    this.grid.dispose();
     this.model = null;
   }
 
-  // Points the camera at the model's current pose, with a ground grid under it, and scales the
-  // near/far planes and the light to the model's size (odeskin keeps the input's units).
+  // Points the camera at the model's poses, with a ground grid under them, and scales the near/far
+  // planes and the light to the model's size (odeskin keeps the input's units).
   frame() {
-    const positions = deformedPositions(this.model);
+    const positions = this.positions;
     const box = new Box3().setFromArray(positions);
     if (box.isEmpty()) box.setFromCenterAndSize(new Vector3(), new Vector3(1, 1, 1));
     const sphere = box.getBoundingSphere(new Sphere());
@@ -95,6 +110,10 @@ export class Viewer {
     this.light.target.position.copy(sphere.center);
 
     const size = 4 * radius;
+    if (this.grid !== null) {
+      this.scene.remove(this.grid);
+      this.grid.dispose();
+    }
     this.grid = new GridHelper(size, 16, 0x5a606c, 0x3a3f48);
     this.grid.position.set(sphere.center.x, box.min.y, sphere.center.z);
     this.scene.add(this.grid);

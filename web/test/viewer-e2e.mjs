@@ -11,7 +11,7 @@
 // a missing Chromium, odeskin or npm package: nothing is skipped.
 import { execFile } from 'node:child_process';
 import { existsSync } from 'node:fs';
-import { mkdir, mkdtemp, rm } from 'node:fs/promises';
+import { mkdir, mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseArgs, promisify } from 'node:util';
@@ -193,6 +193,19 @@ async function checkScreenshot(page, file) {
       '(expected 1% to 90%): WebGL drew nothing, or nothing else');
 }
 
+// A file cut in half is named as such (the loader's own words were "Invalid typed array length"),
+// and the page stays usable: the good file loads after it.
+async function checkCutFile(page, server, goodUrl) {
+  await page.goto(`${server.url}/?src=${encodeURIComponent('bad/cut.glb')}`);
+  await page.waitForFunction(() => ['ready', 'error'].includes(window.odeskinViewer?.state()), null, { timeout: 60000 });
+  const error = await page.evaluate(() => window.odeskinViewer.error());
+  check(/^cut\.glb: cut short: its header declares \d+ bytes, the file has \d+$/.test(error ?? ''),
+    `a cut .glb reads '${error}'`);
+  await page.goto(goodUrl);
+  await page.waitForFunction(() => ['ready', 'error'].includes(window.odeskinViewer?.state()), null, { timeout: 60000 });
+  check((await page.evaluate(() => window.odeskinViewer.error())) === null, 'the good file did not load after a cut one');
+}
+
 async function main() {
   const options = parseOptions();
   await mkdir(options.out, { recursive: true });
@@ -201,7 +214,11 @@ async function main() {
   await buildPage(dist);
   log(`built the page into ${dist}`);
 
-  const server = await serveStatic({ '/': dist, '/files/': path.dirname(path.resolve(options.glb)) });
+  const bad = path.join(options.out, 'bad');
+  await mkdir(bad, { recursive: true });
+  const glb = await readFile(options.glb);
+  await writeFile(path.join(bad, 'cut.glb'), glb.subarray(0, glb.length >> 1));
+  const server = await serveStatic({ '/': dist, '/files/': path.dirname(path.resolve(options.glb)), '/bad/': bad });
   const browser = await launchChromium(options).catch(async (error) => {
     await server.close();
     throw error;
@@ -238,6 +255,8 @@ async function main() {
       await page.screenshot({ path: options['page-screenshot'] });
       log(`page screenshot: ${options['page-screenshot']}`);
     }
+    await checkCutFile(page, server, url);
+    log('a cut copy of the file is refused as cut short, and the file loads after it');
     check(problems.length === 0, `the page reported:\n  ${problems.join('\n  ')}`);
   } finally {
     await browser.close();
