@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "tessellation_glb.hpp"
 
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
 #include <tiny_gltf.h>
 
 #include "../core/finite_vector.hpp"
@@ -20,7 +24,7 @@ int addVec3(tinygltf::Model& m, std::span<const Vec3> values, bool bounds) {
 }  // namespace
 
 Status writeSurfaceGlb(const std::filesystem::path& path, const SurfaceMesh& mesh, std::span<const Vec3> normals,
-                       const std::string& generator) {
+                       const Vec3& up, const std::string& generator) {
   if (normals.size() != mesh.positions.size()) {
     return invalidArgument("surface glTF: " + std::to_string(normals.size()) + " normals for " +
                            std::to_string(mesh.positions.size()) + " vertices");
@@ -43,6 +47,14 @@ Status writeSurfaceGlb(const std::filesystem::path& path, const SurfaceMesh& mes
   gltf_mesh.primitives.push_back(primitive);
   m.meshes.push_back(gltf_mesh);
   gltf::addSingleMeshScene(m, "odeskin surface");
+  // The shortest turn from `up` to +y, (1 + up.y, up x y) normalised; half a turn about x for -y.
+  if (up != Vec3(0.0, 1.0, 0.0)) {
+    const Vec3 axis = glm::cross(up, Vec3(0.0, 1.0, 0.0));
+    const double w = 1.0 + up.y;
+    const double norm = std::sqrt(w * w + glm::dot(axis, axis));
+    m.nodes[0].rotation = up.y < -0.5 ? std::vector<double>{1.0, 0.0, 0.0, 0.0}
+                                      : std::vector<double>{axis.x / norm, axis.y / norm, axis.z / norm, w / norm};
+  }
   return writeGlbAtomically(path, m);
 }
 

@@ -13,10 +13,12 @@
 
 namespace odeskin {
 
-// normals: one per vertex (vertexNormals). kInvalidArgument for a size mismatch, a coordinate that
-// is not finite, or positions beyond glTF's float32 range (gltf::checkFloat32Positions); kIoError
-// naming `path` when it cannot be written.
+// normals: one per vertex (vertexNormals). up: the network's up axis, a unit +-x, +-y or +-z; glTF
+// is +y up, so any other gets the node a rotation taking it there (the accessors keep the network's
+// coordinates). kInvalidArgument for a size mismatch, a coordinate that is not finite, or positions
+// beyond glTF's float32 range (gltf::checkFloat32Positions); kIoError naming `path` when it cannot be
+// written.
 Status writeSurfaceGlb(const std::filesystem::path& path, const SurfaceMesh& mesh, std::span<const Vec3> normals,
-                       const std::string& generator = "odeskin surface");
+                       const Vec3& up = Vec3(0.0, 1.0, 0.0), const std::string& generator = "odeskin surface");
 
 }  // namespace odeskin

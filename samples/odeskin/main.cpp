@@ -213,7 +213,7 @@ CLI::App* addSurfaceCommand(CLI::App& app, odeskin::SurfaceCommandOptions& o) {
       "boundary are C2 across it; patches side by side in v must have equal eta/rho and lambda/rho\n"
       "(MATH.md 3.8), otherwise the network is refused unless it says \"continuity\": \"warn\".\n"
       "The mesh is one welded grid: --res U,V samples per patch, shared along every seam.\n"
-      "Examples: odeskin surface samples/surfaces/networks/vase.json -o vase.glb\n"
+      "Examples: odeskin surface samples/surfaces/networks/vase.json -o vase.glb --up z\n"
       "          odeskin surface torus.json -o torus.glb --res 65,65 --obj\n"
       "          odeskin surface patch.json -o thin.glb --shape 0.0001,3,0.0001\n"
       "          odeskin surface sheet.json -o sheet.glb --backend vulkan --validation");
@@ -222,6 +222,9 @@ CLI::App* addSurfaceCommand(CLI::App& app, odeskin::SurfaceCommandOptions& o) {
   cmd->add_option("--res", o.resolution, "U,V: samples per patch along u and v, both edges included (default 33,33)");
   cmd->add_flag("--obj", o.obj, "Also write the welded quads as OUT.obj (same stem as the .glb)");
   cmd->add_option("--shape", o.shape, "RHO,ETA,LAMBDA for every patch instead of the file's shapes");
+  cmd->add_option("--up", o.up,
+                  "The network's up axis: x, y, z, -x, -y or -z (default y). glTF is y-up: another axis turns the\n"
+                  "mesh node so viewers show it upright (the sample networks are z-up)");
   cmd->add_option("--backend", o.backend,
                   "cpu (double-precision reference), vulkan (compute shader, float), or auto (vulkan, else cpu)")
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));

@@ -19,6 +19,7 @@
 #include "engine/surfaces/tessellation_glb.hpp"
 #include "file_extension.hpp"
 #include "host/surface_tessellator.hpp"
+#include "render_session.hpp"
 
 namespace odeskin {
 namespace {
@@ -75,6 +76,7 @@ std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution&
   if (!o.shape.empty() && !parseShape(o.shape, shape)) {
     return "surface: --shape '" + o.shape + "': expected RHO,ETA,LAMBDA, three finite numbers";
   }
+  if (Result<Vec3> up = parseUpAxis(o.up); !up.ok()) return "surface: " + up.status().message();
   return {};
 }
 
@@ -217,7 +219,7 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
     written.add(obj);
   }
   const std::vector<Vec3> normals = vertexNormals(*mesh);
-  if (Status s = writeSurfaceGlb(o.output, *mesh, normals); !s.ok()) {
+  if (Status s = writeSurfaceGlb(o.output, *mesh, normals, *parseUpAxis(o.up)); !s.ok()) {
     written.removeAll();
     // A mesh the glTF cannot hold (float32's range) is this network's; write errors name the file.
     const bool about_input = s.code() == StatusCode::kInvalidArgument;

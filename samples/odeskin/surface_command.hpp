@@ -19,6 +19,7 @@ struct SurfaceCommandOptions {
   std::string resolution = "33,33";  // "U,V": samples per patch along u and v, each >= 2
   bool obj = false;               // also OUT.obj (same stem), the welded quads
   std::string shape;              // "RHO,ETA,LAMBDA" for every patch instead of the file's; empty: the file's
+  std::string up = "y";           // the network's up axis (parseUpAxis); the GLB's node turns it to glTF's +y
   std::string backend = "cpu";    // cpu (double reference), vulkan (shaders/ode6_tessellate.comp), or auto:
                                   // vulkan, falling back to cpu (with a note) when any Vulkan step fails
   std::string device = "auto";

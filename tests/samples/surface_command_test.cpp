@@ -110,6 +110,32 @@ TEST(SurfaceCommand, WritesAValidGlbAndObj) {
   fs::remove_all(dir);
 }
 
+// glTF is y-up; the sample networks are z-up and lay on their side in every viewer. --up turns the
+// mesh node, never the positions.
+TEST(SurfaceCommand, UpTurnsTheNodeToGltfsUp) {
+  const fs::path dir = scratch("up");
+  const std::vector<std::pair<std::string, std::vector<double>>> cases = {
+      {"y", {}}, {"z", {-std::sqrt(0.5), 0.0, 0.0, std::sqrt(0.5)}}, {"-z", {std::sqrt(0.5), 0.0, 0.0, std::sqrt(0.5)}},
+      {"x", {0.0, 0.0, std::sqrt(0.5), std::sqrt(0.5)}}, {"-y", {1.0, 0.0, 0.0, 0.0}}};
+  for (const auto& [axis, rotation] : cases) {
+    SurfaceCommandOptions o;
+    o.network = kNetworks / "vase.json";
+    o.output = dir / ("vase_" + axis + ".glb");
+    o.resolution = "5,5";
+    o.up = axis;
+    Captured io;
+    ASSERT_EQ(runSurfaceCommand(o, io.console), 0) << io.err.str();
+    tinygltf::Model m;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &error, &warning, o.output.string())) << error;
+    ASSERT_EQ(m.nodes.size(), 1u);
+    ASSERT_EQ(m.nodes[0].rotation.size(), rotation.size()) << axis;
+    for (std::size_t k = 0; k < rotation.size(); ++k) EXPECT_NEAR(m.nodes[0].rotation[k], rotation[k], 1e-15) << axis;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(SurfaceCommand, ShapeOverridesEveryPatch) {
   const fs::path dir = scratch("shape");
   SurfaceCommandOptions o;
@@ -252,6 +278,8 @@ TEST(SurfaceCommand, BadOptionsAreUsageErrors) {
   };
   SurfaceCommandOptions backend = options("x.glb", "9,9");
   backend.backend = "metal";
+  SurfaceCommandOptions up = options("x.glb", "9,9");
+  up.up = "w";
   const std::vector<CommandCase<SurfaceCommandOptions>> cases = {
       {options("x.gltf", "9,9"), "x.gltf: write .glb"},
       {options("x.glb", "1,9"), "--res '1,9'"},
@@ -259,6 +287,7 @@ TEST(SurfaceCommand, BadOptionsAreUsageErrors) {
       {options("x.glb", "9,x"), "--res '9,x'"},
       {options("x.glb", "-3,9"), "--res '-3,9'"},
       {backend, "--backend must be cpu, vulkan or auto"},
+      {up, "surface: --up 'w' must be x, y, z, -x, -y or -z"},
       {shaped("1,3"), "--shape '1,3': expected RHO,ETA,LAMBDA"},
       {shaped("1,3,x"), "--shape '1,3,x'"},
       {shaped("1,3,1,2"), "--shape '1,3,1,2'"},
