@@ -99,28 +99,31 @@ std::vector<Ode6Shape> regimeShapes() {
   };
 }
 
+// Row order: (value, slope, curvature) at u = 0, then at u = 1, matching c1..c6. Derivatives are
+// compared with the patch's own scale: g^(j) is of order W^j near thin boundary layers, so an
+// absolute `tolerance` on the j-th derivative means tolerance W^j.
+void expectUnitConditions(const Ode6Cardinal& g, const Ode6Shape& shape, double tolerance) {
+  for (int end = 0; end < 2; ++end) {
+    std::array<Ode6Values, 3> d{};
+    g.evaluate(end, d);
+    for (std::size_t order = 0; order < 3; ++order) {
+      for (std::size_t k = 0; k < 6; ++k) {
+        const double expected = (k == 3 * static_cast<std::size_t>(end) + order) ? 1.0 : 0.0;
+        EXPECT_NEAR(d[order][k], expected, tolerance * std::pow(g.basis().w, static_cast<double>(order)))
+            << "rho " << shape.rho << " eta " << shape.eta << " lambda " << shape.lambda << ": g" << (k + 1)
+            << " derivative " << order << " at u = " << end;
+      }
+    }
+  }
+}
+
 TEST(Ode6Cardinal, UnitConditionsAtBothEndsInEveryRegime) {
   std::array<bool, 9> seen{};
   for (const Ode6Shape& shape : regimeShapes()) {
     Result<Ode6Cardinal> g = Ode6Cardinal::create(shape);
     ASSERT_TRUE(g.ok()) << g.status().toString();
     seen[static_cast<std::size_t>(g->regime())] = true;
-    // Row order: (value, slope, curvature) at u = 0, then at u = 1, matching c1..c6.
-    for (int end = 0; end < 2; ++end) {
-      std::array<Ode6Values, 3> d{};
-      g->evaluate(end, d);
-      for (std::size_t order = 0; order < 3; ++order) {
-        for (std::size_t k = 0; k < 6; ++k) {
-          const double expected = (k == 3 * static_cast<std::size_t>(end) + order) ? 1.0 : 0.0;
-          // Derivatives are compared with the patch's own scale: g^(j) is of order W^j near thin
-          // boundary layers, so an absolute 1e-12 on the j-th derivative means 1e-12 W^j.
-          const double scale = std::pow(g->basis().w, static_cast<double>(order));
-          EXPECT_NEAR(d[order][k], expected, 1e-12 * scale)
-              << "rho " << shape.rho << " eta " << shape.eta << " lambda " << shape.lambda << ": g" << (k + 1)
-              << " derivative " << order << " at u = " << end;
-        }
-      }
-    }
+    expectUnitConditions(*g, shape, 1e-12);
   }
   for (std::size_t r = 0; r < seen.size(); ++r) EXPECT_TRUE(seen[r]) << "no shape in regime " << r;
 }
@@ -133,18 +136,7 @@ TEST(Ode6Cardinal, LargeRealRootsKeepTheirCurvatureConditions) {
                                  Ode6Shape{1, -1e12, 1e22}, Ode6Shape{1, 1e11, -1e21}}) {
     Result<Ode6Cardinal> g = Ode6Cardinal::create(shape);
     ASSERT_TRUE(g.ok()) << g.status().toString();
-    for (int end = 0; end < 2; ++end) {
-      std::array<Ode6Values, 3> d{};
-      g->evaluate(end, d);
-      for (std::size_t order = 0; order < 3; ++order) {
-        for (std::size_t k = 0; k < 6; ++k) {
-          const double expected = (k == 3 * static_cast<std::size_t>(end) + order) ? 1.0 : 0.0;
-          EXPECT_NEAR(d[order][k], expected, 1e-9 * std::pow(g->basis().w, static_cast<double>(order)))
-              << "eta " << shape.eta << " lambda " << shape.lambda << ": g" << (k + 1) << " derivative " << order
-              << " at u = " << end;
-        }
-      }
-    }
+    expectUnitConditions(*g, shape, 1e-12);
   }
 }
 
