@@ -99,6 +99,7 @@ class ReadbackStage {
   // kInvalidArgument for a range past the buffer or more than capacity() bytes.
   Status download(const Device& device, const Buffer& buffer, std::span<std::byte> out, VkDeviceSize offset);
   VkDeviceSize capacity() const { return staging_.size(); }
+  const Buffer& staging() const { return staging_; }  // for memory reports
 
  private:
   Buffer staging_;

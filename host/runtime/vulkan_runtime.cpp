@@ -234,6 +234,7 @@ RuntimeMemory VulkanRuntime::memory() const {
       outputs.add(*b);
     }
   }
+  if (readback_) outputs.add(readback_->staging());
   RuntimeMemory m;
   m.capacity = capacity();
   m.asset = asset.bytes;
