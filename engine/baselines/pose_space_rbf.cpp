@@ -10,6 +10,8 @@
 
 #include <Eigen/Dense>
 
+#include "../core/disjoint_sets.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -154,24 +156,20 @@ void RbfInterpolator::groupExamples(std::span<const double> examples) {
       diameter = std::max(diameter, between[k * k_count + l]);
     }
   }
-  // Single linkage: a chain of close examples is one group, numbered by its first example.
-  std::vector<std::size_t> root(k_count);
-  for (std::size_t k = 0; k < k_count; ++k) root[k] = k;
-  const auto find = [&](std::size_t k) {
-    while (root[k] != k) k = root[k] = root[root[k]];
-    return k;
-  };
+  // Single linkage: a chain of close examples is one group, numbered by its first example (a set's
+  // root is its smallest member).
+  DisjointSets sets(k_count);
   for (std::size_t k = 0; k < k_count; ++k) {
     for (std::size_t l = k + 1; l < k_count; ++l) {
-      if (between[k * k_count + l] > kMergeRelative * diameter) continue;
-      const std::size_t a = find(k), b = find(l);
-      root[std::max(a, b)] = std::min(a, b);
+      if (between[k * k_count + l] <= kMergeRelative * diameter) {
+        sets.unite(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(l));
+      }
     }
   }
   group_of_.assign(k_count, 0);
   std::vector<std::uint32_t> group_of_root(k_count, std::numeric_limits<std::uint32_t>::max());
   for (std::size_t k = 0; k < k_count; ++k) {
-    std::uint32_t& g = group_of_root[find(k)];
+    std::uint32_t& g = group_of_root[sets.find(static_cast<std::uint32_t>(k))];
     if (g == std::numeric_limits<std::uint32_t>::max()) {
       g = static_cast<std::uint32_t>(group_sizes_.size());
       group_sizes_.push_back(0);
