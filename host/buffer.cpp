@@ -161,17 +161,13 @@ Status Buffer::upload(const Device& device, std::span<const std::byte> bytes, Vk
 Status Buffer::download(const Device& device, std::span<std::byte> out, VkDeviceSize offset) const {
   ODESKIN_TRY(checkRange("Buffer::download", size_, out.size(), offset));
   if (out.empty()) return okStatus();
-  if (mapped_ != nullptr && hostReadsDirectly(memory_flags_)) {
+  if (readsInPlace()) {
     std::memcpy(out.data(), mapped_ + offset, out.size());
     return okStatus();
   }
-  ODESKIN_ASSIGN_OR_RETURN(Buffer staging, create(device, out.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                  MemoryUse::kHostReadback));
-  const VkBufferCopy region{offset, 0, out.size()};
-  ODESKIN_TRY(device.submitAndWait(
-      [&](VkCommandBuffer cmd) { recordCopyToHost(cmd, handle(), staging.handle(), region); }));
-  std::memcpy(out.data(), staging.mapped(), out.size());
-  return okStatus();
+  // A stage for this one read: what a caller reading every frame keeps instead.
+  ODESKIN_ASSIGN_OR_RETURN(ReadbackStage stage, ReadbackStage::create(device, out.size()));
+  return stage.download(device, *this, out, offset);
 }
 
 Result<ReadbackStage> ReadbackStage::create(const Device& device, VkDeviceSize capacity) {
@@ -188,7 +184,7 @@ Status ReadbackStage::download(const Device& device, const Buffer& buffer, std::
                                VkDeviceSize offset) {
   ODESKIN_TRY(checkRange("ReadbackStage::download", buffer.size(), out.size(), offset));
   if (out.empty()) return okStatus();
-  if (buffer.mapped() != nullptr && hostReadsDirectly(buffer.memoryFlags())) {
+  if (buffer.readsInPlace()) {
     std::memcpy(out.data(), buffer.mapped() + offset, out.size());
     return okStatus();
   }

@@ -65,13 +65,15 @@ class Buffer {
   VkDeviceSize allocatedBytes() const { return allocated_; }
   // Host pointer to the whole buffer when it is mapped, else null.
   std::byte* mapped() const { return mapped_; }
+  // Mapped in memory the host reads at memory speed (hostReadsDirectly): download() reads it there.
+  bool readsInPlace() const { return mapped_ != nullptr && hostReadsDirectly(memory_flags_); }
 
   // Copies `bytes` to [offset, offset + bytes.size()): memcpy when mapped, else through a staging
   // buffer and a one-off submit. kInvalidArgument when the range exceeds the buffer. The caller
   // makes sure the GPU is not using the range.
   Status upload(const Device& device, std::span<const std::byte> bytes, VkDeviceSize offset = 0);
   // Copies [offset, offset + out.size()) to `out`; the caller has waited for the writes. Reads the
-  // mapping when hostReadsDirectly(memoryFlags()), else copies through a kHostReadback buffer.
+  // mapping when readsInPlace(), else copies through a one-off ReadbackStage (below).
   Status download(const Device& device, std::span<std::byte> out, VkDeviceSize offset = 0) const;
   VkMemoryPropertyFlags memoryFlags() const { return memory_flags_; }
 

@@ -209,8 +209,7 @@ Status VulkanRuntime::createSlots(BoundsReadback bounds) {
   }
   // Where the host cannot read the outputs in place (a discrete GPU), copy calls stage one
   // instance's output through buffers made now, not per call.
-  const vk::Buffer& out = outPositions(0);
-  if (out.mapped() == nullptr || !vk::hostReadsDirectly(out.memoryFlags())) {
+  if (!outPositions(0).readsInPlace()) {
     const VkDeviceSize instance_bytes = std::max<VkDeviceSize>(VkDeviceSize{outputVertexCount()} * sizeof(gpu::Float4), 16);
     ODESKIN_ASSIGN_OR_RETURN(readback_, vk::ReadbackStage::create(*device_, instance_bytes));
   }
