@@ -12,8 +12,6 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
-import { deformedPositions } from './deformed-positions.js';
-
 const BACKGROUND = new Color(0x24272e);
 // Seen from the right front and a little above: shows the silhouette and the depth of a pose.
 const VIEW_DIRECTION = new Vector3(1.5, 0.5, 1).normalize();
@@ -64,8 +62,8 @@ export class Viewer {
   }
 
   // Replaces the shown model (a glTF scene) and frames the camera on `positions` (flat xyz, the
-  // poses it will take; default: its current pose).
-  show(root, positions = deformedPositions(root)) {
+  // poses it will take).
+  show(root, positions) {
     this.clear();
     this.model = root;
     // Morph targets and skinning move vertices outside the bind pose's bounds, which three would
