@@ -58,7 +58,7 @@ bool parseShape(const std::string& text, Ode6Shape& shape) {
 // --obj: OUT.obj beside OUT.glb.
 std::filesystem::path objPath(const SurfaceCommandOptions& o) { return std::filesystem::path(o.output).replace_extension(".obj"); }
 
-std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution& r, Ode6Shape& shape) {
+std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution& r, Ode6Shape& shape, Vec3& up) {
   if (o.output.empty()) return "surface: -o OUT.glb is required";
   if (lowerExtension(o.output) != ".glb") {
     return "surface: " + o.output.string() + ": write .glb (one self-contained glTF binary; add --obj for an OBJ too)";
@@ -76,7 +76,9 @@ std::string usageProblem(const SurfaceCommandOptions& o, TessellationResolution&
   if (!o.shape.empty() && !parseShape(o.shape, shape)) {
     return "surface: --shape '" + o.shape + "': expected RHO,ETA,LAMBDA, three finite numbers";
   }
-  if (Result<Vec3> up = parseUpAxis(o.up); !up.ok()) return "surface: " + up.status().message();
+  Result<Vec3> axis = parseUpAxis(o.up);
+  if (!axis.ok()) return "surface: " + axis.status().message();
+  up = *axis;
   return {};
 }
 
@@ -144,7 +146,10 @@ Status surfaceFitsInMemory(std::uint64_t vertices, std::uint64_t memory_bytes) {
 int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceReport* report_out) {
   TessellationResolution resolution;
   Ode6Shape shape;
-  if (const std::string problem = usageProblem(o, resolution, shape); !problem.empty()) return reportUsage(console, problem);
+  Vec3 up(0.0, 1.0, 0.0);
+  if (const std::string problem = usageProblem(o, resolution, shape, up); !problem.empty()) {
+    return reportUsage(console, problem);
+  }
   if (o.validation && o.backend == "cpu" && !console.quiet) {
     console.err << "note: --validation checks Vulkan calls, and --backend cpu makes none\n";
   }
@@ -219,7 +224,7 @@ int runSurfaceCommand(const SurfaceCommandOptions& o, Console& console, SurfaceR
     written.add(obj);
   }
   const std::vector<Vec3> normals = vertexNormals(*mesh);
-  if (Status s = writeSurfaceGlb(o.output, *mesh, normals, *parseUpAxis(o.up)); !s.ok()) {
+  if (Status s = writeSurfaceGlb(o.output, *mesh, normals, up); !s.ok()) {
     written.removeAll();
     // A mesh the glTF cannot hold (float32's range) is this network's; write errors name the file.
     const bool about_input = s.code() == StatusCode::kInvalidArgument;
