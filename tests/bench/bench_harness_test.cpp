@@ -8,14 +8,13 @@
 #include <map>
 #include <thread>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "bench/harness/bench_plot.hpp"
 #include "bench/harness/bench_report.hpp"
 #include "bench/harness/deform_cases.hpp"
+#include "scratch_dir.hpp"  // tests/
 #include "bench/harness/device_bandwidth.hpp"
 #include "bench/harness/frame_timer.hpp"
 #include "bench/harness/frame_traffic.hpp"
@@ -261,8 +260,7 @@ TEST(BenchReport, PairedRatiosAreWrittenWhereMeasured) {
 }
 
 TEST(BenchPlot, WritesAPngAndRefusesAnEmptyReport) {
-  const fs::path dir = fs::temp_directory_path() / ("odeskin_bench_plot_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = odeskin::testing::scratchDir("bench_plot");
   ASSERT_TRUE(writePlot(dir / "plot.png", sampleReport()).ok());
   std::ifstream in(dir / "plot.png", std::ios::binary);
   char signature[8] = {};
@@ -274,8 +272,7 @@ TEST(BenchPlot, WritesAPngAndRefusesAnEmptyReport) {
 }
 
 TEST(BenchPlot, FitPlotDrawsTheSubdividedSeriesOnly) {
-  const fs::path dir = fs::temp_directory_path() / ("odeskin_fit_plot_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = odeskin::testing::scratchDir("fit_plot");
   BenchReport report;
   report.cpu = "test cpu";
   FitStageRecord other;

@@ -15,9 +15,12 @@
 #include <gtest/gtest.h>
 
 #include "engine/offline/procedural_arm.hpp"
+#include "scratch_dir.hpp"  // tests/
 
 namespace odeskin {
 namespace {
+
+using testing::scratchDir;
 
 // A small arm fitted over three keys (so segment 1 carries rates), with every optional field of
 // the asset filled and a few doubles whose bits a lossy format would change.
@@ -172,13 +175,6 @@ std::vector<std::pair<std::string, std::string>> sections(const std::string& fil
     pos += 12 + size;
   }
   return out;
-}
-
-std::filesystem::path scratchDir(const std::string& name) {
-  std::filesystem::path dir = std::filesystem::temp_directory_path() / ("odeskin_asset_file_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
 }
 
 class AssetFile : public ::testing::Test {

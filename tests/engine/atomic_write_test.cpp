@@ -14,19 +14,14 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include "scratch_dir.hpp"  // tests/
 
 namespace odeskin {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path freshDir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  fs::path dir = fs::temp_directory_path() / "odeskin_atomic_write_test" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path freshDir() { return odeskin::testing::testScratchDir(); }
 
 std::string contents(const fs::path& path) {  // "" for a file that is not there
   Result<std::string> text = readTextFile(path);

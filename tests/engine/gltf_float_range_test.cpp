@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 // glTF stores positions as float32: the writers refuse meshes whose coordinates float cannot hold,
 // where they wrote infinities (and null accessor bounds) or zeros before.
-#include <unistd.h>
-
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,6 +10,7 @@
 #include "engine/io/gltf_baked_writer.hpp"
 #include "engine/io/gltf_buffer_builder.hpp"
 #include "engine/io/gltf_rig_writer.hpp"
+#include "scratch_dir.hpp"  // tests/
 
 namespace odeskin {
 namespace {
@@ -30,12 +29,7 @@ FaceList quad() {
   return faces;
 }
 
-fs::path scratch(const std::string& name) {
-  fs::path dir = fs::temp_directory_path() / ("odeskin_gltf_float_range_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return odeskin::testing::scratchDir("gltf_float_range_" + name); }
 
 void expectMessage(const Status& status, const std::string& part) {
   EXPECT_EQ(status.code(), StatusCode::kInvalidArgument) << status.toString();

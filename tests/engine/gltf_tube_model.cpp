@@ -8,6 +8,7 @@
 
 #include "engine/io/text_tokens.hpp"
 #include "engine/one_pixel_png.hpp"  // tests/engine
+#include "scratch_dir.hpp"          // tests/
 
 namespace odeskin::testing {
 namespace fs = std::filesystem;
@@ -49,8 +50,9 @@ std::size_t componentsOf(int type) {
 }
 
 fs::path tempDir() {
+  // Not emptied: a test writes several files here, and the folder is its own (scratch_dir.hpp).
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  fs::path dir = fs::temp_directory_path() / "odeskin_gltf_test" / (std::string(info->test_suite_name()) + "." + info->name());
+  fs::path dir = processScratchRoot() / (std::string("gltf_") + info->test_suite_name() + "." + info->name());
   fs::create_directories(dir);
   return dir;
 }

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/input_file.hpp"
+#include "scratch_dir.hpp"  // tests/
 
 namespace odeskin {
 namespace {
@@ -23,9 +24,7 @@ namespace fs = std::filesystem;
 class InputFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("odeskin_input_file_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = odeskin::testing::scratchDir("input_file");
   }
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;

@@ -3,8 +3,6 @@
 // German LC_NUMERIC, under which snprintf("%.9g") wrote OBJ vertices as "v 1,5 -2,25 0", which no
 // reader (odeskin's included) takes. The locale is compiled from Debian's `locales` sources into a
 // scratch folder (scripts/install-deps.sh installs the package), so the test needs no system locale.
-#include <unistd.h>
-
 #include <clocale>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +19,7 @@
 #include "engine/io/libigl_writer.hpp"
 #include "engine/io/obj_io.hpp"
 #include "engine/io/obj_reader.hpp"
+#include "scratch_dir.hpp"  // tests/
 
 namespace odeskin {
 namespace {
@@ -35,8 +34,7 @@ std::string contents(const fs::path& path) {
 class GermanNumbers : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("odeskin_locale_test_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
+    dir_ = odeskin::testing::scratchDir("locale");
     fs::create_directories(dir_ / "locales");
     const std::string command =
         "localedef -i de_DE -f UTF-8 '" + (dir_ / "locales" / "de_DE.UTF-8").string() + "' > /dev/null 2>&1";

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // PendingFile / removePendingFiles: what the command line's signal handler removes is exactly the
 // temporaries being written at that moment, and a slot is reused only once its mark is gone.
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/pending_files.hpp"
+#include "scratch_dir.hpp"  // tests/
 
 namespace odeskin {
 namespace {
@@ -21,9 +21,7 @@ namespace fs = std::filesystem;
 class PendingFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / std::string("odeskin_pending_files_").append(std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = odeskin::testing::scratchDir("pending_files");
   }
   void TearDown() override { fs::remove_all(dir_); }
   fs::path touch(const std::string& name) const {

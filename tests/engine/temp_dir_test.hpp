@@ -9,18 +9,17 @@
 
 #include <gtest/gtest.h>
 
+#include "scratch_dir.hpp"  // tests/
+
 namespace odeskin::testing {
 
 class TempDirTest : public ::testing::Test {
  protected:
-  // `prefix` keeps the folders of different test files apart (ctest runs them in parallel).
+  // `prefix` names the test file's folders.
   explicit TempDirTest(std::string prefix) : prefix_(std::move(prefix)) {}
 
   void SetUp() override {
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() / (prefix_ + info->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
+    dir_ = testScratchDir(prefix_);
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 

@@ -22,6 +22,7 @@
 #include "engine/runtime/cpu_runtime.hpp"
 #include "engine/sanitized_build.hpp"  // tests/engine
 #include "runtime_fixtures.hpp"
+#include "scratch_dir.hpp"  // tests/
 
 namespace odeskin {
 namespace {
@@ -505,8 +506,7 @@ TEST(RuntimeAsset, PresetsByNameAndTheirErrors) {
 }
 
 TEST(RuntimeAsset, LoadsAnOdskFile) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "odeskin_runtime_asset_test";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = odeskin::testing::scratchDir("runtime_asset");
   const std::filesystem::path path = dir / "cylinder.odsk";
   ASSERT_TRUE(saveAsset(path, cylinderAsset()).ok());
   Result<RuntimeAsset> loaded = RuntimeAsset::load(path, presetOptions());

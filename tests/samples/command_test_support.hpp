@@ -9,21 +9,16 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include "samples/odeskin/console.hpp"
+#include "scratch_dir.hpp"  // tests/
 
 namespace odeskin::testing {
 
-// A fresh folder per process: ctest runs each test of a file as its own process, in parallel.
+// An empty folder `prefix` + `name` in the test process's scratch root (scratch_dir.hpp).
 inline std::filesystem::path scratchDir(const std::string& prefix, const std::string& name) {
-  std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid()) + "_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  return scratchDir(prefix + name);
 }
 
 // A command's streams, for calling a verb with a Console.

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "host/gpu_test_support.hpp"
+#include "scratch_dir.hpp"  // tests/
 
 namespace odeskin {
 namespace {
@@ -40,7 +41,8 @@ double maxError(std::span<const Vec3> a, std::span<const Vec3> b) {
 }
 
 std::filesystem::path scratch(const std::string& name) {
-  std::filesystem::path dir = std::filesystem::temp_directory_path() / ("odeskin_demo_test_" + name);
+  // The demo makes the folder itself.
+  std::filesystem::path dir = odeskin::testing::processScratchRoot() / ("demo_" + name);
   std::filesystem::remove_all(dir);
   return dir;
 }
