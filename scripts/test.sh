@@ -54,6 +54,11 @@ cmake -S "$root/tests/consumer" -B "$build-consumer" -G Ninja -DCMAKE_BUILD_TYPE
 cmake --build "$build-consumer" -j "$jobs" > /dev/null
 "$build-consumer/odeskin_consumer"
 echo "odeskin: engine builds without Vulkan, and as a subproject"
+# scripts/tsan.sh builds the tests with the host off, which no other step does: configuring that
+# set-up here catches a test that needs the host's or the programs' packages (seconds, no build).
+cmake -S "$root" -B "$build-engine-tests" -G Ninja -DCMAKE_BUILD_TYPE=Release -DODESKIN_BUILD_HOST=OFF \
+  -DODESKIN_BUILD_BENCH=OFF > /dev/null
+echo "odeskin: the tests configure with the host off (scripts/tsan.sh's build)"
 
 # The installed package (cmake/OdeskinInstall.cmake): this build installed into a prefix, and the
 # consumer built against it with find_package(odeskin) alone; with the host, it also runs its frame
