@@ -30,12 +30,13 @@ std::string lowerCase(std::string_view text) {
   return out;
 }
 
+// On one line, as an error message is ("0: llvmpipe (CPU); 1: ...").
 std::string deviceList(const std::vector<VkPhysicalDevice>& devices) {
   std::string list;
   for (std::size_t i = 0; i < devices.size(); ++i) {
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(devices[i], &p);
-    list += "\n  " + std::to_string(i) + ": " + p.deviceName + " (" + deviceTypeName(p.deviceType) + ")";
+    list += (i == 0 ? " " : "; ") + std::to_string(i) + ": " + p.deviceName + " (" + deviceTypeName(p.deviceType) + ")";
   }
   return list;
 }

@@ -111,7 +111,7 @@ int drawHeatMaps(const EvaluateCommandOptions& o, const EvaluationResult& r, Con
     for (std::size_t m = 0; m < r.methods.size(); ++m) {
       const std::string name(baselineMethodName(r.methods[m]));
       render.inputs.push_back(o.png_dir / "obj" / (frameName(f.frame) + "_" + name + ".obj"));
-      render.labels.push_back(name);  // the panel adds its max and mean error (of the diagonal)
+      render.labels.push_back(name);  // the panel adds its max and mean error (of the longest box side)
     }
     render.size = std::to_string(360 * r.methods.size()) + "x400";
     Console quiet{console.out, console.err, true, false};

@@ -176,7 +176,7 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
       ->check(CLI::IsMember({"rigid", "lbs"}));
   cmd->add_option("--png", o.png_dir,
                   "Also DIR/frame_NNNN.png per in-between frame: a panel per method coloured by its error\n"
-                  "against the truth (fraction of the truth's box diagonal, as render --heat), and DIR/obj/");
+                  "against the truth (fraction of the truth's longest box side, as render --heat), and DIR/obj/");
   return cmd;
 }
 
@@ -413,7 +413,7 @@ int run(int argc, char** argv, std::string& verb) {
   double play_seconds = 0.0;
   std::string play_backend = "cpu";
   CLI::App* play_cmd =
-      app.add_subcommand("play", "Evaluate an asset at a time or over a sequence: OBJ frames, a baked GLB or a PC2 cache");
+      app.add_subcommand("play", "Evaluate an asset at a time or over a sequence: OBJ frames, a baked GLB, or a PC2 or MDD cache");
   play_cmd->footer(
       "T runs over [0, K-1] for K example poses: integer T is example pose T, T = 1.5 the middle of the\n"
       "second segment. A sequence maps seconds to T = seconds / segment length.\n"
