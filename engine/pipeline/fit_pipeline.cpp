@@ -51,7 +51,9 @@ Result<Rig> resolveRig(const ExampleSet& ex, const PipelineOptions& opt, std::st
                        std::vector<std::string>* warnings) {
   const std::size_t k_count = ex.poses.size();
   if ((!ex.rig || opt.force_auto_rig) && opt.curve_rig) {
-    return curveRigForPoses(ex.rest_positions, ex.faces, ex.poses, summary);
+    CurveRigOptions curve_options;
+    curve_options.animation.up = opt.curve_rig_up;
+    return curveRigForPoses(ex.rest_positions, ex.faces, ex.poses, summary, curve_options);
   }
   if (!ex.rig || opt.force_auto_rig) {
     AutoRigOptions auto_options;

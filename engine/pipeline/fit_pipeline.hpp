@@ -27,6 +27,7 @@ struct PipelineOptions {
   bool pure_fourier = false;
   bool force_auto_rig = false;                    // ignore a rig in the input
   bool curve_rig = false;                         // the automatic rig from iso-curves (rig/curve_rig.hpp), not from motion
+  Vec3 curve_rig_up{0.0, 1.0, 0.0};               // curve_rig: the mesh's up axis, for the skeleton templates
   int auto_bones = 0;                             // automatic rig: bone count, 0 = chosen from the mesh
   double segment_seconds = 1.0;
   // Called with a stage name and its completed fraction in [0, 1] (for progress bars).

@@ -26,6 +26,7 @@ struct EvaluateCommandOptions {
   std::filesystem::path bind;                 // rest mesh, with a .tgf rig
   std::filesystem::path weights;              // .dmat, with a .tgf rig
   int bones = 0;                              // automatic rig: bone count, 0 = chosen from the mesh
+  std::string up;                             // --rig curves: the mesh's up axis (parseUpAxis); empty: y
   std::filesystem::path png_dir;              // --png DIR: a heat-map picture per in-between frame
   std::string skeleton_fit = "rigid";         // rigid (per-bone) | lbs (SSDR, the rig's own); evaluation.hpp
 };

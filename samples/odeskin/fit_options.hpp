@@ -36,6 +36,7 @@ struct FitCommandOptions {
   double key_tolerance = 1e-4;                     // x longest bounding-box side, [kMinKeyTolerance, kMaxKeyTolerance]
   bool pure_fourier = false;
   int bones = 0;                                   // automatic rig: bone count, 0 = chosen
+  std::string up;                                  // --rig curves: the mesh's up axis (parseUpAxis); empty: y
   double segment_seconds = 1.0;                    // [kMinSegmentSeconds, kMaxSegmentSeconds]
   bool timings = false;                            // print the thesis Table 6.3 stage breakdown
 };

@@ -21,6 +21,7 @@
 #include "render_inputs.hpp"
 #include "render_session.hpp"
 #include "file_extension.hpp"
+#include "up_axis.hpp"
 
 namespace odeskin {
 namespace {

@@ -74,7 +74,4 @@ Result<std::pair<std::uint32_t, std::uint32_t>> parseImageSize(std::string_view 
 // "RRGGBB" or "#RRGGBB" hex. kInvalidArgument quoting the text.
 Result<visual::Rgba8> parseColour(std::string_view text);
 
-// "x", "y", "z", "-x", "-y", "-z" as a unit vector. kInvalidArgument quoting the text.
-Result<Vec3> parseUpAxis(std::string_view text);
-
 }  // namespace odeskin

@@ -29,6 +29,7 @@
 #include "output_paths.hpp"
 #include "render_session.hpp"
 #include "rig_picture.hpp"
+#include "up_axis.hpp"
 
 namespace odeskin {
 namespace {

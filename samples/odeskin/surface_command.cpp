@@ -20,6 +20,7 @@
 #include "file_extension.hpp"
 #include "host/surface_tessellator.hpp"
 #include "render_session.hpp"
+#include "up_axis.hpp"
 
 namespace odeskin {
 namespace {

@@ -165,5 +165,35 @@ TEST(CurveRig, FitPipelineUsesTheCurveRig) {
   for (const double e : fit->report.key_error) EXPECT_LE(e, options.key_tolerance * 1.0001);
 }
 
+// A z-up mesh rigged as y-up gets the wrong template (the cat turns humanoid); told its up axis,
+// it gets the y-up original's skeleton.
+TEST(CurveRig, FitPipelineTakesTheMeshsUpAxis) {
+  Result<ExampleSet> ex = readObjSequence(
+      std::vector<std::filesystem::path>{kData + "/cat-poses/cat-00.obj", kData + "/cat-poses/cat-01.obj"});
+  ASSERT_TRUE(ex.ok()) << ex.status().message();
+  PipelineOptions options;
+  options.curve_rig = true;
+  options.force_auto_rig = true;
+  Result<PipelineResult> upright = runFitPipeline(*ex, options);
+  ASSERT_TRUE(upright.ok()) << upright.status().message();
+  ASSERT_NE(upright->rig_summary.find("template quadruped"), std::string::npos) << upright->rig_summary;
+
+  const auto zUp = [](std::vector<Vec3>& points) {  // y-up to z-up: (x, y, z) -> (x, -z, y)
+    for (Vec3& p : points) p = Vec3(p.x, -p.z, p.y);
+  };
+  ExampleSet lying = *ex;
+  zUp(lying.rest_positions);
+  for (std::vector<Vec3>& pose : lying.poses) zUp(pose);
+  Result<PipelineResult> as_y = runFitPipeline(lying, options);
+  ASSERT_TRUE(as_y.ok()) << as_y.status().message();
+  EXPECT_EQ(as_y->rig_summary.find("template quadruped"), std::string::npos) << as_y->rig_summary;
+
+  options.curve_rig_up = Vec3(0.0, 0.0, 1.0);
+  Result<PipelineResult> as_z = runFitPipeline(lying, options);
+  ASSERT_TRUE(as_z.ok()) << as_z.status().message();
+  EXPECT_NE(as_z->rig_summary.find("template quadruped"), std::string::npos) << as_z->rig_summary;
+  EXPECT_EQ(as_z->asset.bone_count, upright->asset.bone_count);
+}
+
 }  // namespace
 }  // namespace odeskin

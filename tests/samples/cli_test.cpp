@@ -767,6 +767,10 @@ TEST(FitOptions, InputKinds) {
   o.rig = "auto";
   o.bones = 4;
   EXPECT_EQ(fitUsageProblem(o), "");
+  o.rig = "curves";
+  o.bones = 0;
+  o.up = "-z";
+  EXPECT_EQ(fitUsageProblem(o), "");
   o = objFit();
   o.rig = "skeleton.tgf";
   o.bind = "rest.obj";
@@ -826,6 +830,12 @@ TEST(FitOptions, UsageProblems) {
        },
        "--bones applies to the automatic rig"},
       {[](FitCommandOptions& o) { o.weights = "w.dmat"; }, "need --rig SKELETON.tgf"},
+      {[](FitCommandOptions& o) { o.up = "-z"; }, "--up applies to --rig curves"},
+      {[](FitCommandOptions& o) {
+         o.rig = "curves";
+         o.up = "w";
+       },
+       "--up 'w' must be x, y, z, -x, -y or -z"},
       {[](FitCommandOptions& o) { o.times = {0.5}; }, "apply to a .gltf/.glb input"},
       {[](FitCommandOptions& o) { o.inputs.push_back("d.ply"); }, "d.ply: unknown input format '.ply'"},
       {[](FitCommandOptions& o) { o.inputs.push_back("walk.glb"); }, "not both or several"},

@@ -131,6 +131,11 @@ TEST(EvaluateCommand, BadTimesAndMethodsAreUsageErrors) {
     o.bones = bones;
     return o;
   };
+  auto with_up = [&](const std::string& rig, const std::string& up) {
+    EvaluateCommandOptions o = with_rig(rig, 0);
+    o.up = up;
+    return o;
+  };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<CommandCase<EvaluateCommandOptions>> cases{
       {with_times({0.0, 1.0, 2.0}), "3 times for 4 frames"},
@@ -143,6 +148,8 @@ TEST(EvaluateCommand, BadTimesAndMethodsAreUsageErrors) {
       {with_methods("lbs,,dqs"), "--methods 'lbs,,dqs' has an empty name"},
       {with_methods("lbs,skin"), "unknown method 'skin'"},
       {with_rig("curves", 3), "--bones applies to the automatic rig (--rig auto)"},
+      {with_up("auto", "z"), "--up applies to --rig curves"},
+      {with_up("curves", "up"), "--up 'up' must be x, y, z, -x, -y or -z"},
   };
   testing::expectRejected(
       cases, [](const EvaluateCommandOptions& o, Captured& io) { return runEvaluateCommand(o, io.console); },
