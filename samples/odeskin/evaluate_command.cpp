@@ -151,7 +151,9 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   }
   Vec3 up(0.0, 1.0, 0.0);
   if (!o.up.empty()) {
-    if (o.rig != "curves") return reportUsage(console, "evaluate: --up applies to --rig curves (its skeleton templates' up axis)");
+    if (o.rig != "curves") {
+      return reportUsage(console, "evaluate: --up applies to --rig curves (its skeleton templates' up axis)");
+    }
     Result<Vec3> parsed = parseUpAxis(o.up);
     if (!parsed.ok()) return reportUsage(console, "evaluate: " + parsed.status().message());
     up = *parsed;

@@ -97,7 +97,8 @@ CLI::App* addFitCommand(CLI::App& app, odeskin::FitCommandOptions& o, std::strin
                 "No sparse remainders (the thesis's representation): keys are met only to the reported key error,\n"
                 "and the shape jumps by it at every inner key");
   fit->add_option("--bones", o.bones, "Automatic rig: bone count (0: chosen from the mesh)");
-  fit->add_option("--up", o.up, "--rig curves: the mesh's up axis, x, y, z, -x, -y or -z (default y), for its templates");
+  fit->add_option("--up", o.up,
+                  "--rig curves: the mesh's up axis, x, y, z, -x, -y or -z (default y), for its templates");
   fit->add_option("--segment-seconds", o.segment_seconds, "Playback length of one key-to-key segment, 1e-4 to 1e6 seconds");
   fit->add_flag("--timings", o.timings, "Print the stage breakdown of the thesis's Table 6.3");
   return fit;
@@ -171,7 +172,8 @@ CLI::App* addEvaluateCommand(CLI::App& app, odeskin::EvaluateCommandOptions& o) 
   cmd->add_option("--bind", o.bind, "Rest mesh (.obj) for --rig SKELETON.tgf");
   cmd->add_option("--weights", o.weights, "Skinning weights (.dmat) for --rig SKELETON.tgf");
   cmd->add_option("--bones", o.bones, "Automatic rig: bone count (0: chosen from the mesh)");
-  cmd->add_option("--up", o.up, "--rig curves: the mesh's up axis, x, y, z, -x, -y or -z (default y), for its templates");
+  cmd->add_option("--up", o.up,
+                  "--rig curves: the mesh's up axis, x, y, z, -x, -y or -z (default y), for its templates");
   cmd->add_option("--skeleton-fit", o.skeleton_fit,
                   "rigid (default: per-bone rigid fits, keys and truth frames alike) or lbs (the rig's SSDR\n"
                   "transforms, which minimise each frame's LBS error)")
@@ -415,7 +417,8 @@ int run(int argc, char** argv, std::string& verb) {
   double play_seconds = 0.0;
   std::string play_backend = "cpu";
   CLI::App* play_cmd =
-      app.add_subcommand("play", "Evaluate an asset at a time or over a sequence: OBJ frames, a baked GLB, or a PC2 or MDD cache");
+      app.add_subcommand("play", "Evaluate an asset at a time or over a sequence: OBJ frames, a baked GLB, or a PC2 or MDD "
+                                 "cache");
   play_cmd->footer(
       "T runs over [0, K-1] for K example poses: integer T is example pose T, T = 1.5 the middle of the\n"
       "second segment. A sequence maps seconds to T = seconds / segment length.\n"

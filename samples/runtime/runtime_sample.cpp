@@ -167,7 +167,8 @@ int run(const SampleOptions& o) {
     if (opened.ok()) {
       gpu = std::make_unique<vk::Gpu>(std::move(opened).value());
     } else if (o.backend == "auto" && opened.status().code() == StatusCode::kUnavailable) {
-      std::fprintf(stderr, "note: no Vulkan device opens (%s); running on the CPU\n", opened.status().message().c_str());
+      std::fprintf(stderr, "note: no Vulkan device opens (%s); running on the CPU\n",
+                   opened.status().message().c_str());
     } else {
       return fail(Status(opened.status().code(), "no Vulkan device opens: " + opened.status().message()));
     }

@@ -118,7 +118,8 @@ TEST_F(GpuTest, ASelectorFromTheEnvironmentIsNamedInItsError) {
   ::unsetenv("ODESKIN_DEVICE");  // NOLINT(concurrency-mt-unsafe)
   ASSERT_FALSE(index.ok());
   EXPECT_EQ(index.status().code(), StatusCode::kUnavailable);
-  EXPECT_EQ(index.status().message().rfind("ODESKIN_DEVICE=99: no device with that index; available devices: 0: ", 0), 0u)
+  EXPECT_EQ(index.status().message().rfind("ODESKIN_DEVICE=99: no device with that index; available devices: 0: ", 0),
+            0u)
       << index.status().message();
   // The program prints a status as its one error line.
   EXPECT_EQ(index.status().message().find('\n'), std::string::npos) << index.status().message();
