@@ -417,8 +417,8 @@ int run(int argc, char** argv, std::string& verb) {
   double play_seconds = 0.0;
   std::string play_backend = "cpu";
   CLI::App* play_cmd =
-      app.add_subcommand("play", "Evaluate an asset at a time or over a sequence: OBJ frames, a baked GLB, or a PC2 or MDD "
-                                 "cache");
+      app.add_subcommand("play",
+                         "Evaluate an asset at a time or over a sequence: OBJ frames, a baked GLB, or a PC2 or MDD cache");
   play_cmd->footer(
       "T runs over [0, K-1] for K example poses: integer T is example pose T, T = 1.5 the middle of the\n"
       "second segment. A sequence maps seconds to T = seconds / segment length.\n"

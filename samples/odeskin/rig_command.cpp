@@ -27,7 +27,6 @@
 #include "file_extension.hpp"
 #include "material_warning.hpp"
 #include "output_paths.hpp"
-#include "render_session.hpp"
 #include "rig_picture.hpp"
 #include "up_axis.hpp"
 

@@ -19,7 +19,6 @@
 #include "engine/surfaces/tessellation_glb.hpp"
 #include "file_extension.hpp"
 #include "host/surface_tessellator.hpp"
-#include "render_session.hpp"
 #include "up_axis.hpp"
 
 namespace odeskin {

@@ -7,7 +7,8 @@
 // totals. It checks itself at the end: two instances of the last frame against the
 // double-precision reference, within 1e-5 of the box. With --record it plays the engine's part
 // too: each frame is recorded into its own command buffers, which it submits (EngineSubmissions).
-// --backend auto takes the Vulkan device where one opens and the CPU otherwise, with a note.
+// --backend auto runs on Vulkan where the device opens and the runtime builds on it, else on the CPU
+// with a note; a Vulkan failure during the frames still ends the run.
 // Exit status: 0 success; 1 failure (no Vulkan device for --backend vulkan, bad asset, failed
 // check), with one line "odeskin_runtime_sample: error: ..."; 2 usage error.
 // docs/runtime.md quotes the part between the snippet markers; a test keeps the two identical.
@@ -159,6 +160,15 @@ Result<double> checkInstance(DeformRuntime& rt, std::uint64_t frame, std::uint32
   return worst / longestBoxSide(asset.source().rest_positions);
 }
 
+// --backend auto: a Vulkan failure while setting up (no device, out of memory, device lost) means
+// the CPU runtime, with a note; as odeskin play does.
+bool fallsBackToCpu(const SampleOptions& o, const Status& failure) {
+  const StatusCode code = failure.code();
+  if (o.backend != "auto" || (code != StatusCode::kUnavailable && code != StatusCode::kDeviceError)) return false;
+  std::fprintf(stderr, "note: Vulkan failed (%s); running on the CPU\n", failure.message().c_str());
+  return true;
+}
+
 int run(const SampleOptions& o) {
   // 1. The Vulkan device first, so a missing one fails before the asset is fitted.
   std::unique_ptr<vk::Gpu> gpu;
@@ -166,10 +176,7 @@ int run(const SampleOptions& o) {
     Result<vk::Gpu> opened = vk::Gpu::open(o.device, o.validation);
     if (opened.ok()) {
       gpu = std::make_unique<vk::Gpu>(std::move(opened).value());
-    } else if (o.backend == "auto" && opened.status().code() == StatusCode::kUnavailable) {
-      std::fprintf(stderr, "note: no Vulkan device opens (%s); running on the CPU\n",
-                   opened.status().message().c_str());
-    } else {
+    } else if (!fallsBackToCpu(o, opened.status())) {
       return fail(Status(opened.status().code(), "no Vulkan device opens: " + opened.status().message()));
     }
   }
@@ -197,10 +204,16 @@ int run(const SampleOptions& o) {
   VulkanRuntime* vulkan = nullptr;
   if (gpu) {
     Result<VulkanRuntime> created = VulkanRuntime::create(gpu->device, *asset, options, {.bounds = readback(o.bounds)});
-    if (!created.ok()) return fail(created.status());
-    runtime = std::make_unique<VulkanRuntime>(std::move(created).value());
-    vulkan = static_cast<VulkanRuntime*>(runtime.get());
-  } else {
+    if (created.ok()) {
+      runtime = std::make_unique<VulkanRuntime>(std::move(created).value());
+      vulkan = static_cast<VulkanRuntime*>(runtime.get());
+    } else if (fallsBackToCpu(o, created.status())) {  // --backend auto: out of memory, device lost
+      gpu.reset();
+    } else {
+      return fail(created.status());
+    }
+  }
+  if (!gpu) {
     Result<CpuRuntime> created = CpuRuntime::create(*asset, options);
     if (!created.ok()) return fail(created.status());
     runtime = std::make_unique<CpuRuntime>(std::move(created).value());

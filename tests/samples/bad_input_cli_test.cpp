@@ -852,6 +852,37 @@ TEST_F(BadInputCli, FitSaysHowManyVerticesFollowTheirBoneRigidly) {
       << r.out;
 }
 
+// fit --rig curves hands --up to the curve rig's templates: the cat turned z-up is a quadruped only
+// when the fit is told that z is up (CurveRig.FitPipelineTakesTheMeshsUpAxis has the pipeline's side).
+TEST_F(BadInputCli, FitGivesTheCurveRigItsUpAxis) {
+  const fs::path out = dir() / "up_axis";
+  std::vector<std::string> poses;
+  for (const char* name : {"cat-00.obj", "cat-01.obj"}) {
+    std::ifstream in(fs::path(ODESKIN_DATA_DIR) / "cat-poses" / name);
+    std::ostringstream turned;
+    turned.precision(17);
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("v ", 0) == 0) {  // (x, y, z) -> (x, -z, y): y-up to z-up
+        std::istringstream v(line.substr(2));
+        double x = 0.0, y = 0.0, z = 0.0;
+        v >> x >> y >> z;
+        turned << "v " << x << ' ' << -z << ' ' << y << '\n';
+      } else {
+        turned << line << '\n';
+      }
+    }
+    poses.push_back((out / name).string());
+    writeText(poses.back(), turned.str());
+  }
+  const Outcome as_y = runOdeskin({"fit", poses[0], poses[1], "--rig", "curves", "-o", (out / "y.odsk").string()}, out);
+  EXPECT_EQ(as_y.status, 0) << as_y.err;
+  EXPECT_EQ(as_y.out.find("template quadruped"), std::string::npos) << as_y.out;
+  const Outcome as_z =
+      runOdeskin({"fit", poses[0], poses[1], "--rig", "curves", "--up", "z", "-o", (out / "z.odsk").string()}, out);
+  EXPECT_EQ(as_z.status, 0) << as_z.err;
+  EXPECT_NE(as_z.out.find("template quadruped"), std::string::npos) << as_z.out;
+}
+
 TEST_F(BadInputCli, GltfTimesOutsideTheAnimationAreFittedWithAWarning) {
   const fs::path out = dir() / "gltf_times";
   const std::string glb = (out / "cyl.glb").string();
