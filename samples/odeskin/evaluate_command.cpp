@@ -149,15 +149,8 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   if (o.bones != 0 && !o.rig.empty() && o.rig != "auto") {
     return reportUsage(console, "evaluate: --bones applies to the automatic rig (--rig auto)");
   }
-  Vec3 up(0.0, 1.0, 0.0);
-  if (!o.up.empty()) {
-    if (o.rig != "curves") {
-      return reportUsage(console, "evaluate: --up applies to --rig curves (its skeleton templates' up axis)");
-    }
-    Result<Vec3> parsed = parseUpAxis(o.up);
-    if (!parsed.ok()) return reportUsage(console, "evaluate: " + parsed.status().message());
-    up = *parsed;
-  }
+  const Result<Vec3> up = curveRigUp(o.rig, o.up);
+  if (!up.ok()) return reportUsage(console, "evaluate: " + up.status().message());
   std::vector<std::filesystem::path> inputs = o.frames;
   inputs.push_back(o.bind);
   inputs.push_back(o.weights);
@@ -193,7 +186,7 @@ int runEvaluateCommand(const EvaluateCommandOptions& o, Console& console, const 
   options.pipeline.modes = o.terms;
   options.pipeline.force_auto_rig = o.rig == "auto" || o.rig == "curves";
   options.pipeline.curve_rig = o.rig == "curves";
-  options.pipeline.curve_rig_up = up;
+  options.pipeline.curve_rig_up = *up;
   options.pipeline.auto_bones = o.bones;
   options.skeleton_fit = o.skeleton_fit == "lbs" ? SkeletonFit::kLbsOptimal : SkeletonFit::kPerBoneRigid;
   std::optional<RenderSession> pictures;  // --png: opened once for every heat map

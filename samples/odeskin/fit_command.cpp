@@ -136,7 +136,7 @@ int runFitCommand(const FitCommandOptions& o, Console& console) {
   pipeline.pure_fourier = o.pure_fourier;
   pipeline.force_auto_rig = o.rig == "auto" || o.rig == "curves";
   pipeline.curve_rig = o.rig == "curves";
-  if (!o.up.empty()) pipeline.curve_rig_up = *parseUpAxis(o.up);  // fitUsageProblem has checked it
+  pipeline.curve_rig_up = *curveRigUp(o.rig, o.up);  // fitUsageProblem has checked it
   pipeline.auto_bones = o.bones;
   pipeline.segment_seconds = o.segment_seconds;
 

@@ -79,10 +79,7 @@ std::string fitUsageProblem(const FitCommandOptions& o) {
   if (!o.rig.empty() && o.rig != "auto" && o.rig != "curves" && lowerExtension(o.rig) != ".tgf") {
     return "fit: --rig takes auto or a libigl skeleton (.tgf), or curves, got '" + o.rig + "'";
   }
-  if (!o.up.empty()) {
-    if (o.rig != "curves") return "fit: --up applies to --rig curves (its skeleton templates' up axis)";
-    if (Result<Vec3> up = parseUpAxis(o.up); !up.ok()) return "fit: " + up.status().message();
-  }
+  if (Result<Vec3> up = curveRigUp(o.rig, o.up); !up.ok()) return "fit: " + up.status().message();
   if (!o.materials_json.empty() && !o.material.empty()) return "fit: give --material or --materials, not both";
   if (Result<Material> m = parseMaterial(fitMaterialText(o)); !m.ok()) return "fit: --material: " + m.status().message();
   std::vector<std::filesystem::path> inputs = o.inputs;

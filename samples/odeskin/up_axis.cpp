@@ -21,4 +21,10 @@ Result<Vec3> parseUpAxis(std::string_view text) {
   return negative ? -up : up;
 }
 
+Result<Vec3> curveRigUp(std::string_view rig, std::string_view up) {
+  if (up.empty()) return Vec3(0.0, 1.0, 0.0);
+  if (rig != "curves") return invalidArgument("--up applies to --rig curves (its skeleton templates' up axis)");
+  return parseUpAxis(up);
+}
+
 }  // namespace odeskin

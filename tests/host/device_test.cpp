@@ -111,8 +111,8 @@ TEST_F(GpuTest, BadSelectorsListDevices) {
 }
 
 // A selector from the environment is named as such, so the user knows what to change; the device
-// list stays on the error's one line. The
-// environment changes while no other thread of the test reads it, hence the NOLINTs.
+// list stays on the error's one line. The environment changes while no other thread of the test
+// reads it, hence the NOLINTs.
 TEST_F(GpuTest, SelectorErrorsNameTheirSourceOnOneLine) {
   ASSERT_EQ(::setenv("ODESKIN_DEVICE", "99", 1), 0);  // NOLINT(concurrency-mt-unsafe)
   Result<std::uint32_t> index = vk::selectPhysicalDevice(instance(), "auto");
