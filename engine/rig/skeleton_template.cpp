@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
@@ -364,17 +365,28 @@ TemplateMatch matchTemplate(const SkeletonTreeView& tree, std::span<const std::u
   }
   // Automatic: the template whose feet count and spine direction both fit.
   std::string tried = std::to_string(low) + " tip(s) in the lowest 30% of the height";
+  // Where both fit (a standing humanoid's hands hang low enough to pass for front feet, with a
+  // "spine" from its feet to a hand), the one whose spine lies nearer its own direction: the
+  // quadruped's sine against the humanoid's cosine of the angle to up.
+  std::optional<TemplateMatch> quad;
   if (low >= 4 && by_height.size() >= 5) {
     TemplateMatch q = quadruped(w, by_height, up);
-    if (q.kind == SkeletonTemplateKind::kQuadruped && spineCos(q) < kSpineCos) return q;
-    tried += "; the quadruped's spine is not horizontal";
+    if (q.kind == SkeletonTemplateKind::kQuadruped && spineCos(q) < kSpineCos) {
+      quad = std::move(q);
+    } else {
+      tried += "; the quadruped's spine is not horizontal";
+    }
     w.claimed.assign(bend_nodes.size(), 0);
   }
   if (low >= 2 && by_height.size() >= 3) {
     TemplateMatch h = humanoid(w, by_height, up);
-    if (h.kind == SkeletonTemplateKind::kHumanoid && spineCos(h) >= kSpineCos) return h;
-    tried += "; the humanoid's spine is not upright";
+    if (h.kind == SkeletonTemplateKind::kHumanoid && spineCos(h) >= kSpineCos) {
+      if (!quad || spineCos(h) > std::sqrt(1.0 - spineCos(*quad) * spineCos(*quad))) return h;
+    } else if (!quad) {
+      tried += "; the humanoid's spine is not upright";
+    }
   }
+  if (quad) return std::move(*quad);
   return {SkeletonTemplateKind::kNone, tried + ": no template", 0, {}, Vec3(0.0)};
 }
 

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "engine/rig/skeleton_template.hpp"
 
+#include <cmath>
 #include <map>
+#include <numbers>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -129,6 +132,32 @@ TEST(SkeletonTemplate, BendJointsTakeTheTemplateNames) {
   bool renamed = false;
   for (const TemplateJoint& j : m.joints) renamed = renamed || (j.name == "l_elbow" && j.node == nearby && j.is_bend);
   EXPECT_TRUE(renamed);
+}
+
+TEST(SkeletonTemplate, HumanoidWithLowHandsStaysAHumanoid) {
+  // Cheburashka's build: short legs, a big head, arms hanging out and down, two fingers on each
+  // hand, the right hand lower. Its two lowest fingers and its feet pass for four legs, with a
+  // "spine" from the hips to the right hand 15 degrees off level, well within the quadruped's
+  // 45; its real spine is upright, and that fits the humanoid better.
+  TreeBuilder t;
+  const std::uint32_t pelvis = t.node(Vec3(0.0, 0.5, 0.0), 0.15);
+  for (const double x : {-0.15, 0.15}) t.limb(pelvis, Vec3(x, 0.0, 0.0), 5, 0.08);
+  const std::uint32_t shoulders = t.limb(pelvis, Vec3(0.0, 1.0, 0.0), 5, 0.15);
+  t.limb(shoulders, Vec3(0.0, 1.6, 0.0), 6, 0.3);
+  for (const auto& [hand_at, fingers_y] : {std::pair{Vec3(0.45, 0.7, 0.0), 0.62}, std::pair{Vec3(-0.5, 0.3, 0.0), 0.22}}) {
+    const std::uint32_t hand = t.limb(shoulders, hand_at, 6, 0.04);
+    for (const double z : {-0.04, 0.04}) t.limb(hand, Vec3(hand_at.x * 1.1, fingers_y, z), 2, 0.01);
+  }
+  const Vec3 up(0.0, 1.0, 0.0);
+  const TemplateMatch quadruped = matchTemplate(t.view(), {}, SkeletonTemplateKind::kQuadruped, up);
+  ASSERT_EQ(quadruped.kind, SkeletonTemplateKind::kQuadruped) << quadruped.note;
+  const double quadruped_tilt = std::asin(std::abs(glm::dot(glm::normalize(quadruped.spine), up)));
+  const TemplateMatch humanoid = matchTemplate(t.view(), {}, SkeletonTemplateKind::kHumanoid, up);
+  ASSERT_EQ(humanoid.kind, SkeletonTemplateKind::kHumanoid) << humanoid.note;
+  const double humanoid_tilt = std::acos(std::abs(glm::dot(glm::normalize(humanoid.spine), up)));
+  EXPECT_LT(quadruped_tilt, std::numbers::pi / 4.0);
+  EXPECT_LT(humanoid_tilt, quadruped_tilt);
+  EXPECT_EQ(matchTemplate(t.view(), {}, SkeletonTemplateKind::kAuto, up).kind, SkeletonTemplateKind::kHumanoid);
 }
 
 TEST(SkeletonTemplate, UprightQuadrupedIsNotAutoMatched) {
