@@ -29,7 +29,7 @@ python3 - "$out" "$rounds" "${meshes[@]}" <<'PY'
 import os, re, sys
 out, rounds, meshes = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
 stages = ["mesh edges", "curve (vertex) identification", "skeleton creation", "weights",
-          "edge distances", "coarse levels", "fast marching", "fine levels"]
+          "centre section", "edge distances", "coarse levels", "fast marching", "fine levels"]
 
 def fastest(text, stage):
     # "STAGE MEDIAN / FASTEST ms" on the summary lines

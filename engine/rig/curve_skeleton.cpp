@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -12,6 +13,7 @@
 #include "../core/number_text.hpp"
 #include "../core/position_box.hpp"
 #include "../curves/edge_loops.hpp"
+#include "body_section.hpp"
 #include "curve_skeleton_levels.hpp"
 #include "curve_skeleton_parts.hpp"
 #include "curve_skeleton_tree.hpp"
@@ -66,27 +68,62 @@ Result<PositionBox> checkInput(std::span<const Vec3> rest, const FaceList& faces
   return box;
 }
 
-// The far end of a breadth-first sweep (hop counts) from the smallest vertex of the largest
-// connected component (rigging is for one connected surface; the first such component on a tie),
-// the smallest vertex index among the farthest. One sweep per component finds the components and
-// the hops at once: the same vertex edgeHops(component's smallest vertex) would give.
-std::uint32_t largestComponentExtremity(const MeshTopology& mesh) {
+// Position order, for ties that must not depend on how the vertices are numbered.
+bool positionBefore(const Vec3& p, const Vec3& q) {
+  if (p.x != q.x) return p.x < q.x;
+  if (p.y != q.y) return p.y < q.y;
+  return p.z < q.z;
+}
+
+// The vertices of the largest connected component (rigging is for one connected surface; the
+// first such component in vertex order on a tie).
+std::vector<std::uint32_t> largestComponent(const MeshTopology& mesh) {
   const std::size_t count = mesh.vertex_offsets.size() - 1;
   std::vector<std::int32_t> hops(count, -1);
   std::vector<std::uint32_t> queue(count + 1);
   std::size_t best_size = 0;
-  std::uint32_t best = 0;
+  std::uint32_t first = 0;
   for (std::uint32_t s = 0; s < count; ++s) {
     if (hops[s] >= 0) continue;
     const std::size_t reached = sweepEdgeHops(mesh, s, hops, queue);
     if (reached <= best_size) continue;
     best_size = reached;
-    // The queue is in hop order: its last vertex is at the largest hop count.
-    const std::int32_t far = hops[queue[reached - 1]];
-    best = queue[reached - 1];
-    for (std::size_t k = reached; k-- > 0 && hops[queue[k]] == far;) best = std::min(best, queue[k]);
+    first = s;
+  }
+  std::fill(hops.begin(), hops.end(), -1);
+  queue.resize(sweepEdgeHops(mesh, first, hops, queue));
+  return queue;
+}
+
+// The vertex of the component farthest by `measure`, ties by position.
+template <typename Measure>
+std::uint32_t farthestVertex(std::span<const Vec3> rest, std::span<const std::uint32_t> component, Measure&& measure) {
+  std::uint32_t best = component.front();
+  double best_measure = -std::numeric_limits<double>::infinity();
+  for (const std::uint32_t v : component) {
+    const double m = measure(v);
+    if (m > best_measure || (m == best_measure && positionBefore(rest[v], rest[best]))) {
+      best_measure = m;
+      best = v;
+    }
   }
   return best;
+}
+
+// The first pass's source: the far end, along edges, of the vertex farthest from the component's
+// box centre. Chosen by the shape, so that the fallback band does not depend on the numbering.
+std::uint32_t componentExtremity(std::span<const Vec3> rest, const MeshTopology& mesh,
+                                 std::span<const std::uint32_t> component) {
+  Vec3 low = rest[component.front()];
+  Vec3 high = low;
+  for (const std::uint32_t v : component) {
+    low = glm::min(low, rest[v]);
+    high = glm::max(high, rest[v]);
+  }
+  const Vec3 middle = 0.5 * (low + high);
+  const std::uint32_t outermost[1] = {farthestVertex(rest, component, [&](std::uint32_t v) { return glm::length(rest[v] - middle); })};
+  const std::vector<double> distance = edgeDistance(mesh, outermost);
+  return farthestVertex(rest, component, [&](std::uint32_t v) { return distance[v]; });
 }
 
 // The kept contour at the centre of the tree: the smallest largest path distance (through ring
@@ -281,6 +318,22 @@ CurveSkeleton skeletonFromLevels(std::span<const Vec3> rest, const LevelGraph& g
   return s;
 }
 
+// The band vertex nearest its plane (ties by position): the second pass's tree hangs from its
+// region, which must not depend on the vertex order.
+std::uint32_t bandRoot(std::span<const Vec3> rest, std::span<const std::uint32_t> band,
+                       std::span<const double> distance_to_plane) {
+  std::uint32_t root = band.front();
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < band.size(); ++k) {
+    const double d = distance_to_plane.empty() ? 0.0 : distance_to_plane[k];
+    if (d < nearest || (d == nearest && positionBefore(rest[band[k]], rest[root]))) {
+      nearest = d;
+      root = band[k];
+    }
+  }
+  return root;
+}
+
 }  // namespace
 
 CurveSource resolveCurveSource(CurveSource source, const FaceList& faces) {
@@ -318,29 +371,45 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
                              : std::min(kDefaultSpacingEdges * mean_edge, box.diagonal / kMinLevelsPerDiagonal);
   const PruneRule prune{options.prune_radii, options.prune_fraction * box.diagonal, options.prune_thin_fraction * box.diagonal};
 
-  // Pass 1, coarse (edge paths, levels kFirstPassSpacing apart: it only has to find the centre):
-  // from an extremity, the far end of a breadth-first sweep from any vertex of the largest component.
-  const std::uint32_t extremity[1] = {largestComponentExtremity(mesh)};
-  const std::vector<double> f1 = edgeDistance(mesh, extremity);
-  const Clock::time_point coarse_start = Clock::now();
-  const LevelGraph first = levelGraph(rest, mesh, f1, kFirstPassSpacing * spacing);
-  const LevelTree first_tree = levelTree(first, first.vertex_region[extremity[0]], prune);
-  const std::int32_t centre = centreContour(first, first_tree);
-  if (centre < 0) {
-    return degenerate("curve skeleton: no closed ring at level spacing " + messageNumber(kFirstPassSpacing * spacing) +
-                      " (the mesh is too small or too flat for levels)");
-  }
-  // Pass 2, from a band across the body at the centre, so that rings run across the body on both
-  // sides of it (the first pass's rings lean wherever its source was).
+  // The band the second pass starts from: across the body at its centre, so that rings run
+  // across the body on both sides of it. The shortest section through the body's centre where
+  // there is one; else, from a first, coarse pass (edge paths from an extremity, levels
+  // kFirstPassSpacing apart), a band across its level tree's centre ring.
+  const std::vector<std::uint32_t> component = largestComponent(mesh);
+  std::vector<char> in_component(rest.size(), 0);
+  for (const std::uint32_t v : component) in_component[v] = 1;
+  std::vector<std::uint32_t> band;
   std::vector<double> band_distance;
-  const std::vector<std::uint32_t> band =
-      centreBand(rest, mesh, first, first_tree, static_cast<std::uint32_t>(centre), std::max(0.5 * spacing, mean_edge),
-                 band_distance);
+  bool band_from_first_pass = false;
+  Clock::time_point coarse_start = start;
+  if (std::optional<GirthPlane> plane = bodySection(rest, mesh, component, in_component)) {
+    band = std::move(plane->vertices);
+    band_distance = std::move(plane->distances);
+  }
+  const double seconds_centre = secondsSince(start);
+  double seconds_edge_distance = 0.0;
+  if (band.empty()) {
+    band_from_first_pass = true;
+    const Clock::time_point first_start = Clock::now();
+    const std::uint32_t extremity[1] = {componentExtremity(rest, mesh, component)};
+    const std::vector<double> f1 = edgeDistance(mesh, extremity);
+    coarse_start = Clock::now();
+    seconds_edge_distance = std::chrono::duration<double>(coarse_start - first_start).count();
+    const LevelGraph first = levelGraph(rest, mesh, f1, kFirstPassSpacing * spacing);
+    const LevelTree first_tree = levelTree(first, first.vertex_region[extremity[0]], prune);
+    const std::int32_t centre = centreContour(first, first_tree);
+    if (centre < 0) {
+      return degenerate("curve skeleton: no closed ring at level spacing " + messageNumber(kFirstPassSpacing * spacing) +
+                        " (the mesh is too small or too flat for levels)");
+    }
+    band = centreBand(rest, mesh, first, first_tree, static_cast<std::uint32_t>(centre), std::max(0.5 * spacing, mean_edge),
+                      band_distance);
+  }
   const Clock::time_point marching_start = Clock::now();
   const std::vector<double> f = surfaceDistance(mesh, rest, band, band_distance);
   const Clock::time_point fine_start = Clock::now();
   const LevelGraph graph = levelGraph(rest, mesh, f, spacing);
-  const LevelTree tree = levelTree(graph, graph.vertex_region[band.front()], prune);
+  const LevelTree tree = levelTree(graph, graph.vertex_region[bandRoot(rest, band, band_distance)], prune);
   const TreeParts parts = treeParts(graph, tree);
   // The root node is the centre of the band itself (the slab next to it may hold part of a ring).
   std::vector<SkeletonAnchor> root_anchors;
@@ -349,8 +418,9 @@ Result<CurveSkeletonResult> buildCurveSkeleton(std::span<const Vec3> rest, const
 
   CurveSkeletonResult result;
   result.seconds_topology = seconds_topology;
-  result.seconds_edge_distance = std::chrono::duration<double>(coarse_start - start).count();
-  result.seconds_coarse_levels = std::chrono::duration<double>(marching_start - coarse_start).count();
+  result.seconds_centre = seconds_centre;
+  result.seconds_edge_distance = seconds_edge_distance;
+  result.seconds_coarse_levels = band_from_first_pass ? std::chrono::duration<double>(marching_start - coarse_start).count() : 0.0;
   result.seconds_marching = std::chrono::duration<double>(fine_start - marching_start).count();
   result.seconds_fine_levels = secondsSince(fine_start);
   result.vertex_parts = parts.vertex_parts;

@@ -104,10 +104,11 @@ struct CurveSkeletonResult {
   double seconds_topology = 0.0;
   double seconds_curves = 0.0;
   double seconds_skeleton = 0.0;
-  // seconds_curves' parts for the levels: the first pass's edge distances (sweep to an extremity
-  // and Dijkstra), its coarse level graph (with its tree, centre and band), the fast marching from
-  // the band, and the fine level graph with its tree and parts. The plane cuts or edge loops, if
-  // used, are the rest.
+  // seconds_curves' parts for the levels: the body's centre and its shortest section (the band),
+  // the first pass's edge distances and coarse level graph (with its tree, centre and band; both 0
+  // unless the section failed), the fast marching from the band, and the fine level graph with its
+  // tree and parts. The plane cuts or edge loops, if used, are the rest.
+  double seconds_centre = 0.0;
   double seconds_edge_distance = 0.0;
   double seconds_coarse_levels = 0.0;
   double seconds_marching = 0.0;

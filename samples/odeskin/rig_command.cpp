@@ -224,7 +224,7 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
   options.animation.up = *parseUpAxis(o.up);
   options.compute_weights = !o.weights.empty() || !o.gltf.empty();
   std::vector<double> topology_s, curves_s, skeleton_s, weights_s;
-  std::vector<double> edge_distance_s, coarse_s, marching_s, fine_s, loops_s;  // vertex identification's stages
+  std::vector<double> centre_s, edge_distance_s, coarse_s, marching_s, fine_s, loops_s;  // vertex identification's stages
   Result<CurveRig> rig = invalidArgument("rig: not run");
   for (int run = 0; run < o.repeat; ++run) {
     rig = buildCurveRig(rest, faces, poses, options);
@@ -238,6 +238,7 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
     curves_s.push_back(rig->seconds_curves);
     skeleton_s.push_back(rig->seconds_skeleton);
     weights_s.push_back(rig->seconds_weights);
+    centre_s.push_back(rig->curve_skeleton.seconds_centre);
     edge_distance_s.push_back(rig->curve_skeleton.seconds_edge_distance);
     coarse_s.push_back(rig->curve_skeleton.seconds_coarse_levels);
     marching_s.push_back(rig->curve_skeleton.seconds_marching);
@@ -330,9 +331,9 @@ int runRigCommand(const RigCommandOptions& o, Console& console) {
                   1e3 * fastest(weights_s));
     out << line;
     std::snprintf(line, sizeof line,
-                  "identification stages (median / fastest): edge distances %.3f / %.3f ms, coarse levels %.3f / %.3f ms, "
-                  "fast marching %.3f / %.3f ms, fine levels %.3f / %.3f ms\n",
-                  1e3 * median(edge_distance_s), 1e3 * fastest(edge_distance_s), 1e3 * median(coarse_s), 1e3 * fastest(coarse_s),
+                  "identification stages (median / fastest): centre section %.3f / %.3f ms, edge distances %.3f / %.3f ms, "
+                  "coarse levels %.3f / %.3f ms, fast marching %.3f / %.3f ms, fine levels %.3f / %.3f ms\n",
+                  1e3 * median(centre_s), 1e3 * fastest(centre_s), 1e3 * median(edge_distance_s), 1e3 * fastest(edge_distance_s), 1e3 * median(coarse_s), 1e3 * fastest(coarse_s),
                   1e3 * median(marching_s), 1e3 * fastest(marching_s), 1e3 * median(fine_s), 1e3 * fastest(fine_s));
     out << line;
     if (r.curve_skeleton.source == CurveSource::kEdgeLoops) {

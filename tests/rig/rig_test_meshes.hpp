@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Procedural meshes for the curve-rig tests: a closed tube along x (rings of quads split into
-// triangles, capped by fans) and a flat triangulated grid.
+// triangles, capped by fans), the same bent round a circle, and a flat triangulated grid.
 #pragma once
 
 #include <cmath>
@@ -44,6 +44,18 @@ inline TestMesh closedTube(std::uint32_t rings, std::uint32_t sides, double leng
   for (std::uint32_t k = 0; k < sides; ++k) {
     m.triangle(first, at(0, k), at(0, k + 1));
     m.triangle(first + 1, at(rings - 1, k + 1), at(rings - 1, k));
+  }
+  return m;
+}
+
+// closedTube(rings, sides, length, r) bent round a circle of radius `bend` in the xy plane: x
+// along the tube becomes the angle x / bend, y the distance in from the circle. length = 1.5 pi
+// bend curls it three quarters of the way round, like a cat asleep.
+inline TestMesh bentTube(std::uint32_t rings, std::uint32_t sides, double length, double r, double bend) {
+  TestMesh m = closedTube(rings, sides, length, r);
+  for (Vec3& p : m.positions) {
+    const double angle = p.x / bend;
+    p = Vec3((bend - p.y) * std::cos(angle), (bend - p.y) * std::sin(angle), p.z);
   }
   return m;
 }
