@@ -81,15 +81,19 @@ Vec3 bodyCentroid(std::span<const Vec3> rest, const MeshTopology& mesh, std::spa
   // volume's centroid. A mask or an open tube has no volume to speak of.
   const bool closed = rim_vertices <= component.size() / 100;
   const Vec3 origin = 0.5 * (low + high);
+  // In units of the box's diagonal: volumes are cubes of lengths, which overflow for meshes the
+  // rest of the rig still takes (1e150 across).
+  const double unit = glm::length(high - low);
+  if (!(unit > 0.0)) return origin;
   Vec3 volume_moment{0.0};
   Vec3 area_moment{0.0};
   double volume = 0.0;  // six times
   double area = 0.0;    // twice
   for (const auto& corners : mesh.triangles) {
     if (!in_component[corners[0]]) continue;
-    const Vec3 a = rest[corners[0]] - origin;
-    const Vec3 b = rest[corners[1]] - origin;
-    const Vec3 c = rest[corners[2]] - origin;
+    const Vec3 a = (rest[corners[0]] - origin) / unit;
+    const Vec3 b = (rest[corners[1]] - origin) / unit;
+    const Vec3 c = (rest[corners[2]] - origin) / unit;
     const double six_volume = glm::dot(a, glm::cross(b, c));
     volume += six_volume;
     volume_moment += (six_volume / 4.0) * (a + b + c);
@@ -98,8 +102,8 @@ Vec3 bodyCentroid(std::span<const Vec3> rest, const MeshTopology& mesh, std::spa
     area_moment += (twice_area / 3.0) * (a + b + c);
   }
   // A closed surface that encloses next to nothing (a flat or inside-out mesh) has no useful volume.
-  if (closed && std::abs(volume) > 1e-6 * std::pow(0.5 * area, 1.5)) return origin + volume_moment / volume;
-  return area > 0.0 ? origin + area_moment / area : origin;
+  if (closed && std::abs(volume) > 1e-6 * std::pow(0.5 * area, 1.5)) return origin + (unit / volume) * volume_moment;
+  return area > 0.0 ? origin + (unit / area) * area_moment : origin;
 }
 
 std::optional<Vec3> longestChordMiddle(std::span<const Vec3> rest, const MeshTopology& mesh,
@@ -184,7 +188,7 @@ std::optional<Vec3> longestChordMiddle(std::span<const Vec3> rest, const MeshTop
       const double sum = w0 + w1 + w2;
       if ((low < 0.0 && high > 0.0) || sum == 0.0) continue;
       if ((low == 0.0 || high == 0.0) && !coversOnEdge({w0, w1, w2}, {p0, p1, p2}, sum)) continue;
-      hits.push_back((w0 * p0.z + w1 * p1.z + w2 * p2.z) / sum);
+      hits.push_back((w0 / sum) * p0.z + (w1 / sum) * p1.z + (w2 / sum) * p2.z);  // weights first: no overflow
     }
     std::sort(hits.begin(), hits.end());
     if (hits.size() % 2 != 0) continue;

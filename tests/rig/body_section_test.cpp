@@ -68,5 +68,26 @@ TEST(BodySection, CurledTubeIsCutAcrossTheTubeNotItsHole) {
   EXPECT_LT(std::abs(plane->normal.z), 0.05) << "the plane holds the circle's axis";
 }
 
+TEST(BodySection, SameSectionAtAnyScale) {
+  // Volumes are cubes of lengths and the chords' crossings products of three: at 1e150 across they
+  // overflowed, where the rest of the rig still works. Scaled by powers of two, every number
+  // scales exactly, so the band must be the same vertices.
+  const Body curled(testing::bentTube(61, 16, 1.5 * std::numbers::pi * 1.5, 0.3, 1.5));
+  const std::optional<GirthPlane> plane =
+      bodySection(curled.mesh.positions, curled.topology, curled.component, curled.in_component);
+  ASSERT_TRUE(plane.has_value());
+  for (const double scale : {0x1p-300, 0x1p+500}) {
+    TestMesh scaled = curled.mesh;
+    for (Vec3& p : scaled.positions) p *= scale;
+    const Body big(std::move(scaled));
+    const std::optional<GirthPlane> scaled_plane =
+        bodySection(big.mesh.positions, big.topology, big.component, big.in_component);
+    ASSERT_TRUE(scaled_plane.has_value()) << scale;
+    EXPECT_EQ(scaled_plane->vertices, plane->vertices) << scale;
+    EXPECT_EQ(scaled_plane->normal, plane->normal) << scale;
+    EXPECT_EQ(scaled_plane->girth, plane->girth * scale) << scale;
+  }
+}
+
 }  // namespace
 }  // namespace odeskin
