@@ -160,9 +160,9 @@ std::optional<Vec3> longestChordMiddle(std::span<const Vec3> rest, const MeshTop
   for (const Vec3& direction : lines) {
     // A triangle meets the line where its projection on the plane square to the line holds the
     // line's point: in a frame (across, up, along), the origin of (across, up).
-    const Vec3 helper = std::abs(direction.x) < 0.6 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 1.0, 0.0);
-    const Vec3 u = glm::normalize(glm::cross(direction, helper));
-    const Vec3 w = glm::cross(direction, u);
+    const std::array<Vec3, 2> across = squareTo(direction);
+    const Vec3 u = across[0];
+    const Vec3 w = across[1];
     auto framed = [&](std::uint32_t v) {
       const Vec3 d = rest[v] - centroid;
       return Vec3(glm::dot(u, d), glm::dot(w, d), glm::dot(direction, d));

@@ -127,9 +127,7 @@ class Sectioner {
     }
     // Which loops go round the centre: those a ray from it (along u, in the plane) crosses an odd
     // number of times. Parity, not a winding number, so the triangles' orientation does not matter.
-    const Vec3 helper = std::abs(normal.x) < 0.6 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 1.0, 0.0);
-    const Vec3 u = glm::normalize(glm::cross(normal, helper));
-    const Vec3 w = glm::cross(normal, u);
+    const auto [u, w] = squareTo(normal);
     for (const Segment& s : segments_) {
       Loop& loop = loops[static_cast<std::size_t>(loop_of_[find(s.from_edge)])];
       if (loop.open) continue;
@@ -263,6 +261,12 @@ class Sectioner {
 
 }  // namespace
 
+std::array<Vec3, 2> squareTo(const Vec3& n) {
+  const Vec3 helper = std::abs(n.x) < 0.6 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 1.0, 0.0);
+  const Vec3 u = glm::normalize(glm::cross(n, helper));
+  return {u, glm::cross(n, u)};
+}
+
 std::optional<GirthPlane> leastGirthPlane(std::span<const Vec3> positions, const MeshTopology& mesh, const Vec3& centre,
                                           double reach, std::span<const Vec3> starts, std::span<const char> include) {
   Sectioner sectioner(centre, ballAround(positions, mesh, centre, reach, include));
@@ -285,9 +289,7 @@ std::optional<GirthPlane> leastGirthPlane(std::span<const Vec3> positions, const
   for (int round = 0; round < kRefineRounds; ++round, step *= 0.5) {
     for (int move = 0; move < kMovesPerStep; ++move) {
       const Vec3 from = best_normal;
-      const Vec3 helper = std::abs(from.x) < 0.6 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 1.0, 0.0);
-      const Vec3 u = glm::normalize(glm::cross(from, helper));
-      const Vec3 w = glm::cross(from, u);
+      const auto [u, w] = squareTo(from);
       for (int k = 0; k < kRefineNeighbours; ++k) {
         const double angle = 2.0 * std::numbers::pi * k / kRefineNeighbours;
         consider(glm::normalize(from + step * (std::cos(angle) * u + std::sin(angle) * w)));

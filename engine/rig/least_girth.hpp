@@ -6,6 +6,7 @@
 // shortest loop around the point depends only on the shape.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -22,6 +23,10 @@ struct GirthPlane {
   std::vector<std::uint32_t> vertices;  // the ends of the edges the loop crosses, ascending
   std::vector<double> distances;        // beside vertices: their distances to the plane
 };
+
+// Two unit vectors square to the unit vector `n` and to each other: axes in the plane with normal
+// `n`, or across the line along it.
+std::array<Vec3, 2> squareTo(const Vec3& n);
 
 // Of the planes through `centre`, the one whose section of the mesh has the shortest closed loop
 // around `centre` (an odd number of loops around it: the centre inside the section): the
