@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include <Eigen/Eigenvalues>
@@ -12,6 +13,29 @@
 
 namespace odeskin {
 namespace {
+
+// The principal axes, longest first, of the component's vertices within `reach` of `centre`
+// (about `centre`); empty with fewer than 4 of them.
+std::optional<std::array<Vec3, 3>> principalAxes(std::span<const Vec3> rest, std::span<const std::uint32_t> component,
+                                                 const Vec3& centre, double reach) {
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  std::size_t near_count = 0;
+  for (const std::uint32_t v : component) {
+    const Vec3 d = rest[v] - centre;
+    if (glm::length(d) > reach) continue;
+    const Eigen::Vector3d e(d.x, d.y, d.z);
+    spread += e * e.transpose();
+    ++near_count;
+  }
+  if (near_count < 4) return std::nullopt;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(spread);
+  std::array<Vec3, 3> axes;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d a = solver.eigenvectors().col(2 - k);
+    axes[static_cast<std::size_t>(k)] = Vec3(a.x(), a.y(), a.z());
+  }
+  return axes;
+}
 
 // The shortest section through `centre` (bodySection). A torso's longest principal axis is the
 // one to cut across, so it is the first start.
@@ -27,23 +51,8 @@ std::optional<GirthPlane> sectionAround(std::span<const Vec3> rest, const MeshTo
   }
   if (!(nearest > 0.0)) return std::nullopt;
   for (double reach = 3.0 * nearest;; reach *= 2.0) {
-    Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
-    std::size_t near_count = 0;
-    for (const std::uint32_t v : component) {
-      const Vec3 d = rest[v] - centre;
-      if (glm::length(d) > reach) continue;
-      const Eigen::Vector3d e(d.x, d.y, d.z);
-      spread += e * e.transpose();
-      ++near_count;
-    }
-    if (near_count >= 4) {
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axes(spread);
-      std::array<Vec3, 3> starts;
-      for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector3d a = axes.eigenvectors().col(2 - k);  // the longest axis first
-        starts[static_cast<std::size_t>(k)] = Vec3(a.x(), a.y(), a.z());
-      }
-      if (std::optional<GirthPlane> plane = leastGirthPlane(rest, mesh, centre, reach, starts, in_component)) return plane;
+    if (const std::optional<std::array<Vec3, 3>> starts = principalAxes(rest, component, centre, reach)) {
+      if (std::optional<GirthPlane> plane = leastGirthPlane(rest, mesh, centre, reach, *starts, in_component)) return plane;
     }
     if (reach >= farthest) return std::nullopt;
   }
@@ -109,18 +118,10 @@ Vec3 bodyCentroid(std::span<const Vec3> rest, const MeshTopology& mesh, std::spa
 std::optional<Vec3> longestChordMiddle(std::span<const Vec3> rest, const MeshTopology& mesh,
                                        std::span<const std::uint32_t> component, std::span<const char> in_component,
                                        const Vec3& centroid) {
-  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
-  for (const std::uint32_t v : component) {
-    const Vec3 d = rest[v] - centroid;
-    const Eigen::Vector3d e(d.x, d.y, d.z);
-    spread += e * e.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axes(spread);
-  std::array<Vec3, 3> frame;
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d a = axes.eigenvectors().col(k);
-    frame[static_cast<std::size_t>(k)] = Vec3(a.x(), a.y(), a.z());
-  }
+  const std::optional<std::array<Vec3, 3>> axes =
+      principalAxes(rest, component, centroid, std::numeric_limits<double>::infinity());
+  if (!axes) return std::nullopt;
+  const std::array<Vec3, 3> frame{(*axes)[2], (*axes)[1], (*axes)[0]};  // shortest first
   std::vector<Vec3> lines;
   for (int i = -1; i <= 1; ++i) {
     for (int j = -1; j <= 1; ++j) {

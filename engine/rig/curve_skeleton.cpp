@@ -81,18 +81,13 @@ std::vector<std::uint32_t> largestComponent(const MeshTopology& mesh) {
   const std::size_t count = mesh.vertex_offsets.size() - 1;
   std::vector<std::int32_t> hops(count, -1);
   std::vector<std::uint32_t> queue(count + 1);
-  std::size_t best_size = 0;
-  std::uint32_t first = 0;
+  std::vector<std::uint32_t> largest;
   for (std::uint32_t s = 0; s < count; ++s) {
     if (hops[s] >= 0) continue;
     const std::size_t reached = sweepEdgeHops(mesh, s, hops, queue);
-    if (reached <= best_size) continue;
-    best_size = reached;
-    first = s;
+    if (reached > largest.size()) largest.assign(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(reached));
   }
-  std::fill(hops.begin(), hops.end(), -1);
-  queue.resize(sweepEdgeHops(mesh, first, hops, queue));
-  return queue;
+  return largest;
 }
 
 // The vertex of the component farthest by `measure`, ties by position.
