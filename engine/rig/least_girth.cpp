@@ -276,10 +276,10 @@ std::optional<GirthPlane> leastGirthPlane(std::span<const Vec3> positions, const
   double best = std::numeric_limits<double>::infinity();
   auto consider = [&](const Vec3& n) {
     const double g = sectioner.girth(n);
-    if (g < best) {
-      best = g;
-      best_normal = n;
-    }
+    if (g >= best) return false;
+    best = g;
+    best_normal = n;
+    return true;
   };
   for (const Vec3& start : starts) {
     if (glm::length(start) > 0.0) consider(glm::normalize(start));
@@ -290,11 +290,12 @@ std::optional<GirthPlane> leastGirthPlane(std::span<const Vec3> positions, const
     for (int move = 0; move < kMovesPerStep; ++move) {
       const Vec3 from = best_normal;
       const auto [u, w] = squareTo(from);
+      bool moved = false;
       for (int k = 0; k < kRefineNeighbours; ++k) {
         const double angle = 2.0 * std::numbers::pi * k / kRefineNeighbours;
-        consider(glm::normalize(from + step * (std::cos(angle) * u + std::sin(angle) * w)));
+        moved |= consider(glm::normalize(from + step * (std::cos(angle) * u + std::sin(angle) * w)));
       }
-      if (best_normal == from) break;
+      if (!moved) break;
     }
   }
   GirthPlane plane;
