@@ -11,6 +11,8 @@
 #include <Eigen/Eigenvalues>
 #include <glm/geometric.hpp>
 
+#include "triangle_cull.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -98,11 +100,14 @@ Vec3 bodyCentroid(std::span<const Vec3> rest, const MeshTopology& mesh, std::spa
   Vec3 area_moment{0.0};
   double volume = 0.0;  // six times
   double area = 0.0;    // twice
+  // Each vertex scaled once, not once for each of its (about six) triangles: a sixth of the divisions.
+  std::vector<Vec3> scaled(rest.size());
+  for (const std::uint32_t v : component) scaled[v] = (rest[v] - origin) / unit;
   for (const auto& corners : mesh.triangles) {
     if (!in_component[corners[0]]) continue;
-    const Vec3 a = (rest[corners[0]] - origin) / unit;
-    const Vec3 b = (rest[corners[1]] - origin) / unit;
-    const Vec3 c = (rest[corners[2]] - origin) / unit;
+    const Vec3& a = scaled[corners[0]];
+    const Vec3& b = scaled[corners[1]];
+    const Vec3& c = scaled[corners[2]];
     const double six_volume = glm::dot(a, glm::cross(b, c));
     volume += six_volume;
     volume_moment += (six_volume / 4.0) * (a + b + c);
@@ -132,32 +137,24 @@ std::optional<Vec3> longestChordMiddle(std::span<const Vec3> rest, const MeshTop
       }
     }
   }
-  // The component's triangles, each as its corners' mean (relative to the centroid) and the
-  // square of how far a line through the centroid may pass from that mean and still meet the
-  // triangle (its corners' distance, and a margin far above rounding): most triangles are far
-  // from each line, which this shows without projecting their corners.
   std::vector<std::uint32_t> triangles;
-  std::vector<double> mx, my, mz, m2, r2;
-  double scale = 0.0;
-  for (const std::uint32_t v : component) scale = std::max(scale, glm::length(rest[v] - centroid));
+  std::vector<Vec3> middles;
+  std::vector<double> radii;
   for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& c = mesh.triangles[t];
     if (!in_component[c[0]]) continue;
     const Vec3 middle = (rest[c[0]] + rest[c[1]] + rest[c[2]]) / 3.0 - centroid;
-    double reach = 0.0;
-    for (const std::uint32_t v : c) reach = std::max(reach, glm::length(rest[v] - centroid - middle));
-    reach += 1e-9 * scale;
+    double radius = 0.0;
+    for (const std::uint32_t v : c) radius = std::max(radius, glm::length(rest[v] - centroid - middle));
     triangles.push_back(t);
-    mx.push_back(middle.x);
-    my.push_back(middle.y);
-    mz.push_back(middle.z);
-    m2.push_back(glm::dot(middle, middle));
-    r2.push_back(reach * reach);
+    middles.push_back(middle);
+    radii.push_back(radius);
   }
+  const TriangleCull cull(middles, radii);
   double longest = 0.0;
   Vec3 best{0.0};
   std::vector<double> hits;
-  std::vector<std::uint32_t> near(triangles.size() + 1);
+  std::vector<std::uint32_t> near;
   for (const Vec3& direction : lines) {
     // A triangle meets the line where its projection on the plane square to the line holds the
     // line's point: in a frame (across, up, along), the origin of (across, up).
@@ -168,15 +165,10 @@ std::optional<Vec3> longestChordMiddle(std::span<const Vec3> rest, const MeshTop
       const Vec3 d = rest[v] - centroid;
       return Vec3(glm::dot(u, d), glm::dot(w, d), glm::dot(direction, d));
     };
-    std::size_t candidates = 0;
-    for (std::size_t k = 0; k < triangles.size(); ++k) {
-      const double along = direction.x * mx[k] + direction.y * my[k] + direction.z * mz[k];
-      near[candidates] = static_cast<std::uint32_t>(k);
-      candidates += m2[k] - along * along <= r2[k] ? 1 : 0;
-    }
+    cull.nearLine(direction, near);
     hits.clear();
-    for (std::size_t c = 0; c < candidates; ++c) {
-      const auto& t = mesh.triangles[triangles[near[c]]];
+    for (const std::uint32_t k : near) {
+      const auto& t = mesh.triangles[triangles[k]];
       const Vec3 p0 = framed(t[0]);
       const Vec3 p1 = framed(t[1]);
       const Vec3 p2 = framed(t[2]);

@@ -9,6 +9,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "triangle_cull.hpp"
+
 namespace odeskin {
 namespace {
 
@@ -27,11 +29,7 @@ constexpr double kFirstStep = 0.28;
 struct Ball {
   std::vector<Vec3> positions;                         // per ball vertex
   std::vector<std::array<std::uint32_t, 3>> corners;   // per ball triangle
-  // Per ball triangle, its corners' mean relative to the centre, coordinate by coordinate (the
-  // test of every triangle against each plane then runs in vector registers), and how far a plane
-  // through the centre may pass from that mean and still cut the triangle: its corners' distance
-  // from the mean, and a margin far above rounding.
-  std::vector<double> middle_x, middle_y, middle_z, reaches;
+  TriangleCull cull;                                   // the ball's triangles about its centre
   std::vector<std::array<std::uint32_t, 3>> edges;     // per ball triangle: edge k runs from corner k to k + 1
   std::vector<std::uint32_t> mesh_edge;                // per ball edge
   std::vector<std::array<std::uint32_t, 2>> ends;      // per ball edge: its ball vertices, the mesh's order
@@ -44,10 +42,13 @@ Ball ballAround(std::span<const Vec3> positions, const MeshTopology& mesh, const
   Ball ball;
   std::vector<char> inside(positions.size(), 0);
   for (std::uint32_t v = 0; v < positions.size(); ++v) {
-    inside[v] = (include.empty() || include[v]) && glm::length(positions[v] - centre) <= reach ? 1 : 0;
+    const Vec3 d = positions[v] - centre;
+    inside[v] = (include.empty() || include[v]) && glm::dot(d, d) <= reach * reach ? 1 : 0;
   }
   std::vector<std::uint32_t> local_vertex(positions.size(), kNone);
   std::vector<std::uint32_t> local_edge(mesh.edges.size(), kNone);
+  std::vector<Vec3> middles;
+  std::vector<double> radii;
   for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& corners = mesh.triangles[t];
     if (!inside[corners[0]] || !inside[corners[1]] || !inside[corners[2]]) continue;
@@ -74,11 +75,10 @@ Ball ballAround(std::span<const Vec3> positions, const MeshTopology& mesh, const
     const Vec3 middle = (positions[corners[0]] + positions[corners[1]] + positions[corners[2]]) / 3.0;
     double corner_distance = 0.0;
     for (const std::uint32_t c : corners) corner_distance = std::max(corner_distance, glm::length(positions[c] - middle));
-    ball.middle_x.push_back(middle.x - centre.x);
-    ball.middle_y.push_back(middle.y - centre.y);
-    ball.middle_z.push_back(middle.z - centre.z);
-    ball.reaches.push_back(corner_distance + 1e-9 * reach);
+    middles.push_back(middle - centre);
+    radii.push_back(corner_distance);
   }
+  ball.cull = TriangleCull(middles, radii);
   for (std::size_t e = 0; e < ball.mesh_edge.size(); ++e) {
     const auto& ends = mesh.edges[ball.mesh_edge[e]];
     ball.ends[e] = {local_vertex[ends[0]], local_vertex[ends[1]]};
@@ -175,18 +175,8 @@ class Sectioner {
   // adds a dangling piece, not part of a loop around the body: left out.
   void cut() {
     segments_.clear();
-    // Most triangles lie wholly to one side, which their middle's distance shows: the few that may
-    // not, listed without a branch per triangle.
-    const std::size_t count = ball_.corners.size();
-    near_.resize(count + 1);
-    std::size_t candidates = 0;
-    for (std::size_t t = 0; t < count; ++t) {
-      const double d = normal_.x * ball_.middle_x[t] + normal_.y * ball_.middle_y[t] + normal_.z * ball_.middle_z[t];
-      near_[candidates] = static_cast<std::uint32_t>(t);
-      candidates += std::abs(d) <= ball_.reaches[t] ? 1 : 0;
-    }
-    for (std::size_t c = 0; c < candidates; ++c) {
-      const std::size_t t = near_[c];
+    ball_.cull.nearPlane(normal_, near_);
+    for (const std::uint32_t t : near_) {
       const auto& corners = ball_.corners[t];
       const std::array<bool, 3> up{side(corners[0]) >= 0.0, side(corners[1]) >= 0.0, side(corners[2]) >= 0.0};
       if (up[0] == up[1] && up[1] == up[2]) continue;
