@@ -24,7 +24,7 @@ std::optional<std::array<Vec3, 3>> principalAxes(std::span<const Vec3> rest, std
   std::size_t near_count = 0;
   for (const std::uint32_t v : component) {
     const Vec3 d = rest[v] - centre;
-    if (glm::length(d) > reach) continue;
+    if (glm::dot(d, d) > reach * reach) continue;
     const Eigen::Vector3d e(d.x, d.y, d.z);
     spread += e * e.transpose();
     ++near_count;
@@ -44,13 +44,16 @@ std::optional<std::array<Vec3, 3>> principalAxes(std::span<const Vec3> rest, std
 std::optional<GirthPlane> sectionAround(std::span<const Vec3> rest, const MeshTopology& mesh,
                                         std::span<const std::uint32_t> component, std::span<const char> in_component,
                                         const Vec3& centre) {
+  // Squares compared, one root taken each: the same numbers as the roots compared.
   double nearest = std::numeric_limits<double>::infinity();
   double farthest = 0.0;
   for (const std::uint32_t v : component) {
-    const double d = glm::length(rest[v] - centre);
-    nearest = std::min(nearest, d);
-    farthest = std::max(farthest, d);
+    const Vec3 d = rest[v] - centre;
+    nearest = std::min(nearest, glm::dot(d, d));
+    farthest = std::max(farthest, glm::dot(d, d));
   }
+  nearest = std::sqrt(nearest);
+  farthest = std::sqrt(farthest);
   if (!(nearest > 0.0)) return std::nullopt;
   for (double reach = 3.0 * nearest;; reach *= 2.0) {
     if (const std::optional<std::array<Vec3, 3>> starts = principalAxes(rest, component, centre, reach)) {
@@ -144,11 +147,14 @@ std::optional<Vec3> longestChordMiddle(std::span<const Vec3> rest, const MeshTop
     const auto& c = mesh.triangles[t];
     if (!in_component[c[0]]) continue;
     const Vec3 middle = (rest[c[0]] + rest[c[1]] + rest[c[2]]) / 3.0 - centroid;
-    double radius = 0.0;
-    for (const std::uint32_t v : c) radius = std::max(radius, glm::length(rest[v] - centroid - middle));
+    double squared_radius = 0.0;
+    for (const std::uint32_t v : c) {
+      const Vec3 d = rest[v] - centroid - middle;
+      squared_radius = std::max(squared_radius, glm::dot(d, d));
+    }
     triangles.push_back(t);
     middles.push_back(middle);
-    radii.push_back(radius);
+    radii.push_back(std::sqrt(squared_radius));
   }
   const TriangleCull cull(middles, radii);
   double longest = 0.0;

@@ -73,10 +73,13 @@ Ball ballAround(std::span<const Vec3> positions, const MeshTopology& mesh, const
     ball.corners.push_back(local_corners);
     ball.edges.push_back(local_edges);
     const Vec3 middle = (positions[corners[0]] + positions[corners[1]] + positions[corners[2]]) / 3.0;
-    double corner_distance = 0.0;
-    for (const std::uint32_t c : corners) corner_distance = std::max(corner_distance, glm::length(positions[c] - middle));
+    double squared_radius = 0.0;
+    for (const std::uint32_t c : corners) {
+      const Vec3 d = positions[c] - middle;
+      squared_radius = std::max(squared_radius, glm::dot(d, d));
+    }
     middles.push_back(middle - centre);
-    radii.push_back(corner_distance);
+    radii.push_back(std::sqrt(squared_radius));
   }
   ball.cull = TriangleCull(middles, radii);
   for (std::size_t e = 0; e < ball.mesh_edge.size(); ++e) {
